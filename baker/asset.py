@@ -1,0 +1,218 @@
+"""Load any supported input into an :class:`Asset`: a lossless glTF document plus geometry accessors.
+
+glTF/GLB are read as they are (see :mod:`baker.io.gltf`). OBJ, PLY and STL are read with trimesh and USD with
+usd-core, then converted to a glTF document, so every bake and writer deals with one representation.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .errors import BakerError
+from .io.gltf import GltfDocument
+
+GLTF_SUFFIXES = {".gltf", ".glb"}
+TRIMESH_SUFFIXES = {".obj", ".ply", ".stl"}
+USD_SUFFIXES = {".usd", ".usda", ".usdc", ".usdz"}
+INPUT_SUFFIXES = GLTF_SUFFIXES | TRIMESH_SUFFIXES | USD_SUFFIXES
+
+MODE_TRIANGLES, MODE_STRIP, MODE_FAN = 4, 5, 6
+
+
+@dataclass
+class PrimitiveGeometry:
+    """One triangle primitive in mesh space. ``faces`` index ``positions`` (the primitive's own vertices)."""
+
+    mesh: int
+    primitive: int
+    positions: np.ndarray  # (n, 3) float64
+    faces: np.ndarray  # (m, 3) int64
+    normals: np.ndarray | None  # (n, 3) float64, unit, or None when the primitive has none
+    texcoords: dict  # set index -> (n, 2) float64 (normalized integers converted to [0, 1])
+    material: int | None
+
+
+@dataclass
+class Asset:
+    doc: GltfDocument
+    source: Path
+
+    @classmethod
+    def load(cls, path) -> "Asset":
+        path = Path(path)
+        suffix = path.suffix.lower()
+        if not path.exists():
+            raise BakerError(path, "file not found")
+        if suffix not in INPUT_SUFFIXES:
+            raise BakerError(path, f"unsupported input type '{suffix}' (use one of {', '.join(sorted(INPUT_SUFFIXES))})")
+        if suffix in GLTF_SUFFIXES:
+            doc = GltfDocument.load(path)
+        elif suffix in USD_SUFFIXES:
+            from .io.usd import read_usd
+
+            doc = _doc_from_trimesh_scene(path, read_usd(path))
+        else:
+            doc = _doc_from_trimesh_scene(path, _load_trimesh(path))
+        asset = cls(doc=doc, source=path)
+        asset.check_has_triangles()
+        return asset
+
+    # ------------------------------------------------------------------ geometry
+    def meshes(self) -> list:
+        return self.doc.json.get("meshes", [])
+
+    def check_has_triangles(self) -> None:
+        found = False
+        for m, mesh in enumerate(self.meshes()):
+            for p, prim in enumerate(mesh.get("primitives", [])):
+                if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN):
+                    if len(self.primitive(m, p).faces):
+                        found = True
+        if not self.meshes():
+            raise BakerError(self.source, "no meshes in the asset")
+        if not found:
+            raise BakerError(self.source, "no triangle faces (points or lines only, or empty meshes)")
+
+    def triangle_primitives(self, mesh: int) -> list[int]:
+        prims = self.meshes()[mesh].get("primitives", [])
+        return [p for p, prim in enumerate(prims) if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)]
+
+    def primitive(self, mesh: int, primitive: int) -> PrimitiveGeometry:
+        prim = self.meshes()[mesh]["primitives"][primitive]
+        attrs = prim.get("attributes", {})
+        if "POSITION" not in attrs:
+            raise BakerError(self.source, f"mesh {mesh} primitive {primitive} has no POSITION attribute")
+        positions = self.doc.accessor(attrs["POSITION"]).astype(np.float64)
+        n = len(positions)
+        if "indices" in prim:
+            indices = self.doc.accessor(prim["indices"]).astype(np.int64)
+        else:
+            indices = np.arange(n, dtype=np.int64)
+        if len(indices) and (indices.max() >= n or indices.min() < 0):
+            raise BakerError(self.source, f"mesh {mesh} primitive {primitive} has indices out of range (>= {n} vertices)")
+        faces = _faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
+        normals = None
+        if "NORMAL" in attrs:
+            normals = self.doc.accessor(attrs["NORMAL"]).astype(np.float64)
+            normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-20)
+        texcoords = {}
+        for key, acc in attrs.items():
+            if key.startswith("TEXCOORD_"):
+                texcoords[int(key[9:])] = _to_float(self.doc, acc)
+        return PrimitiveGeometry(mesh, primitive, positions, faces, normals, texcoords, prim.get("material"))
+
+    def mesh_triangles(self, mesh: int) -> tuple[np.ndarray, np.ndarray]:
+        """All triangles of ``mesh`` (every triangle primitive) as (vertices, faces) in mesh space."""
+        verts, faces, base = [], [], 0
+        for p in self.triangle_primitives(mesh):
+            g = self.primitive(mesh, p)
+            verts.append(g.positions)
+            faces.append(g.faces + base)
+            base += len(g.positions)
+        if not verts:
+            return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
+        return np.concatenate(verts), np.concatenate(faces)
+
+
+def _to_float(doc: GltfDocument, accessor: int) -> np.ndarray:
+    data = doc.accessor(accessor)
+    acc = doc.json["accessors"][accessor]
+    if acc.get("normalized") and data.dtype.kind in "iu":
+        info = np.iinfo(data.dtype)
+        out = data.astype(np.float64) / info.max
+        return np.maximum(out, -1.0) if data.dtype.kind == "i" else out
+    return data.astype(np.float64)
+
+
+def _faces_from_indices(indices: np.ndarray, mode: int) -> np.ndarray:
+    if mode == MODE_TRIANGLES:
+        faces = indices[: len(indices) // 3 * 3].reshape(-1, 3)
+    elif mode == MODE_STRIP:
+        k = np.arange(max(len(indices) - 2, 0))
+        even = (k % 2) == 0
+        a = indices[k]
+        b = np.where(even, indices[k + 1], indices[k + 2])
+        c = np.where(even, indices[k + 2], indices[k + 1])
+        faces = np.stack([a, b, c], axis=1)
+    elif mode == MODE_FAN:
+        k = np.arange(1, max(len(indices) - 1, 1))
+        faces = np.stack([np.full_like(k, indices[0]) if len(indices) else k, indices[k], indices[k + 1]], axis=1) if len(indices) > 2 else np.zeros((0, 3), np.int64)
+    else:
+        return np.zeros((0, 3), np.int64)
+    # drop degenerate index triples (strips use them as restarts); they carry no area and confuse topology
+    keep = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
+    return faces[keep]
+
+
+def _load_trimesh(path: Path):
+    import trimesh
+
+    try:
+        # process=False keeps the file's vertices (no merging); OBJ vertices are split where UVs differ
+        loaded = trimesh.load(str(path), process=False)
+    except Exception as exc:  # trimesh raises many types for malformed files
+        raise BakerError(path, f"cannot read mesh: {exc}") from None
+    if path.suffix.lower() == ".obj" and b"mtllib" not in path.read_bytes():
+        # without a .mtl trimesh invents a material with a 2x2 grey image; keep the glTF default material instead
+        geoms = [loaded] if isinstance(loaded, trimesh.Trimesh) else list(getattr(loaded, "geometry", {}).values())
+        for g in geoms:
+            if getattr(g.visual, "kind", None) == "texture":
+                g.visual.material = trimesh.visual.material.PBRMaterial()
+    return loaded
+
+
+def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
+    """Convert what trimesh (or our USD reader) loaded into a glTF document."""
+    import trimesh
+
+    if isinstance(loaded, trimesh.Trimesh):
+        scene = trimesh.Scene(loaded)
+    elif isinstance(loaded, trimesh.Scene):
+        scene = loaded
+    else:
+        raise BakerError(path, "no triangle faces (the file holds points or lines only)")
+    meshes = [g for g in scene.geometry.values() if isinstance(g, trimesh.Trimesh)]
+    if not meshes or sum(len(g.faces) for g in meshes) == 0:
+        raise BakerError(path, "no triangle faces")
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        glb = Path(d) / "converted.glb"
+        # trimesh writes vertex normals only when it has them; keep what the file had
+        glb.write_bytes(trimesh.exchange.gltf.export_glb(scene, include_normals=True))
+        doc = GltfDocument.load(glb)
+    doc.path = path
+    doc.json["asset"]["generator"] = "baker (converted from " + path.suffix.lower().lstrip(".") + ")"
+    return doc
+
+
+def weld(positions: np.ndarray, tolerance: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
+    """Merge vertices closer than ``tolerance`` x the bounding-box diagonal.
+
+    Returns (welded positions, inverse) with ``welded[inverse] ~= positions``. Deterministic: welded vertices are
+    ordered by first occurrence.
+    """
+    if len(positions) == 0:
+        return positions.copy(), np.zeros(0, np.int64)
+    diag = float(np.linalg.norm(positions.max(0) - positions.min(0))) or 1.0
+    keys = np.round(positions / (diag * tolerance)).astype(np.int64)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    # renumber by first occurrence so the order does not depend on coordinates' sort order
+    order = np.argsort(first, kind="stable")
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    return positions[first[order]], rank[inverse]
+
+
+def vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Area-weighted vertex normals (unit length; zero-area neighbourhoods get +Z)."""
+    fn = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
+    out = np.zeros_like(vertices)
+    for k in range(3):
+        np.add.at(out, faces[:, k], fn)
+    length = np.linalg.norm(out, axis=1, keepdims=True)
+    out = np.where(length > 1e-30, out / np.maximum(length, 1e-30), np.array([0.0, 0.0, 1.0]))
+    return out

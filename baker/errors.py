@@ -1,0 +1,11 @@
+"""Errors a user can act on: one line, naming the file and the problem."""
+from __future__ import annotations
+
+
+class BakerError(Exception):
+    """Bad input or an impossible request. The CLI prints ``baker: error: PATH: MESSAGE`` and exits 2."""
+
+    def __init__(self, path, message: str):
+        self.path = str(path) if path is not None else None
+        self.message = message
+        super().__init__(f"{self.path}: {message}" if self.path else message)

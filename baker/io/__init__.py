@@ -1,0 +1,1 @@
+"""File formats: glTF documents, USD stages and images. No algorithms live here."""

@@ -1,0 +1,58 @@
+"""Image encoding and decoding through OpenImageIO (PNG 8/16-bit, EXR half/float)."""
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import OpenImageIO as oiio
+
+from ..errors import BakerError
+
+_FORMATS = {np.dtype(np.uint8): "uint8", np.dtype(np.uint16): "uint16", np.dtype(np.float16): "half",
+            np.dtype(np.float32): "float"}
+
+
+def write_image(path, pixels: np.ndarray) -> None:
+    """Write ``pixels`` (H, W) or (H, W, C), row 0 at the top, to ``path``; the format follows the extension."""
+    pixels = np.ascontiguousarray(pixels)
+    if pixels.ndim == 2:
+        pixels = pixels[:, :, None]
+    h, w, c = pixels.shape
+    spec = oiio.ImageSpec(w, h, c, _FORMATS[pixels.dtype])
+    # no timestamps or host names in the file: outputs must be byte-identical run to run
+    spec.attribute("DateTime", "")
+    out = oiio.ImageOutput.create(str(path))
+    if out is None:
+        raise BakerError(path, f"cannot write image: {oiio.geterror()}")
+    try:
+        if not out.open(str(path), spec) or not out.write_image(pixels):
+            raise BakerError(path, f"cannot write image: {out.geterror()}")
+    finally:
+        out.close()
+
+
+def encode_image(pixels: np.ndarray, suffix: str = ".png") -> bytes:
+    """Encode ``pixels`` to bytes in the format named by ``suffix``."""
+    with tempfile.TemporaryDirectory() as d:
+        p = Path(d) / f"image{suffix}"
+        write_image(p, pixels)
+        return p.read_bytes()
+
+
+def read_image(path) -> np.ndarray:
+    """Read an image as (H, W, C) in its stored pixel type."""
+    inp = oiio.ImageInput.open(str(path))
+    if inp is None:
+        raise BakerError(path, f"cannot read image: {oiio.geterror()}")
+    try:
+        return inp.read_image(format=inp.spec().format)
+    finally:
+        inp.close()
+
+
+def decode_image(data: bytes, suffix: str = ".png") -> np.ndarray:
+    with tempfile.TemporaryDirectory() as d:
+        p = Path(d) / f"image{suffix}"
+        p.write_bytes(data)
+        return read_image(p)

@@ -1,0 +1,148 @@
+"""Texture space shared by every texture bake: UV layout, texel -> surface sample, and dilation.
+
+- :func:`rasterize_uv` maps each texel centre to (triangle, barycentrics) with a numba scanline-free bounding-box
+  rasterizer (one loop per triangle in compiled code; no Python loop over triangles or texels).
+- :func:`uv_layout_usable` decides whether an existing UV set can hold a bake: no overlap once wrapped to [0, 1).
+- :func:`unwrap` makes a new layout with xatlas when it cannot.
+- :func:`dilate` pads results across chart borders so bilinear filtering and mipmapping show no seams.
+
+Conventions: glTF UV (0, 0) is the top-left corner of the image, so texel (row y, column x) covers
+u in [x/W, (x+1)/W], v in [y/H, (y+1)/H]; arrays are indexed [row, column].
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+from scipy import ndimage
+
+
+@numba.njit(cache=True)
+def _rasterize(uv_px, width, height, tri_of_texel, bary_of_texel, hits):
+    for t in range(uv_px.shape[0]):
+        # UVs repeat (the glTF default sampler wraps): a triangle reaching past [0, 1] is drawn in every tile it
+        # touches, so the part at u = -0.05 lands in the texels that u = 0.95 samples
+        tx0 = int(np.floor(min(uv_px[t, 0, 0], min(uv_px[t, 1, 0], uv_px[t, 2, 0])) / width))
+        tx1 = int(np.floor(max(uv_px[t, 0, 0], max(uv_px[t, 1, 0], uv_px[t, 2, 0])) / width))
+        ty0 = int(np.floor(min(uv_px[t, 0, 1], min(uv_px[t, 1, 1], uv_px[t, 2, 1])) / height))
+        ty1 = int(np.floor(max(uv_px[t, 0, 1], max(uv_px[t, 1, 1], uv_px[t, 2, 1])) / height))
+        if (tx1 - tx0 + 1) * (ty1 - ty0 + 1) > 16:
+            continue  # a triangle spanning many tiles is a broken layout; the overlap test rejects it anyway
+        for ty in range(ty0, ty1 + 1):
+            for tx in range(tx0, tx1 + 1):
+                _rasterize_one(uv_px, t, tx * width, ty * height, width, height, tri_of_texel, bary_of_texel, hits)
+
+
+@numba.njit(cache=True)
+def _rasterize_one(uv_px, t, ox, oy, width, height, tri_of_texel, bary_of_texel, hits):
+    x0, y0 = uv_px[t, 0, 0] - ox, uv_px[t, 0, 1] - oy
+    x1, y1 = uv_px[t, 1, 0] - ox, uv_px[t, 1, 1] - oy
+    x2, y2 = uv_px[t, 2, 0] - ox, uv_px[t, 2, 1] - oy
+    area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+    if area == 0.0:
+        return
+    xmin = max(int(np.floor(min(x0, min(x1, x2)) - 0.5)), 0)
+    xmax = min(int(np.ceil(max(x0, max(x1, x2)) - 0.5)), width - 1)
+    ymin = max(int(np.floor(min(y0, min(y1, y2)) - 0.5)), 0)
+    ymax = min(int(np.ceil(max(y0, max(y1, y2)) - 0.5)), height - 1)
+    inv = 1.0 / area
+    for y in range(ymin, ymax + 1):
+        py = y + 0.5
+        for x in range(xmin, xmax + 1):
+            px = x + 0.5
+            w0 = ((x1 - px) * (y2 - py) - (x2 - px) * (y1 - py)) * inv
+            w1 = ((x2 - px) * (y0 - py) - (x0 - px) * (y2 - py)) * inv
+            w2 = 1.0 - w0 - w1
+            # half-open test: a texel centre on a shared edge belongs to one triangle only
+            if (w0 >= 0.0 and w1 >= 0.0 and w2 > 0.0) or (w0 > 0.0 and w1 > 0.0 and w2 >= 0.0):
+                hits[y, x] += 1
+                tri_of_texel[y, x] = t
+                bary_of_texel[y, x, 0] = w0
+                bary_of_texel[y, x, 1] = w1
+                bary_of_texel[y, x, 2] = w2
+
+
+@dataclass
+class TexelSamples:
+    """Texels covered by triangles: ``rows``/``cols`` index the image, ``triangle`` and ``bary`` locate them."""
+
+    width: int
+    height: int
+    rows: np.ndarray
+    cols: np.ndarray
+    triangle: np.ndarray
+    bary: np.ndarray  # (k, 3)
+    overlap_fraction: float  # covered texels hit by more than one triangle / covered texels
+
+    @property
+    def mask(self) -> np.ndarray:
+        m = np.zeros((self.height, self.width), bool)
+        m[self.rows, self.cols] = True
+        return m
+
+
+def rasterize_uv(uv: np.ndarray, faces: np.ndarray, width: int, height: int) -> TexelSamples:
+    """Rasterize triangles ``faces`` with per-vertex ``uv`` (n, 2) into a width x height texel grid."""
+    uv_px = uv[faces].astype(np.float64) * np.array([width, height], np.float64)
+    tri = np.full((height, width), -1, np.int64)
+    bary = np.zeros((height, width, 3), np.float64)
+    hits = np.zeros((height, width), np.int32)
+    _rasterize(np.ascontiguousarray(uv_px), width, height, tri, bary, hits)
+    rows, cols = np.nonzero(hits)
+    covered = len(rows)
+    overlap = float((hits > 1).sum()) / covered if covered else 0.0
+    return TexelSamples(width, height, rows, cols, tri[rows, cols], bary[rows, cols], overlap)
+
+
+def uv_layout_usable(uv: np.ndarray, faces: np.ndarray, size: int = 512, max_overlap: float = 0.002) -> bool:
+    """True when the UV set, wrapped into [0, 1)^2 as a repeating sampler sees it, has no overlapping triangles
+    (mirrored or stacked charts, tiling).
+
+    ``max_overlap`` tolerates the few texels that land on edges shared by two triangles of one chart.
+    """
+    if len(faces) == 0:
+        return False
+    corners = uv[faces]
+    # a triangle wider than the texture covers some texel twice by itself
+    if not np.isfinite(corners).all() or np.ptp(corners, axis=1).max() > 1.0:
+        return False
+    return rasterize_uv(uv, faces, size, size).overlap_fraction <= max_overlap
+
+
+def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding: int = 4, seed: int = 0):
+    """Unwrap several meshes into one shared atlas with xatlas.
+
+    Returns one (vmapping, faces, uv) per mesh: new vertex i copies old vertex ``vmapping[i]``; ``uv`` in [0, 1].
+    """
+    import xatlas
+
+    atlas = xatlas.Atlas()
+    for vertices, faces in meshes:
+        atlas.add_mesh(np.ascontiguousarray(vertices, np.float32), np.ascontiguousarray(faces, np.uint32))
+    chart = xatlas.ChartOptions()
+    pack = xatlas.PackOptions()
+    pack.resolution = int(resolution)
+    pack.padding = int(padding)
+    pack.bilinear = True
+    pack.bruteForce = False
+    atlas.generate(chart, pack)
+    return [(np.asarray(v, np.int64), np.asarray(f, np.int64), np.asarray(u, np.float64)) for v, f, u in
+            (atlas[i] for i in range(len(meshes)))]
+
+
+def dilate(image: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """Fill every texel outside ``mask`` with the value of the nearest texel inside it (Euclidean).
+
+    Filling the whole background (not a few rings) keeps every mip level free of background bleeding.
+    """
+    if mask.all() or not mask.any():
+        return image
+    _, (iy, ix) = ndimage.distance_transform_edt(~mask, return_indices=True)
+    return image[iy, ix]
+
+
+def interpolate(values: np.ndarray, faces: np.ndarray, triangle: np.ndarray, bary: np.ndarray) -> np.ndarray:
+    """Barycentric interpolation of per-vertex ``values`` at (triangle, bary) samples."""
+    corners = values[faces[triangle]]  # (k, 3, ...) corner values
+    return np.einsum("kj,kj...->k...", bary, corners)
