@@ -1,0 +1,121 @@
+"""The command line: inputs of every kind, one-line errors with exit code 2, no partial outputs."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+
+from baker.cli import main
+from baker.io.gltf import GltfDocument
+
+FAST = ["--thickness-rays", "4", "--thickness-texture-size", "32", "-q"]
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "baker.cli", *map(str, args)], capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def sphere_glb(tmp_path_factory):
+    path = tmp_path_factory.mktemp("cli") / "sphere.glb"
+    trimesh.creation.icosphere(subdivisions=2).export(str(path))
+    return path
+
+
+@pytest.mark.parametrize("suffix", [".obj", ".ply", ".stl", ".glb", ".gltf"])
+def test_every_mesh_format_bakes(tmp_path, suffix):
+    src = tmp_path / f"in{suffix}"
+    trimesh.creation.icosphere(subdivisions=2).export(str(src))
+    out = tmp_path / "out.glb"
+    assert main(["bake", str(src), "-o", str(out), *FAST]) == 0
+    doc = GltfDocument.load(out)
+    assert "_THICKNESS" in doc.json["meshes"][0]["primitives"][0]["attributes"]
+
+
+def test_gltf_output_writes_bin_and_png(tmp_path, sphere_glb):
+    out = tmp_path / "baked.gltf"
+    assert main(["bake", str(sphere_glb), "-o", str(out), *FAST]) == 0
+    gltf = json.loads(out.read_text())
+    assert gltf["buffers"][0]["uri"] == "baked.bin" and (tmp_path / "baked.bin").is_file()
+    uris = [img["uri"] for img in gltf["images"]]
+    assert all((tmp_path / u).is_file() for u in uris) and all(u.endswith(".png") for u in uris)
+
+
+def test_version_and_help():
+    result = run("--version")
+    assert result.returncode == 0 and result.stdout.startswith("baker ")
+    result = run("bake", "--help")
+    assert "--thickness-rays" in result.stdout and "--seed" in result.stdout
+
+
+def _points_only_gltf(path):
+    pos = np.zeros((3, 3), np.float32)
+    gltf = {"asset": {"version": "2.0"}, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 0}]}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36}],
+            "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,"
+                         + __import__("base64").b64encode(pos.tobytes()).decode()}]}
+    path.write_text(json.dumps(gltf))
+
+
+BAD_INPUTS = {
+    "missing.glb": (None, "file not found"),
+    "truncated.glb": ("truncated", "truncated GLB"),
+    "broken.gltf": ("broken", "broken JSON"),
+    "points.gltf": ("points", "no triangle faces"),
+    "empty.obj": ("empty_obj", "no triangle faces"),
+    "model.fbx": ("fbx", "unsupported input type"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD_INPUTS))
+def test_bad_input_is_one_line_exit_2_no_output(tmp_path, sphere_glb, name):
+    kind, expected = BAD_INPUTS[name]
+    src = tmp_path / name
+    if kind == "truncated":
+        src.write_bytes(sphere_glb.read_bytes()[:200])
+    elif kind == "broken":
+        src.write_text('{"asset": {"version": "2.0"}, "meshes": [')
+    elif kind == "points":
+        _points_only_gltf(src)
+    elif kind == "empty_obj":
+        src.write_text("# nothing\nv 0 0 0\nv 1 0 0\n")
+    elif kind == "fbx":
+        src.write_bytes(b"Kaydara FBX Binary")
+    out = tmp_path / "out.glb"
+    result = run("bake", src, "-o", out, "-q")
+    assert result.returncode == 2, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("baker: error: ") and str(src) in lines[0] and expected in lines[0]
+    assert not out.exists()
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".out.glb")]  # no temp leftovers
+
+
+def test_bad_option_value_is_an_error(tmp_path, sphere_glb):
+    result = run("bake", sphere_glb, "-o", tmp_path / "o.glb", "--thickness-distribution", "gaussian")
+    assert result.returncode == 2 and "distribution" in result.stderr
+    assert not (tmp_path / "o.glb").exists()
+
+
+def test_inspect_lists_baked_data(tmp_path, sphere_glb, capsys):
+    out = tmp_path / "o.glb"
+    assert main(["bake", str(sphere_glb), "-o", str(out), *FAST]) == 0
+    assert main(["inspect", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "_THICKNESS" in text and "BAKER_thickness" in text and "KHR_materials_volume" in text
+    assert main(["inspect", str(out), "--format", "json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["meshes"][0]["baked"]["_THICKNESS"]["min"] > 0
+
+
+def test_quiet_and_non_tty_print_no_progress(tmp_path, sphere_glb):
+    result = run("bake", sphere_glb, "-o", tmp_path / "o.glb", "--thickness-rays", "4",
+                 "--thickness-texture-size", "32")
+    assert result.returncode == 0
+    assert "%|" not in result.stderr  # no tqdm bar when stderr is not a terminal
