@@ -19,6 +19,7 @@ import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
+import numba
 import numpy as np
 
 from ..options import opt
@@ -98,7 +99,9 @@ def orthonormal_basis(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 class RayScene:
-    """An Embree scene over a triangle mesh; ``distances`` returns the first-hit distance or ``inf``."""
+    """An Embree scene over a triangle mesh; ``distances`` returns the first-hit distance (>= 1e37 on a miss)."""
+
+    MISS = 1e37  # Embree leaves tfar at its initial value when nothing is hit
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray):
         from embreex import rtcore_scene
@@ -108,9 +111,52 @@ class RayScene:
         TriangleMesh(self._scene, np.ascontiguousarray(vertices, np.float32), np.ascontiguousarray(faces, np.int32))
 
     def distances(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
-        out = self._scene.run(np.ascontiguousarray(origins, np.float32), np.ascontiguousarray(directions, np.float32),
-                              output=1)
-        return np.where(out["primID"] >= 0, out["tfar"], np.inf)
+        # the DISTANCE query returns tfar alone: no u/v/Ng/primID arrays to allocate per ray
+        return self._scene.run(np.ascontiguousarray(origins, np.float32),
+                               np.ascontiguousarray(directions, np.float32), query="DISTANCE")
+
+
+@numba.njit(cache=True, nogil=True)
+def _make_rays(points, axes, samples, shifts, cosine, sin_max, cos_max, bias, origins, directions, cos_theta):
+    """Fused, GIL-free version of :func:`ray_directions` + origin offset for one batch (float32 outputs)."""
+    rays = samples.shape[0]
+    for i in range(points.shape[0]):
+        nx, ny, nz = axes[i, 0], axes[i, 1], axes[i, 2]
+        sign = 1.0 if nz >= 0.0 else -1.0
+        a = -1.0 / (sign + nz)
+        b = nx * ny * a
+        tx, ty, tz = 1.0 + sign * nx * nx * a, sign * b, -sign * nx
+        bx, by, bz = b, sign + ny * ny * a, -ny
+        ox, oy, oz = points[i, 0] + nx * bias, points[i, 1] + ny * bias, points[i, 2] + nz * bias
+        for k in range(rays):
+            u0 = (samples[k, 0] + shifts[i, 0]) % 1.0
+            u1 = (samples[k, 1] + shifts[i, 1]) % 1.0
+            if cosine:
+                st = np.sqrt(u0) * sin_max
+                ct = np.sqrt(max(0.0, 1.0 - st * st))
+            else:
+                ct = 1.0 - u0 * (1.0 - cos_max)
+                st = np.sqrt(max(0.0, 1.0 - ct * ct))
+            phi = 2.0 * np.pi * u1
+            c, s = st * np.cos(phi), st * np.sin(phi)
+            r = i * rays + k
+            directions[r, 0] = tx * c + bx * s + nx * ct
+            directions[r, 1] = ty * c + by * s + ny * ct
+            directions[r, 2] = tz * c + bz * s + nz * ct
+            origins[r, 0] = ox
+            origins[r, 1] = oy
+            origins[r, 2] = oz
+            cos_theta[r] = ct
+
+
+@numba.njit(cache=True, nogil=True)
+def _mean_chords(dist, cos_theta, bias, max_distance, rays, out):
+    for i in range(out.shape[0]):
+        acc = 0.0
+        for k in range(rays):
+            r = i * rays + k
+            acc += min(dist[r] + bias * cos_theta[r], max_distance)
+        out[i] = acc / rays
 
 
 def default_max_distance(vertices: np.ndarray) -> float:
@@ -148,6 +194,8 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
     -------
     (n,) float64 mean chord length in mesh units.
     """
+    if distribution not in ("cosine", "uniform"):
+        raise ValueError(f"unknown distribution {distribution!r}")
     n = len(points)
     out = np.empty(n, np.float64)
     if n == 0:
@@ -157,15 +205,28 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
     axes = -normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-30)
     batch = max(1, (1 << 19) // rays)  # ~0.5 M rays per Embree call: large enough to amortize, small for memory
 
+    half = math.radians(spread) / 2.0
+    sin_max, cos_max = math.sin(min(half, math.pi / 2)), math.cos(half)
+    # trace points in Morton (Z-curve) order: consecutive batches then walk the same BVH nodes, which measured
+    # ~10% faster in Embree than file order and ~25% faster than random order
+    order = morton_order(points)
+    points = np.ascontiguousarray(points[order], np.float64)
+    axes = np.ascontiguousarray(axes[order])
+    shifts = shifts[order]
+    result = np.empty(n, np.float64)
+
     def run(start: int) -> int:
         stop = min(n, start + batch)
-        d, cos_t = ray_directions(axes[start:stop], samples, shifts[start:stop], distribution, spread)
+        count = (stop - start) * rays
+        origins = np.empty((count, 3), np.float32)
+        directions = np.empty((count, 3), np.float32)
+        cos_t = np.empty(count, np.float64)
         # start `bias` inside the solid (along -n), not along the ray: grazing rays from a vertex of a faceted
         # surface would otherwise leave through the facets' gap below the tangent plane and count as misses
-        o = np.broadcast_to((points[start:stop] + axes[start:stop] * bias)[:, None, :], d.shape)
-        dist = scene.distances(o.reshape(-1, 3), d.reshape(-1, 3)) + bias * cos_t.reshape(-1)
-        dist = np.minimum(dist, max_distance).reshape(stop - start, rays)
-        out[start:stop] = dist.mean(axis=1)
+        _make_rays(points[start:stop], axes[start:stop], samples, shifts[start:stop], distribution == "cosine",
+                   sin_max, cos_max, bias, origins, directions, cos_t)
+        dist = scene.distances(origins, directions)
+        _mean_chords(dist, cos_t, bias, max_distance, rays, out[start:stop])
         return stop - start
 
     threads = threads or min(2, os.cpu_count() or 1)
@@ -173,4 +234,16 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
         for done in pool.map(run, range(0, n, batch)):
             if progress:
                 progress(done)
-    return out
+    result[order] = out
+    return result
+
+
+def morton_order(points: np.ndarray, bits: int = 10) -> np.ndarray:
+    """Indices sorting ``points`` along a 3D Z-order curve on a 2^bits grid over their bounding box."""
+    lo, hi = points.min(0), points.max(0)
+    q = ((points - lo) / np.maximum(hi - lo, 1e-30) * ((1 << bits) - 1)).astype(np.int64)
+    code = np.zeros(len(points), np.int64)
+    for b in range(bits):  # interleave bit b of x, y, z (a loop over bits, vectorized over points)
+        for axis in range(3):
+            code |= ((q[:, axis] >> b) & 1) << (3 * b + axis)
+    return np.argsort(code, kind="stable")

@@ -1,0 +1,706 @@
+"""``baker validate``: check BAKER_* extensions and the structure baker needs, merged with Khronos' glTF-Validator.
+
+The report has the shape of Khronos glTF-Validator's JSON (``uri``, ``mimeType``, ``validatorVersion``, ``issues``
+with ``numErrors``/``numWarnings``/``numInfos``/``numHints``/``messages``/``truncated``, optional ``info``), so tools
+that read one read the other. Each message also says which validator produced it (``"source": "baker"`` or
+``"khronos"``).
+
+Three layers, each skipped when the one before found errors it cannot read past:
+
+1. structure, on the JSON as written: buffer/bufferView/accessor bounds, component types, references between
+   objects. Only what baker must trust before it reads a byte; the full core-spec check is Khronos' job.
+2. every ``BAKER_*`` extension, wherever it appears, against its JSON schema ``schemas/<EXT>/schema/
+   <kind>.<EXT>.schema.json`` (found by that name pattern; ``kind`` is the glTF object type, e.g. ``material``,
+   ``mesh.primitive``, ``node``, ``glTF`` for the root), then the extension's semantic rules from ``SEMANTIC_CHECKS``
+   (data read through :class:`~baker.io.gltf.GltfDocument`).
+3. Khronos glTF-Validator (npm ``gltf-validator``, pinned by ``scripts/install-node-tools``), when ``node`` and the
+   package are present: its messages are merged, except ``UNSUPPORTED_EXTENSION`` for extensions baker validates.
+"""
+from __future__ import annotations
+
+import base64
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import urllib.parse
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from . import __version__
+from .errors import BakerError
+from .io.gltf import COMPONENT_DTYPES, TYPE_SIZES, GltfDocument, _parse_glb
+
+REPO_ROOT = Path(__file__).resolve().parents[1]
+SCHEMA_ROOT = REPO_ROOT / "schemas"
+KHRONOS_SCRIPT = Path(__file__).resolve().parent / "js" / "khronos_validate.mjs"
+KHRONOS_TIMEOUT = 300.0  # seconds; the validator decodes every accessor and image
+
+ERROR, WARNING, INFO, HINT = 0, 1, 2, 3
+SEVERITY_NAMES = {ERROR: "error", WARNING: "warning", INFO: "info", HINT: "hint"}
+TRIANGLE_MODES = (4, 5, 6)
+# structural errors after which accessor data can still be read safely
+NON_BLOCKING = {"MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT"}
+
+# where an object sits in the document -> its kind, as in Khronos' extension schema file names
+COLLECTION_KINDS = {
+    "accessors": "accessor", "animations": "animation", "buffers": "buffer", "bufferViews": "bufferView",
+    "cameras": "camera", "images": "image", "materials": "material", "meshes": "mesh", "nodes": "node",
+    "samplers": "sampler", "scenes": "scene", "skins": "skin", "textures": "texture",
+}
+
+
+# ---------------------------------------------------------------------------------------------------- report
+def pointer(*parts) -> str:
+    """A JSON pointer (RFC 6901) from path parts."""
+    return "".join("/" + str(p).replace("~", "~0").replace("/", "~1") for p in parts)
+
+
+@dataclass
+class Issues:
+    messages: list = field(default_factory=list)
+
+    def add(self, code: str, message: str, severity: int, ptr: str | None = None, source: str = "baker") -> None:
+        msg = {"code": code, "message": message, "severity": severity}
+        if ptr is not None:
+            msg["pointer"] = ptr
+        msg["source"] = source
+        self.messages.append(msg)
+
+    def error(self, code, message, ptr=None):
+        self.add(code, message, ERROR, ptr)
+
+    def warning(self, code, message, ptr=None):
+        self.add(code, message, WARNING, ptr)
+
+    def info(self, code, message, ptr=None):
+        self.add(code, message, INFO, ptr)
+
+    @property
+    def num_errors(self) -> int:
+        return sum(m["severity"] == ERROR for m in self.messages)
+
+    def as_dict(self) -> dict:
+        counts = [sum(m["severity"] == s for m in self.messages) for s in (ERROR, WARNING, INFO, HINT)]
+        return {"numErrors": counts[0], "numWarnings": counts[1], "numInfos": counts[2], "numHints": counts[3],
+                "messages": self.messages, "truncated": False}
+
+
+# ---------------------------------------------------------------------------------------------------- schemas
+@lru_cache(maxsize=None)
+def schema_registry(root: Path = SCHEMA_ROOT) -> dict:
+    """Map (extension name, object kind) -> schema file, from ``<root>/<EXT>/schema/<kind>.<EXT>.schema.json``."""
+    found = {}
+    for path in sorted(root.glob("*/schema/*.schema.json")):
+        ext = path.parent.parent.name
+        stem = path.name[: -len(".schema.json")]
+        kind, _, name = stem.rpartition(".")
+        if kind and name == ext:
+            found[(ext, kind)] = path
+    return found
+
+
+@lru_cache(maxsize=None)
+def _schema_validator(path: Path):
+    """A draft 2020-12 validator for one schema file; ``$ref``s resolve to files of the same name under schemas/."""
+    from jsonschema import Draft202012Validator
+    from referencing import Registry, Resource
+    from referencing.exceptions import NoSuchResource
+
+    def retrieve(uri: str):
+        name = Path(urllib.parse.urlparse(uri).path).name
+        for candidate in [path.parent / name, *sorted(SCHEMA_ROOT.glob(f"*/schema/{name}"))]:
+            if candidate.is_file():
+                return Resource.from_contents(json.loads(candidate.read_text("utf-8")))
+        raise NoSuchResource(ref=uri)
+
+    schema = json.loads(path.read_text("utf-8"))
+    return Draft202012Validator(schema, registry=Registry(retrieve=retrieve))
+
+
+def _object_kind(parts: tuple) -> str | None:
+    """The glTF object kind at a path of keys/indices, or None when baker does not name it."""
+    if not parts:
+        return "glTF"
+    if len(parts) == 2 and parts[0] in COLLECTION_KINDS:
+        return COLLECTION_KINDS[parts[0]]
+    if len(parts) == 4 and parts[0] == "meshes" and parts[2] == "primitives":
+        return "mesh.primitive"
+    if len(parts) == 1 and parts[0] == "asset":
+        return "asset"
+    if isinstance(parts[-1], str) and parts[-1].endswith("Texture"):
+        return "textureInfo"  # normal/occlusion too, as KHR_texture_transform's textureInfo.*.schema.json
+    return None
+
+
+def _walk_extensions(node, parts=()):
+    """Yield (path parts, extension name, value) for every entry of every ``extensions`` object in the document."""
+    if isinstance(node, dict):
+        exts = node.get("extensions")
+        if isinstance(exts, dict):
+            for name, value in exts.items():
+                yield parts, name, value
+        for key, value in node.items():
+            if key != "extras":
+                yield from _walk_extensions(value, parts + (key,))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            yield from _walk_extensions(value, parts + (i,))
+
+
+def check_extensions(gltf: dict, issues: Issues) -> dict:
+    """Schema-check every BAKER_* extension; return {name: [(object path parts, value)]} of the ones found."""
+    registry = schema_registry()
+    known = {ext for ext, _ in registry}
+    found: dict[str, list] = {}
+    for parts, name, value in _walk_extensions(gltf):
+        if not name.startswith("BAKER_"):
+            continue
+        owner = parts  # extensions nested in an extension have "extensions" in their owner path: no kind
+        found.setdefault(name, []).append((owner, value))
+        ptr = pointer(*owner, "extensions", name)
+        if name not in known:
+            issues.warning("BAKER_UNKNOWN_EXTENSION", f"baker has no schema for extension '{name}'", ptr)
+            continue
+        kind = _object_kind(owner)
+        schema_path = registry.get((name, kind))
+        if schema_path is None:
+            kinds = sorted(k for e, k in registry if e == name)
+            issues.error("BAKER_EXTENSION_UNEXPECTED_OBJECT",
+                         f"'{name}' is defined on {', '.join(kinds)}, not on {kind or 'this object'}", ptr)
+            continue
+        validator = _schema_validator(schema_path)
+        try:
+            errors = sorted(validator.iter_errors(value), key=lambda e: [str(p) for p in e.absolute_path])
+            for err in errors:
+                issues.error("BAKER_SCHEMA", f"{err.message} ({schema_path.name})",
+                             ptr + pointer(*err.absolute_path))
+        except Exception as exc:  # an unresolvable $ref is a bug in baker's schemas, not in the asset
+            issues.warning("BAKER_SCHEMA_UNUSABLE", f"cannot apply {schema_path.name}: {exc}", ptr)
+
+    used = gltf.get("extensionsUsed") or []
+    required = gltf.get("extensionsRequired") or []
+    for name in found:
+        if name not in used:
+            issues.warning("BAKER_EXTENSION_NOT_DECLARED", f"'{name}' is used but missing from extensionsUsed",
+                           "/extensionsUsed")
+    if isinstance(used, list):
+        for i, name in enumerate(used):
+            if isinstance(name, str) and name.startswith("BAKER_") and name not in found:
+                issues.info("BAKER_EXTENSION_UNUSED", f"'{name}' is in extensionsUsed but appears nowhere",
+                            pointer("extensionsUsed", i))
+    if isinstance(required, list):
+        for i, name in enumerate(required):
+            if isinstance(name, str) and name.startswith("BAKER_"):
+                issues.warning("BAKER_EXTENSION_REQUIRED", f"'{name}' is in extensionsRequired: viewers that do not "
+                               "know it will refuse the asset, though it only adds data they can ignore",
+                               pointer("extensionsRequired", i))
+    return found
+
+
+# ---------------------------------------------------------------------------------------------------- structure
+def _is_index(value, collection) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool) and 0 <= value < len(collection)
+
+
+def _is_count(value, minimum=0) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool) and value >= minimum
+
+
+def _buffer_sizes(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issues) -> list:
+    """Bytes actually available to each buffer (None when unknown, e.g. a compression fallback buffer)."""
+    sizes = []
+    for i, buf in enumerate(gltf.get("buffers") or []):
+        ptr = pointer("buffers", i)
+        if not isinstance(buf, dict):
+            issues.error("TYPE_MISMATCH", "buffer must be an object", ptr)
+            sizes.append(0)
+            continue
+        declared = buf.get("byteLength")
+        if not _is_count(declared, 1):
+            issues.error("BUFFER_BYTE_LENGTH", f"byteLength must be an integer >= 1, got {declared!r}", ptr)
+        uri = buf.get("uri")
+        if uri is None:
+            if i == 0 and glb_bin is not None:
+                available = len(glb_bin)
+            else:
+                sizes.append(None)
+                continue
+        elif not isinstance(uri, str):
+            issues.error("TYPE_MISMATCH", "uri must be a string", ptr + "/uri")
+            available = 0
+        elif uri.startswith("data:"):
+            header, _, payload = uri.partition(",")
+            try:
+                available = len(base64.b64decode(payload, validate=True)) if ";base64" in header else \
+                    len(urllib.parse.unquote_to_bytes(payload))
+            except ValueError as exc:
+                issues.error("INVALID_URI", f"broken data URI: {exc}", ptr + "/uri")
+                available = 0
+        else:
+            target = path.parent / urllib.parse.unquote(uri)
+            if not target.is_file():
+                issues.error("IO_ERROR", f"buffer file '{uri}' not found", ptr + "/uri")
+                available = 0
+            else:
+                available = target.stat().st_size
+        if _is_count(declared) and available < declared:
+            issues.error("BUFFER_BYTE_LENGTH_MISMATCH",
+                         f"byteLength is {declared} but only {available} bytes are available", ptr)
+        sizes.append(min(available, declared) if _is_count(declared) else available)
+    return sizes
+
+
+def check_structure(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issues) -> None:
+    """References and byte ranges baker relies on when it reads accessors, meshes, materials and images."""
+    buffers = gltf.get("buffers") or []
+    views = gltf.get("bufferViews") or []
+    accessors = gltf.get("accessors") or []
+    sizes = _buffer_sizes(gltf, path, glb_bin, issues)
+
+    for i, view in enumerate(views):
+        ptr = pointer("bufferViews", i)
+        if not isinstance(view, dict):
+            issues.error("TYPE_MISMATCH", "bufferView must be an object", ptr)
+            continue
+        b, offset, length = view.get("buffer"), view.get("byteOffset", 0), view.get("byteLength")
+        if not _is_index(b, buffers):
+            issues.error("UNRESOLVED_REFERENCE", f"buffer {b!r} does not exist", ptr + "/buffer")
+            continue
+        if not _is_count(offset) or not _is_count(length, 1):
+            issues.error("BUFFER_VIEW_RANGE", f"byteOffset {offset!r} / byteLength {length!r} must be integers "
+                         "(>= 0 and >= 1)", ptr)
+            continue
+        stride = view.get("byteStride")
+        if stride is not None and not (_is_count(stride, 4) and stride <= 252 and stride % 4 == 0):
+            issues.error("BUFFER_VIEW_INVALID_BYTE_STRIDE", f"byteStride {stride!r} must be a multiple of 4 in "
+                         "4..252", ptr + "/byteStride")
+        if sizes[b] is not None and offset + length > sizes[b]:
+            issues.error("BUFFER_VIEW_TOO_LONG", f"bytes {offset}..{offset + length} run past the end of buffer {b} "
+                         f"({sizes[b]} bytes)", ptr)
+
+    def view_range(v):
+        view = views[v]
+        return view.get("byteOffset", 0), view.get("byteLength", 0), view.get("byteStride") or 0
+
+    for i, acc in enumerate(accessors):
+        ptr = pointer("accessors", i)
+        if not isinstance(acc, dict):
+            issues.error("TYPE_MISMATCH", "accessor must be an object", ptr)
+            continue
+        ctype, atype, count = acc.get("componentType"), acc.get("type"), acc.get("count")
+        ok = True
+        if ctype not in COMPONENT_DTYPES or isinstance(ctype, bool):
+            issues.error("VALUE_NOT_IN_LIST", f"componentType {ctype!r} is not one of "
+                         f"{', '.join(map(str, COMPONENT_DTYPES))}", ptr + "/componentType")
+            ok = False
+        if atype not in TYPE_SIZES:
+            issues.error("VALUE_NOT_IN_LIST", f"type {atype!r} is not one of {', '.join(TYPE_SIZES)}", ptr + "/type")
+            ok = False
+        if not _is_count(count, 1):
+            issues.error("VALUE_NOT_IN_RANGE", f"count must be an integer >= 1, got {count!r}", ptr + "/count")
+            ok = False
+        if not ok:
+            continue
+        elem = np.dtype(COMPONENT_DTYPES[ctype]).itemsize * TYPE_SIZES[atype]
+        if "bufferView" in acc:
+            v = acc["bufferView"]
+            offset = acc.get("byteOffset", 0)
+            if not _is_index(v, views) or not isinstance(views[v], dict):
+                issues.error("UNRESOLVED_REFERENCE", f"bufferView {v!r} does not exist", ptr + "/bufferView")
+            elif not _is_count(offset):
+                issues.error("VALUE_NOT_IN_RANGE", f"byteOffset must be an integer >= 0, got {offset!r}",
+                             ptr + "/byteOffset")
+            else:
+                _, length, stride = view_range(v)
+                stride = stride if _is_count(stride, 1) else elem
+                end = offset + stride * (count - 1) + elem
+                if _is_count(length) and end > length:
+                    issues.error("ACCESSOR_OUT_OF_BOUNDS", f"{count} x {atype} {np.dtype(COMPONENT_DTYPES[ctype])} "
+                                 f"(stride {stride}) from byteOffset {offset} need {end} bytes; bufferView {v} has "
+                                 f"{length}", ptr)
+        sparse = acc.get("sparse")
+        if sparse is not None:
+            _check_sparse(sparse, acc, views, ptr + "/sparse", issues, view_range)
+
+    _check_references(gltf, issues)
+
+
+def _check_sparse(sparse, acc, views, ptr, issues, view_range) -> None:
+    if not isinstance(sparse, dict):
+        issues.error("TYPE_MISMATCH", "sparse must be an object", ptr)
+        return
+    n = sparse.get("count")
+    if not _is_count(n, 1) or n > acc["count"]:
+        issues.error("VALUE_NOT_IN_RANGE", f"sparse count {n!r} must be in 1..{acc['count']}", ptr + "/count")
+        return
+    for key, size in (("indices", None), ("values", np.dtype(COMPONENT_DTYPES[acc["componentType"]]).itemsize
+                                                    * TYPE_SIZES[acc["type"]])):
+        part = sparse.get(key)
+        sub = f"{ptr}/{key}"
+        if not isinstance(part, dict):
+            issues.error("TYPE_MISMATCH", f"sparse.{key} must be an object", sub)
+            continue
+        if key == "indices":
+            if part.get("componentType") not in (5121, 5123, 5125):
+                issues.error("VALUE_NOT_IN_LIST", "sparse index componentType must be 5121, 5123 or 5125",
+                             sub + "/componentType")
+                continue
+            size = np.dtype(COMPONENT_DTYPES[part["componentType"]]).itemsize
+        v, offset = part.get("bufferView"), part.get("byteOffset", 0)
+        if not _is_index(v, views) or not isinstance(views[v], dict):
+            issues.error("UNRESOLVED_REFERENCE", f"bufferView {v!r} does not exist", sub + "/bufferView")
+        elif _is_count(offset) and offset + size * n > view_range(v)[1]:
+            issues.error("ACCESSOR_OUT_OF_BOUNDS", f"sparse {key} need {offset + size * n} bytes; bufferView {v} "
+                         f"has {view_range(v)[1]}", sub)
+
+
+def _texture_infos(material: dict, parts: tuple):
+    """Yield (path parts, textureInfo) for every ``*Texture`` object in a material, extensions included."""
+    for key, value in material.items():
+        if key == "extras":
+            continue
+        if isinstance(value, dict):
+            if key.endswith("Texture") and "index" in value:
+                yield parts + (key,), value
+            else:
+                yield from _texture_infos(value, parts + (key,))
+
+
+def _check_references(gltf: dict, issues: Issues) -> None:
+    def ref(value, collection_name, ptr):
+        collection = gltf.get(collection_name) or []
+        if not _is_index(value, collection):
+            issues.error("UNRESOLVED_REFERENCE", f"{collection_name[:-1]} {value!r} does not exist", ptr)
+            return False
+        return True
+
+    def items(name):
+        for i, obj in enumerate(gltf.get(name) or []):
+            if isinstance(obj, dict):
+                yield i, obj
+            else:
+                issues.error("TYPE_MISMATCH", f"{COLLECTION_KINDS.get(name, name)} must be an object",
+                             pointer(name, i))
+
+    accessors = gltf.get("accessors") or []
+    for m, mesh in items("meshes"):
+        prims = mesh.get("primitives")
+        if not isinstance(prims, list) or not prims:
+            issues.error("MESH_PRIMITIVES", "a mesh needs a non-empty primitives array", pointer("meshes", m))
+            continue
+        for p, prim in enumerate(prims):
+            ptr = pointer("meshes", m, "primitives", p)
+            if not isinstance(prim, dict) or not isinstance(prim.get("attributes"), dict):
+                issues.error("TYPE_MISMATCH", "a primitive needs an attributes object", ptr)
+                continue
+            counts = {}
+            for name, a in prim["attributes"].items():
+                if ref(a, "accessors", f"{ptr}/attributes/{name}") and isinstance(accessors[a], dict):
+                    counts[name] = accessors[a].get("count")
+            if len(set(map(str, counts.values()))) > 1:
+                issues.error("MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT",
+                             "attributes have different counts: " + ", ".join(f"{k} {v}" for k, v in counts.items()),
+                             ptr + "/attributes")
+            if "indices" in prim:
+                ref(prim["indices"], "accessors", ptr + "/indices")
+            if "material" in prim:
+                ref(prim["material"], "materials", ptr + "/material")
+            for t, target in enumerate(prim.get("targets") or []):
+                for name, a in (target.items() if isinstance(target, dict) else ()):
+                    ref(a, "accessors", f"{ptr}/targets/{t}/{name}")
+    for n, node in items("nodes"):
+        ptr = pointer("nodes", n)
+        if "mesh" in node:
+            ref(node["mesh"], "meshes", ptr + "/mesh")
+        if "skin" in node:
+            ref(node["skin"], "skins", ptr + "/skin")
+        if "camera" in node:
+            ref(node["camera"], "cameras", ptr + "/camera")
+        for c, child in enumerate(node.get("children") or []):
+            ref(child, "nodes", f"{ptr}/children/{c}")
+    for s, scene in items("scenes"):
+        for k, root in enumerate(scene.get("nodes") or []):
+            ref(root, "nodes", pointer("scenes", s, "nodes", k))
+    if "scene" in gltf:
+        ref(gltf["scene"], "scenes", "/scene")
+    for t, tex in items("textures"):
+        ptr = pointer("textures", t)
+        if "source" in tex:
+            ref(tex["source"], "images", ptr + "/source")
+        if "sampler" in tex:
+            ref(tex["sampler"], "samplers", ptr + "/sampler")
+    for i, image in items("images"):
+        if "bufferView" in image:
+            ref(image["bufferView"], "bufferViews", pointer("images", i, "bufferView"))
+    for m, material in items("materials"):
+        for parts, info in _texture_infos(material, ("materials", m)):
+            ref(info.get("index"), "textures", pointer(*parts, "index"))
+            tc = info.get("texCoord", 0)
+            if not _is_count(tc):
+                issues.error("VALUE_NOT_IN_RANGE", f"texCoord must be an integer >= 0, got {tc!r}",
+                             pointer(*parts, "texCoord"))
+
+
+def check_indices(doc: GltfDocument, issues: Issues) -> None:
+    """Every index of every primitive must address a vertex (baker indexes arrays with them)."""
+    for m, mesh in enumerate(doc.json.get("meshes") or []):
+        for p, prim in enumerate(mesh.get("primitives") or []):
+            attrs = prim.get("attributes") or {}
+            if "indices" not in prim or "POSITION" not in attrs:
+                continue
+            vertex_count = doc.json["accessors"][attrs["POSITION"]]["count"]
+            indices = doc.accessor(prim["indices"])
+            if len(indices) and int(indices.max()) >= vertex_count:
+                bad = int(np.count_nonzero(indices >= vertex_count))
+                issues.error("ACCESSOR_INDEX_OOB", f"{bad} indices are >= the vertex count {vertex_count} "
+                             f"(largest {int(indices.max())})", pointer("meshes", m, "primitives", p, "indices"))
+
+
+# ---------------------------------------------------------------------------------------------------- semantics
+def _primitives_using(gltf: dict, material: int):
+    """(mesh, primitive, primitive dict) of every triangle primitive drawn with ``material``."""
+    for m, mesh in enumerate(gltf.get("meshes") or []):
+        for p, prim in enumerate(mesh.get("primitives") or []):
+            if prim.get("material") == material and prim.get("mode", 4) in TRIANGLE_MODES:
+                yield m, p, prim
+
+
+def _number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def check_baker_thickness(doc: GltfDocument, places: list, issues: Issues) -> None:
+    """Semantic rules of BAKER_thickness: the attribute and texture it announces exist and hold sane thickness."""
+    gltf = doc.json
+    accessors = gltf.get("accessors") or []
+    for parts, ext in places:
+        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
+            continue  # misplaced or malformed: already reported
+        material = parts[1]
+        ext_ptr = pointer("materials", material, "extensions", "BAKER_thickness")
+        users = list(_primitives_using(gltf, material))
+        if not users:
+            issues.info("BAKER_THICKNESS_UNUSED", "no triangle primitive uses this material", ext_ptr)
+        max_distance = ext.get("maxDistance")
+        name = ext.get("attribute")
+        if isinstance(name, str):
+            for m, p, prim in users:
+                prim_ptr = pointer("meshes", m, "primitives", p, "attributes")
+                attrs = prim.get("attributes") or {}
+                if name not in attrs:
+                    issues.error("BAKER_THICKNESS_ATTRIBUTE_MISSING", f"the material's BAKER_thickness names "
+                                 f"attribute '{name}' but this primitive has none", prim_ptr)
+                    continue
+                a = attrs[name]
+                acc = accessors[a]
+                acc_ptr = pointer("accessors", a)
+                if acc.get("componentType") != 5126 or acc.get("type") != "SCALAR" or acc.get("normalized"):
+                    issues.error("BAKER_THICKNESS_ACCESSOR_FORMAT", f"'{name}' must be FLOAT (5126) SCALAR, not "
+                                 f"{acc.get('componentType')} {acc.get('type')}", acc_ptr)
+                    continue
+                positions = attrs.get("POSITION")
+                if positions is not None and acc["count"] != accessors[positions]["count"]:
+                    issues.error("BAKER_THICKNESS_ACCESSOR_COUNT", f"'{name}' has {acc['count']} values but "
+                                 f"POSITION has {accessors[positions]['count']} vertices", prim_ptr + "/" + name)
+                    continue
+                values = doc.accessor(a).astype(np.float64)
+                finite = np.isfinite(values)
+                if not finite.all():
+                    issues.error("BAKER_THICKNESS_VALUE_NOT_FINITE",
+                                 f"{int((~finite).sum())} of {len(values)} values are NaN or infinite", acc_ptr)
+                negative = values[finite] < 0
+                if negative.any():
+                    issues.error("BAKER_THICKNESS_VALUE_NEGATIVE", f"{int(negative.sum())} of {len(values)} values "
+                                 f"are negative (min {values[finite].min():g})", acc_ptr)
+                if _number(max_distance) and finite.any() and values[finite].max() > max_distance * 1.001:
+                    issues.warning("BAKER_THICKNESS_VALUE_ABOVE_MAX", f"largest value {values[finite].max():g} "
+                                   f"exceeds maxDistance {max_distance:g}", acc_ptr)
+        if ext.get("thicknessTexture") is True:
+            volume = (gltf["materials"][material].get("extensions") or {}).get("KHR_materials_volume")
+            info = volume.get("thicknessTexture") if isinstance(volume, dict) else None
+            vol_ptr = pointer("materials", material, "extensions", "KHR_materials_volume")
+            if not isinstance(info, dict):
+                issues.error("BAKER_THICKNESS_TEXTURE_MISSING", "BAKER_thickness.thicknessTexture is true but the "
+                             "material has no KHR_materials_volume.thicknessTexture", ext_ptr + "/thicknessTexture")
+                continue
+            if not _is_index(info.get("index"), gltf.get("textures") or []):
+                continue  # reported as UNRESOLVED_REFERENCE
+            texcoord = info.get("texCoord", 0)
+            for m, p, prim in users:
+                if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
+                    issues.error("BAKER_THICKNESS_TEXCOORD_MISSING", f"the thickness texture reads TEXCOORD_{texcoord}"
+                                 " but this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
+            if "KHR_materials_volume" not in (gltf.get("extensionsUsed") or []):
+                issues.warning("BAKER_EXTENSION_NOT_DECLARED", "KHR_materials_volume is used but missing from "
+                               "extensionsUsed", vol_ptr)
+
+
+# one entry per extension with rules a schema cannot express: (document, [(object path, value)], issues) -> None
+SEMANTIC_CHECKS = {
+    "BAKER_thickness": check_baker_thickness,
+}
+
+
+# ---------------------------------------------------------------------------------------------------- Khronos
+def node_modules() -> Path:
+    """Where ``gltf-validator`` is looked for: $BAKER_NODE_MODULES, else ``<repo>/.cache/node/node_modules``."""
+    env = os.environ.get("BAKER_NODE_MODULES")
+    return Path(env) if env else REPO_ROOT / ".cache" / "node" / "node_modules"
+
+
+def khronos_unavailable() -> str | None:
+    """Why Khronos' validator cannot run here, or None when it can."""
+    if shutil.which("node") is None:
+        return "node is not on PATH"
+    if not (node_modules() / "gltf-validator" / "package.json").is_file():
+        return f"gltf-validator is not installed in {node_modules()} (run scripts/install-node-tools)"
+    return None
+
+
+def khronos_report(path) -> dict:
+    """Run Khronos glTF-Validator on ``path`` and return its report as is. Raises RuntimeError when it cannot run."""
+    reason = khronos_unavailable()
+    if reason:
+        raise RuntimeError(reason)
+    proc = subprocess.run(["node", str(KHRONOS_SCRIPT), str(Path(path).resolve()), str(node_modules())],
+                          capture_output=True, text=True, timeout=KHRONOS_TIMEOUT)
+    if proc.returncode != 0:
+        raise RuntimeError(f"gltf-validator failed: {proc.stderr.strip() or proc.returncode}")
+    return json.loads(proc.stdout)
+
+
+def _merge_khronos(report: dict, issues: Issues, validated: set) -> None:
+    for msg in (report.get("issues") or {}).get("messages", []):
+        if msg.get("code") == "UNSUPPORTED_EXTENSION" and any(f"'{e}'" in msg.get("message", "") for e in validated):
+            continue  # baker validates it
+        issues.add(msg.get("code", "?"), msg.get("message", ""), int(msg.get("severity", ERROR)),
+                   msg.get("pointer"), source="khronos")
+
+
+# ---------------------------------------------------------------------------------------------------- entry points
+def _read(path: Path, issues: Issues) -> tuple[dict | None, bytes | None, str]:
+    data = path.read_bytes()
+    is_glb = path.suffix.lower() == ".glb" or data[:4] == b"glTF"
+    mime = "model/gltf-binary" if is_glb else "model/gltf+json"
+    try:
+        if is_glb:
+            gltf, glb_bin = _parse_glb(path, data)
+        else:
+            gltf, glb_bin = json.loads(data.decode("utf-8")), None
+    except BakerError as exc:
+        issues.error("INVALID_GLB", exc.message)
+        return None, None, mime
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        issues.error("INVALID_JSON", f"broken JSON: {exc}")
+        return None, None, mime
+    if not isinstance(gltf, dict):
+        issues.error("TYPE_MISMATCH", "the document must be a JSON object", "")
+        return None, None, mime
+    if not isinstance(gltf.get("asset"), dict) or not str(gltf["asset"].get("version", "")).startswith("2."):
+        issues.error("UNSUPPORTED_VERSION", "not a glTF 2.x document (asset.version)", "/asset")
+        return None, None, mime
+    return gltf, glb_bin, mime
+
+
+def validate_file(path, khronos: bool = True) -> dict:
+    """Validate one .gltf/.glb file; return a report shaped like Khronos glTF-Validator's.
+
+    Raises :class:`~baker.errors.BakerError` only when the file does not exist; anything wrong inside it is a message.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise BakerError(path, "file not found")
+    issues = Issues()
+    gltf, glb_bin, mime = _read(path, issues)
+    validated: set = set()
+    if gltf is not None:
+        check_structure(gltf, path, glb_bin, issues)
+        # only errors that make reading unsafe stop the data checks (schema errors below do not)
+        readable = not any(m["severity"] == ERROR and m["code"] not in NON_BLOCKING for m in issues.messages)
+        found = check_extensions(gltf, issues)
+        validated = {name for name in found if any(e == name for e, _ in schema_registry())}
+        if readable:
+            try:
+                doc = GltfDocument.load(path)
+            except BakerError as exc:
+                issues.error("BAKER_LOAD_FAILED", exc.message)
+            else:
+                check_indices(doc, issues)
+                for name, places in sorted(found.items()):
+                    if name in SEMANTIC_CHECKS:
+                        SEMANTIC_CHECKS[name](doc, places, issues)
+        else:
+            issues.info("BAKER_DATA_NOT_CHECKED", "accessor data and extension semantics were not checked because "
+                        "of the structural errors above")
+    report = {"uri": path.name, "mimeType": mime, "validatorVersion": f"baker {__version__}"}
+    khronos_state = {"ran": False}
+    if khronos:
+        reason = khronos_unavailable()
+        if reason:
+            khronos_state["reason"] = reason
+        else:
+            try:
+                k = khronos_report(path)
+            except (RuntimeError, subprocess.TimeoutExpired, json.JSONDecodeError) as exc:
+                issues.warning("KHRONOS_VALIDATOR_FAILED", str(exc))
+            else:
+                _merge_khronos(k, issues, validated)
+                khronos_state = {"ran": True, "validatorVersion": k.get("validatorVersion")}
+                if "info" in k:
+                    report["info"] = k["info"]
+    else:
+        khronos_state["reason"] = "disabled"
+    report["khronos"] = khronos_state
+    report["issues"] = issues.as_dict()
+    return report
+
+
+def format_text(path, report: dict, quiet: bool = False) -> str:
+    """Per file: one summary line, then one line per message (severity, source, code, pointer, message)."""
+    issues = report["issues"]
+    messages = [m for m in issues["messages"] if not quiet or m["severity"] == ERROR]
+    if quiet and not messages:
+        return ""
+    n_err, n_warn = issues["numErrors"], issues["numWarnings"]
+    if n_err or n_warn:
+        summary = f"{n_err} error{'s' * (n_err != 1)}, {n_warn} warning{'s' * (n_warn != 1)}"
+    else:
+        summary = "OK"
+    k = report.get("khronos", {})
+    if not quiet:
+        if k.get("ran"):
+            summary += f" (baker + Khronos glTF-Validator {k.get('validatorVersion')})"
+        elif k.get("reason") != "disabled":
+            summary += f" (Khronos glTF-Validator not run: {k.get('reason')})"
+    lines = [f"{path}: {summary}"]
+    for m in messages:
+        where = m.get("pointer") or "-"
+        lines.append(f"  {SEVERITY_NAMES.get(m['severity'], '?'):<7} [{m.get('source', 'baker')}] {m['code']} "
+                     f"{where}: {m['message']}")
+    return "\n".join(lines)
+
+
+def main(files, fmt: str = "text", khronos: bool = True, quiet: bool = False) -> int:
+    """Validate ``files``; print text or JSON Lines (one report per line). Returns 1 if any file has errors, else 0.
+
+    A missing file raises :class:`~baker.errors.BakerError` (the CLI exits 2).
+    """
+    status = 0
+    for f in files:
+        report = validate_file(f, khronos=khronos)
+        if report["issues"]["numErrors"]:
+            status = 1
+        if fmt == "json":
+            print(json.dumps(report, ensure_ascii=False))
+        else:
+            text = format_text(f, report, quiet=quiet)
+            if text:
+                print(text)
+    sys.stdout.flush()
+    return status
