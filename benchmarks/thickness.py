@@ -6,7 +6,8 @@ Rows (best of --repeat, wall clock):
 - baker: ``baker.bakes.thickness.local_thickness`` on every vertex (ray generation, Embree, reduction; 2 threads);
 - pymeshlab: ``compute_scalar_by_shape_diameter_function_per_vertex`` with the same rays per vertex and a full
   hemisphere (cone_amplitude 180), which also casts rays along the inverted normal;
-- embreex bare, 1 and 2 threads: only ``EmbreeScene.run`` on the exact rays baker casts, pre-generated.
+- embreex bare, 1 and 2 threads: only ``EmbreeScene.run`` (DISTANCE query) on the exact rays baker casts,
+  pre-generated in baker's order.
 "baker vs bare per core" divides baker's rays/s by the bare 2-thread rays/s: the share of Embree's throughput
 baker keeps once its own work is counted.
 """
@@ -25,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from baker.asset import vertex_normals, weld  # noqa: E402
-from baker.bakes.thickness import RayScene, _make_rays, hemisphere_samples, local_thickness  # noqa: E402
+from baker.bakes.thickness import RayScene, _make_rays, hemisphere_samples, local_thickness, morton_order  # noqa: E402
 
 DEFAULT_MESH = ROOT.parent / "shared" / "assets" / "meshes" / "stanford-bunny.obj"
 
@@ -80,13 +81,15 @@ def main(argv=None) -> int:
     origins = np.empty((total, 3), np.float32)
     directions = np.empty((total, 3), np.float32)
     cos_t = np.empty(total)
-    _make_rays(welded, -normals, hemisphere_samples(rays, 0), np.random.default_rng(0).random((n, 2)), True, 1.0,
-               0.0, 1e-5 * diag, origins, directions, cos_t)
+    order = morton_order(welded)  # the order baker traces in
+    _make_rays(welded[order], -normals[order], hemisphere_samples(rays, 0),
+               np.random.default_rng(0).random((n, 2))[order], True, 1.0, 0.0, 1e-5 * diag, origins, directions, cos_t)
+    embreex_scene = RayScene(welded, faces, backend="embreex")
     chunks = [(s, min(total, s + (1 << 19))) for s in range(0, total, 1 << 19)]
     for threads in (1, 2):
         def bare():
             with ThreadPoolExecutor(threads) as pool:
-                list(pool.map(lambda c: scene.distances(origins[c[0]:c[1]], directions[c[0]:c[1]]), chunks))
+                list(pool.map(lambda c: embreex_scene.distances(origins[c[0]:c[1]], directions[c[0]:c[1]]), chunks))
         t_bare, _ = best_of(args.repeat, bare)
         rows.append((f"embreex bare run, {threads} thread{'s' if threads > 1 else ''}", t_bare))
 

@@ -167,3 +167,13 @@ def test_same_seed_same_bytes_and_seed_matters(tmp_path, sphere2):
         outs.append(out.read_bytes())
     assert outs[0] == outs[1]
     assert outs[0] != outs[2]
+
+
+def test_direct_embree_and_embreex_agree():
+    # the fused direct-Embree kernel and the embreex batch fallback must give the same chords
+    mesh = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
+    results = []
+    for backend in ("direct", "embreex"):
+        scene = RayScene(mesh.vertices, mesh.faces, backend=backend)
+        results.append(local_thickness(scene, mesh.vertices, mesh.vertex_normals, rays=16, max_distance=5.0, seed=2))
+    assert np.allclose(results[0], results[1], rtol=1e-5, atol=1e-6)

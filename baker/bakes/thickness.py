@@ -9,8 +9,8 @@ the runtime turns it into a transmittance (see ``schemas/BAKER_thickness``), and
 For a sphere of radius r, a chord leaving at angle theta from the inward normal has length 2 r cos(theta): cosine-
 weighted rays average 4r/3, uniform (solid-angle) rays average r. The tests check exactly that.
 
-Rays go to Embree (embreex) in large batches from two threads (its ``run`` releases the GIL); there is no per-ray
-Python.
+Rays are generated, traced by Embree and averaged in one compiled, GIL-free loop per batch of points, run from
+two threads (see :mod:`baker.bakes.embree`); there is no per-ray Python.
 """
 from __future__ import annotations
 
@@ -23,6 +23,7 @@ import numba
 import numpy as np
 
 from ..options import opt
+from . import embree
 
 
 @dataclass(frozen=True)
@@ -99,21 +100,66 @@ def orthonormal_basis(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 class RayScene:
-    """An Embree scene over a triangle mesh; ``distances`` returns the first-hit distance (>= 1e37 on a miss)."""
+    """A triangle mesh ready for rays: Embree called directly (:mod:`baker.bakes.embree`) or, when its library
+    cannot be loaded, embreex's batch API. ``distances`` returns first-hit distances (>= 1e37 on a miss)."""
 
-    MISS = 1e37  # Embree leaves tfar at its initial value when nothing is hit
+    MISS = 1e37
 
-    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
-        from embreex import rtcore_scene
-        from embreex.mesh_construction import TriangleMesh
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray, backend: str = "auto"):
+        if backend not in ("auto", "direct", "embreex"):
+            raise ValueError(f"unknown ray backend {backend!r}")
+        self.direct = None
+        if backend in ("auto", "direct") and embree.AVAILABLE:
+            self.direct = embree.DirectScene(vertices, faces)
+        elif backend == "direct":
+            raise RuntimeError("the Embree library is not available")
+        else:
+            from embreex import rtcore_scene
+            from embreex.mesh_construction import TriangleMesh
 
-        self._scene = rtcore_scene.EmbreeScene()
-        TriangleMesh(self._scene, np.ascontiguousarray(vertices, np.float32), np.ascontiguousarray(faces, np.int32))
+            self._scene = rtcore_scene.EmbreeScene()
+            TriangleMesh(self._scene, np.ascontiguousarray(vertices, np.float32),
+                         np.ascontiguousarray(faces, np.int32))
 
     def distances(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
+        if self.direct is not None:
+            return self.direct.distances(origins, directions)
         # the DISTANCE query returns tfar alone: no u/v/Ng/primID arrays to allocate per ray
         return self._scene.run(np.ascontiguousarray(origins, np.float32),
                                np.ascontiguousarray(directions, np.float32), query="DISTANCE")
+
+
+@numba.njit(nogil=True)
+def _thickness_direct(scene, points, axes, samples, shifts, cosine, sin_max, cos_max, bias, max_distance, out):
+    """Generate, trace and average each point's rays in one GIL-free loop (Embree called directly)."""
+    rayhit = np.zeros(48, np.uint32)
+    offset = (-rayhit.ctypes.data % 16) // 4
+    rayhit = rayhit[offset: offset + 32]
+    rays = samples.shape[0]
+    for i in range(points.shape[0]):
+        nx, ny, nz = axes[i, 0], axes[i, 1], axes[i, 2]
+        sign = 1.0 if nz >= 0.0 else -1.0
+        a = -1.0 / (sign + nz)
+        b = nx * ny * a
+        tx, ty, tz = 1.0 + sign * nx * nx * a, sign * b, -sign * nx
+        bx, by, bz = b, sign + ny * ny * a, -ny
+        ox, oy, oz = points[i, 0] + nx * bias, points[i, 1] + ny * bias, points[i, 2] + nz * bias
+        acc = 0.0
+        for k in range(rays):
+            u0 = (samples[k, 0] + shifts[i, 0]) % 1.0
+            u1 = (samples[k, 1] + shifts[i, 1]) % 1.0
+            if cosine:
+                st = np.sqrt(u0) * sin_max
+                ct = np.sqrt(max(0.0, 1.0 - st * st))
+            else:
+                ct = 1.0 - u0 * (1.0 - cos_max)
+                st = np.sqrt(max(0.0, 1.0 - ct * ct))
+            phi = 2.0 * np.pi * u1
+            c, s = st * np.cos(phi), st * np.sin(phi)
+            t = embree.trace_one(scene, rayhit, ox, oy, oz, tx * c + bx * s + nx * ct, ty * c + by * s + ny * ct,
+                                 tz * c + bz * s + nz * ct)
+            acc += min(t + bias * ct, max_distance)
+        out[i] = acc / rays
 
 
 @numba.njit(cache=True, nogil=True)
@@ -217,6 +263,10 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
 
     def run(start: int) -> int:
         stop = min(n, start + batch)
+        if scene.direct is not None:
+            _thickness_direct(scene.direct.pointer, points[start:stop], axes[start:stop], samples, shifts[start:stop],
+                              distribution == "cosine", sin_max, cos_max, bias, max_distance, out[start:stop])
+            return stop - start
         count = (stop - start) * rays
         origins = np.empty((count, 3), np.float32)
         directions = np.empty((count, 3), np.float32)
