@@ -184,8 +184,21 @@ def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
         glb.write_bytes(trimesh.exchange.gltf.export_glb(scene, include_normals=True))
         doc = GltfDocument.load(glb)
     doc.path = path
+    # trimesh leaves bufferView.target unset; say which views are vertex data and which are indices
+    for mesh in doc.json.get("meshes", []):
+        for prim in mesh.get("primitives", []):
+            for acc in prim.get("attributes", {}).values():
+                _set_view_target(doc, acc, 34962)
+            if "indices" in prim:
+                _set_view_target(doc, prim["indices"], 34963)
     doc.json["asset"]["generator"] = "baker (converted from " + path.suffix.lower().lstrip(".") + ")"
     return doc
+
+
+def _set_view_target(doc: GltfDocument, accessor: int, target: int) -> None:
+    view = doc.json["accessors"][accessor].get("bufferView")
+    if view is not None:
+        doc.json["bufferViews"][view].setdefault("target", target)
 
 
 def weld(positions: np.ndarray, tolerance: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:

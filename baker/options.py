@@ -52,10 +52,11 @@ def coerce(cls, name: str, value):
     meta = f.metadata
     if meta.get("choices") and value not in meta["choices"]:
         raise ValueError(f"option '{name}' must be one of {', '.join(map(str, meta['choices']))}, got {value!r}")
-    if meta.get("min") is not None and value < meta["min"]:
-        raise ValueError(f"option '{name}' must be >= {meta['min']}, got {value}")
-    if meta.get("max") is not None and value > meta["max"]:
-        raise ValueError(f"option '{name}' must be <= {meta['max']}, got {value}")
+    for item in value if isinstance(value, tuple) else (value,):  # bounds apply to each component of a tuple
+        if meta.get("min") is not None and item < meta["min"]:
+            raise ValueError(f"option '{name}' must be >= {meta['min']}, got {value}")
+        if meta.get("max") is not None and item > meta["max"]:
+            raise ValueError(f"option '{name}' must be <= {meta['max']}, got {value}")
     return value
 
 
@@ -72,8 +73,11 @@ def add_arguments(parser, cls, prefix: str) -> None:
         meta = f.metadata
         default = f.default
         shown = ",".join(map(str, default)) if isinstance(default, tuple) else default
-        text = f"{meta.get('help', '')} (default: {shown if shown is not None else 'auto'})"
-        group.add_argument(flag, dest=f"{prefix}__{f.name}", default=None, metavar=f.name.upper(), help=text)
+        text = meta.get("help", "")
+        if shown is not None:  # None defaults are explained in the help text itself ("default: ...")
+            text += f" (default: {shown})"
+        metavar = "{" + ",".join(map(str, meta["choices"])) + "}" if meta.get("choices") else f.name.upper()
+        group.add_argument(flag, dest=f"{prefix}__{f.name}", default=None, metavar=metavar, help=text)
 
 
 def from_args(cls, prefix: str, namespace) -> object:

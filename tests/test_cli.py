@@ -12,6 +12,7 @@ import trimesh
 
 from baker.cli import main
 from baker.io.gltf import GltfDocument
+from conftest import assert_khronos_clean
 
 FAST = ["--thickness-rays", "4", "--thickness-texture-size", "32", "-q"]
 
@@ -33,6 +34,7 @@ def test_every_mesh_format_bakes(tmp_path, suffix):
     trimesh.creation.icosphere(subdivisions=2).export(str(src))
     out = tmp_path / "out.glb"
     assert main(["bake", str(src), "-o", str(out), *FAST]) == 0
+    assert_khronos_clean(out)
     doc = GltfDocument.load(out)
     assert "_THICKNESS" in doc.json["meshes"][0]["primitives"][0]["attributes"]
 
@@ -40,6 +42,7 @@ def test_every_mesh_format_bakes(tmp_path, suffix):
 def test_gltf_output_writes_bin_and_png(tmp_path, sphere_glb):
     out = tmp_path / "baked.gltf"
     assert main(["bake", str(sphere_glb), "-o", str(out), *FAST]) == 0
+    assert_khronos_clean(out)
     gltf = json.loads(out.read_text())
     assert gltf["buffers"][0]["uri"] == "baked.bin" and (tmp_path / "baked.bin").is_file()
     uris = [img["uri"] for img in gltf["images"]]
@@ -119,3 +122,17 @@ def test_quiet_and_non_tty_print_no_progress(tmp_path, sphere_glb):
                  "--thickness-texture-size", "32")
     assert result.returncode == 0
     assert "%|" not in result.stderr  # no tqdm bar when stderr is not a terminal
+
+
+def test_readme_documents_every_option_and_command():
+    import dataclasses
+
+    from baker.steps import BAKES
+
+    readme = (Path(__file__).parents[1] / "README.md").read_text()
+    for name, step in BAKES.items():
+        assert f"`{name}`" in readme
+        for f in dataclasses.fields(step.options):
+            assert f"`{f.name.replace('_', '-')}`" in readme, f"README lacks option {name}.{f.name}"
+    for command in ("baker bake", "baker validate", "baker inspect", "scripts/test"):
+        assert command in readme

@@ -13,6 +13,7 @@ import trimesh
 import baker
 from baker.io.gltf import GltfDocument
 from baker.pipeline import save
+from conftest import assert_khronos_clean
 
 
 def _pack(arrays):
@@ -42,7 +43,7 @@ def rich_gltf(path, embedded: bool):
         "extensions": {"VENDOR_unknown_thing": {"root": True}},
         "extras": {"studio": {"shot": 42}},
         "scene": 0,
-        "scenes": [{"nodes": [0, 2], "name": "main", "extras": {"keep": "me"}}],
+        "scenes": [{"nodes": [0, 1, 2], "name": "main", "extras": {"keep": "me"}}],
         "nodes": [
             {"name": "ball", "mesh": 0, "skin": 0, "translation": [1, 2, 3], "extras": {"tag": [1, 2]},
              "extensions": {"VENDOR_unknown_thing": {"node": 1}}},
@@ -96,6 +97,7 @@ def test_untouched_data_survives(tmp_path, embedded, out_name):
     asset = baker.bake(src, options={"thickness": {"rays": 8, "texture_size": 32}})
     out = tmp_path / out_name
     save(asset, out)
+    assert_khronos_clean(out)
     after = GltfDocument.load(out)
     for key in UNTOUCHED:
         assert after.json[key] == original[key], key
@@ -130,6 +132,7 @@ def test_vertex_only_bake_keeps_primitive_accessors(tmp_path):
     asset = baker.bake(src, options={"thickness": {"rays": 8, "per_texel": False}})
     out = tmp_path / "out.glb"
     save(asset, out)
+    assert_khronos_clean(out)
     after = GltfDocument.load(out)
     attrs = after.json["meshes"][0]["primitives"][0]["attributes"]
     expected = dict(original["meshes"][0]["primitives"][0]["attributes"])
@@ -155,6 +158,7 @@ def test_existing_images_are_kept_and_embedded(tmp_path):
     for name in ("out.glb", "sub/out.gltf"):
         out = tmp_path / name
         save(asset, out)
+        assert_khronos_clean(out)
         after = GltfDocument.load(out)
         assert after.image_bytes(0) == png
         assert after.json["textures"][0] == {"source": 0}
@@ -166,6 +170,7 @@ def test_glb_container_is_well_formed(tmp_path):
     mesh.export(str(tmp_path / "box.glb"))
     asset = baker.bake(tmp_path / "box.glb", options={"thickness": {"rays": 4, "texture_size": 16}})
     save(asset, tmp_path / "o.glb")
+    assert_khronos_clean(tmp_path / "o.glb")
     data = (tmp_path / "o.glb").read_bytes()
     magic, version, length = struct.unpack_from("<III", data)
     assert (magic, version, length) == (0x46546C67, 2, len(data))

@@ -12,6 +12,7 @@ from baker.bakes.thickness import RayScene, hemisphere_samples, local_thickness,
 from baker.io.gltf import GltfDocument
 from baker.io.images import decode_image
 from baker.pipeline import save
+from conftest import assert_khronos_clean
 
 
 def _export(mesh: trimesh.Trimesh, path) -> str:
@@ -29,6 +30,7 @@ def test_sphere_cosine_mean_is_4r_over_3(sphere2, tmp_path):
     asset = baker.bake(sphere2, options={"thickness": {"rays": 64, "per_texel": False}})
     out = tmp_path / "out.glb"
     save(asset, out)
+    assert_khronos_clean(out)
     doc = GltfDocument.load(out)  # read back from the written file
     prim = doc.json["meshes"][0]["primitives"][0]
     thickness = doc.accessor(prim["attributes"]["_THICKNESS"])
@@ -100,6 +102,7 @@ def test_thin_box_texels_match_numerical_integration(tmp_path):
     asset = baker.bake(src, options={"thickness": {"rays": 1024, "texture_size": 128, "per_vertex": False}})
     out = tmp_path / "box_baked.glb"
     save(asset, out)
+    assert_khronos_clean(out)
     doc = GltfDocument.load(out)
     material = doc.json["materials"][doc.json["meshes"][0]["primitives"][0]["material"]]
     volume = material["extensions"]["KHR_materials_volume"]
@@ -164,6 +167,7 @@ def test_same_seed_same_bytes_and_seed_matters(tmp_path, sphere2):
         asset = baker.bake(sphere2, options={"thickness": {"rays": 8, "texture_size": 64}}, seed=seed)
         out = tmp_path / f"run{i}.glb"
         save(asset, out)
+        assert_khronos_clean(out)
         outs.append(out.read_bytes())
     assert outs[0] == outs[1]
     assert outs[0] != outs[2]

@@ -42,10 +42,11 @@ class ThicknessOptions:
     texture_bits: int = opt(16, "bits per channel of the thickness PNG", choices=(8, 16))
     # eq. 14.30 and the GDC variant: written into BAKER_thickness for the runtime, not used by the bake
     distortion: float = opt(0.2, "translucency: normal distortion of the light vector (GDC 2011)")
-    power: float = opt(4.0, "translucency: exponent p of (v . -l)^p, a phase-function approximation")
+    power: float = opt(4.0, "translucency: exponent p of (v . -l)^p, a phase-function approximation", min=0.0)
     scale: float = opt(1.0, "translucency: scale of the back-lit term", min=0.0)
     ambient: float = opt(0.0, "translucency: constant back-lit term (GDC 2011)", min=0.0)
-    subsurface_color: tuple = opt((1.0, 1.0, 1.0), "translucency: subsurface albedo c_ss (linear RGB)")
+    subsurface_color: tuple = opt((1.0, 1.0, 1.0), "translucency: subsurface albedo c_ss (linear RGB, each 0..1)",
+                                  min=0.0, max=1.0)
     attenuation_distance: float | None = opt(None, "distance over which transmittance falls to 1/e, t_ss = "
                                                    "exp(-thickness / d), in mesh units (default: the mean thickness)",
                                              min=0.0)
