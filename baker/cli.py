@@ -13,6 +13,9 @@ from .options import add_arguments, from_args
 from .progress import Progress
 from .steps import BAKES
 
+# modules with ``add_parser(subparsers)`` that set ``func(args) -> exit code``; a new command adds one line here
+COMMANDS: list = []
+
 
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="baker", description="Bake real-time rendering data into glTF and USD assets.")
@@ -37,6 +40,10 @@ def _parser() -> argparse.ArgumentParser:
     i = sub.add_parser("inspect", help="print a table of what is in an asset")
     i.add_argument("file")
     i.add_argument("--format", choices=("text", "json"), default="text")
+
+    # standalone generators (LUTs, atlases, drawings...): each module adds its parser and sets ``func``
+    for command in COMMANDS:
+        command.add_parser(sub)
     return parser
 
 
@@ -53,6 +60,8 @@ def main(argv=None) -> int:
             from .inspect import main as inspect_main
 
             return inspect_main(args.file, fmt=args.format)
+        if hasattr(args, "func"):
+            return args.func(args)
     except BakerError as exc:
         print(f"baker: error: {exc}", file=sys.stderr)
         return 2

@@ -11,7 +11,7 @@ Three layers, each skipped when the one before found errors it cannot read past:
    objects. Only what baker must trust before it reads a byte; the full core-spec check is Khronos' job.
 2. every ``BAKER_*`` extension, wherever it appears, against its JSON schema ``schemas/<EXT>/schema/
    <kind>.<EXT>.schema.json`` (found by that name pattern; ``kind`` is the glTF object type, e.g. ``material``,
-   ``mesh.primitive``, ``node``, ``glTF`` for the root), then the extension's semantic rules from ``SEMANTIC_CHECKS``
+   ``mesh.primitive``, ``node``, ``glTF`` for the root), then the extension's semantic rules (``check`` in its module)
    (data read through :class:`~baker.io.gltf.GltfDocument`).
 3. Khronos glTF-Validator (npm ``gltf-validator``, pinned by ``scripts/install-node-tools``), when ``node`` and the
    package are present: its messages are merged, except ``UNSUPPORTED_EXTENSION`` for extensions baker validates.
@@ -475,76 +475,48 @@ def _number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def check_baker_thickness(doc: GltfDocument, places: list, issues: Issues) -> None:
-    """Semantic rules of BAKER_thickness: the attribute and texture it announces exist and hold sane thickness."""
+def check_vertex_attribute(doc: GltfDocument, mesh: int, primitive: int, name: str, issues: Issues, *,
+                           code: str, types: tuple = ("SCALAR",), component_type: int = 5126) -> np.ndarray | None:
+    """Shared rules for a baked per-vertex attribute: present, FLOAT of an allowed type, one value per vertex,
+    finite. Returns the values (float64, non-finite ones included and reported) when the accessor can be read,
+    else None (errors reported)."""
     gltf = doc.json
     accessors = gltf.get("accessors") or []
-    for parts, ext in places:
-        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
-            continue  # misplaced or malformed: already reported
-        material = parts[1]
-        ext_ptr = pointer("materials", material, "extensions", "BAKER_thickness")
-        users = list(_primitives_using(gltf, material))
-        if not users:
-            issues.info("BAKER_THICKNESS_UNUSED", "no triangle primitive uses this material", ext_ptr)
-        max_distance = ext.get("maxDistance")
-        name = ext.get("attribute")
-        if isinstance(name, str):
-            for m, p, prim in users:
-                prim_ptr = pointer("meshes", m, "primitives", p, "attributes")
-                attrs = prim.get("attributes") or {}
-                if name not in attrs:
-                    issues.error("BAKER_THICKNESS_ATTRIBUTE_MISSING", f"the material's BAKER_thickness names "
-                                 f"attribute '{name}' but this primitive has none", prim_ptr)
-                    continue
-                a = attrs[name]
-                acc = accessors[a]
-                acc_ptr = pointer("accessors", a)
-                if acc.get("componentType") != 5126 or acc.get("type") != "SCALAR" or acc.get("normalized"):
-                    issues.error("BAKER_THICKNESS_ACCESSOR_FORMAT", f"'{name}' must be FLOAT (5126) SCALAR, not "
-                                 f"{acc.get('componentType')} {acc.get('type')}", acc_ptr)
-                    continue
-                positions = attrs.get("POSITION")
-                if positions is not None and acc["count"] != accessors[positions]["count"]:
-                    issues.error("BAKER_THICKNESS_ACCESSOR_COUNT", f"'{name}' has {acc['count']} values but "
-                                 f"POSITION has {accessors[positions]['count']} vertices", prim_ptr + "/" + name)
-                    continue
-                values = doc.accessor(a).astype(np.float64)
-                finite = np.isfinite(values)
-                if not finite.all():
-                    issues.error("BAKER_THICKNESS_VALUE_NOT_FINITE",
-                                 f"{int((~finite).sum())} of {len(values)} values are NaN or infinite", acc_ptr)
-                negative = values[finite] < 0
-                if negative.any():
-                    issues.error("BAKER_THICKNESS_VALUE_NEGATIVE", f"{int(negative.sum())} of {len(values)} values "
-                                 f"are negative (min {values[finite].min():g})", acc_ptr)
-                if _number(max_distance) and finite.any() and values[finite].max() > max_distance * 1.001:
-                    issues.warning("BAKER_THICKNESS_VALUE_ABOVE_MAX", f"largest value {values[finite].max():g} "
-                                   f"exceeds maxDistance {max_distance:g}", acc_ptr)
-        if ext.get("thicknessTexture") is True:
-            volume = (gltf["materials"][material].get("extensions") or {}).get("KHR_materials_volume")
-            info = volume.get("thicknessTexture") if isinstance(volume, dict) else None
-            vol_ptr = pointer("materials", material, "extensions", "KHR_materials_volume")
-            if not isinstance(info, dict):
-                issues.error("BAKER_THICKNESS_TEXTURE_MISSING", "BAKER_thickness.thicknessTexture is true but the "
-                             "material has no KHR_materials_volume.thicknessTexture", ext_ptr + "/thicknessTexture")
-                continue
-            if not _is_index(info.get("index"), gltf.get("textures") or []):
-                continue  # reported as UNRESOLVED_REFERENCE
-            texcoord = info.get("texCoord", 0)
-            for m, p, prim in users:
-                if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
-                    issues.error("BAKER_THICKNESS_TEXCOORD_MISSING", f"the thickness texture reads TEXCOORD_{texcoord}"
-                                 " but this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
-            if "KHR_materials_volume" not in (gltf.get("extensionsUsed") or []):
-                issues.warning("BAKER_EXTENSION_NOT_DECLARED", "KHR_materials_volume is used but missing from "
-                               "extensionsUsed", vol_ptr)
+    prim = gltf["meshes"][mesh]["primitives"][primitive]
+    attrs = prim.get("attributes") or {}
+    prim_ptr = pointer("meshes", mesh, "primitives", primitive, "attributes")
+    if name not in attrs:
+        issues.error(f"{code}_ATTRIBUTE_MISSING", f"the extension names attribute '{name}' but this primitive has none",
+                     prim_ptr)
+        return None
+    a = attrs[name]
+    if not _is_index(a, accessors):
+        return None  # reported as UNRESOLVED_REFERENCE
+    acc = accessors[a]
+    acc_ptr = pointer("accessors", a)
+    if acc.get("componentType") != component_type or acc.get("type") not in types or acc.get("normalized"):
+        issues.error(f"{code}_ACCESSOR_FORMAT", f"'{name}' must be componentType {component_type} "
+                     f"{' or '.join(types)}, not {acc.get('componentType')} {acc.get('type')}", acc_ptr)
+        return None
+    positions = attrs.get("POSITION")
+    if _is_index(positions, accessors) and acc.get("count") != accessors[positions].get("count"):
+        issues.error(f"{code}_ACCESSOR_COUNT", f"'{name}' has {acc.get('count')} values but POSITION has "
+                     f"{accessors[positions].get('count')} vertices", prim_ptr + "/" + name)
+        return None
+    values = doc.accessor(a).astype(np.float64)
+    finite = np.isfinite(values)
+    if not finite.all():
+        issues.error(f"{code}_VALUE_NOT_FINITE", f"{int((~finite).sum())} of {values.size} values are NaN or "
+                     "infinite", acc_ptr)
+    return values
 
 
 # one entry per extension with rules a schema cannot express: (document, [(object path, value)], issues) -> None
-SEMANTIC_CHECKS = {
-    "BAKER_thickness": check_baker_thickness,
-}
+def semantic_checks() -> dict:
+    """Extension name -> check function, from the extension modules (each may define ``check``)."""
+    from .extensions import EXTENSIONS
+
+    return {name: module.check for name, module in EXTENSIONS.items() if hasattr(module, "check")}
 
 
 # ---------------------------------------------------------------------------------------------------- Khronos
@@ -633,8 +605,9 @@ def validate_file(path, khronos: bool = True) -> dict:
             else:
                 check_indices(doc, issues)
                 for name, places in sorted(found.items()):
-                    if name in SEMANTIC_CHECKS:
-                        SEMANTIC_CHECKS[name](doc, places, issues)
+                    check = semantic_checks().get(name)
+                    if check is not None:
+                        check(doc, places, issues)
         else:
             issues.info("BAKER_DATA_NOT_CHECKED", "accessor data and extension semantics were not checked because "
                         "of the structural errors above")

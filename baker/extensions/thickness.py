@@ -79,3 +79,52 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, max_
     doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
     doc.use_extension(NAME)
     return ext
+
+
+def check(doc: GltfDocument, places: list, issues) -> None:
+    """Semantic rules of BAKER_thickness (``baker validate``): the attribute and texture it announces exist and
+    hold sane thickness. ``places`` lists (JSON path parts, extension object) for every occurrence."""
+    from ..validate import _is_index, _number, _primitives_using, check_vertex_attribute, pointer
+
+    gltf = doc.json
+    for parts, ext in places:
+        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
+            continue  # misplaced or malformed: already reported by the schema pass
+        material = parts[1]
+        ext_ptr = pointer("materials", material, "extensions", NAME)
+        users = list(_primitives_using(gltf, material))
+        if not users:
+            issues.info("BAKER_THICKNESS_UNUSED", "no triangle primitive uses this material", ext_ptr)
+        max_distance = ext.get("maxDistance")
+        name = ext.get("attribute")
+        if isinstance(name, str):
+            for m, p, prim in users:
+                values = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_THICKNESS")
+                if values is None:
+                    continue
+                values = values[np.isfinite(values)]
+                acc_ptr = pointer("accessors", prim["attributes"][name])
+                if (values < 0).any():
+                    issues.error("BAKER_THICKNESS_VALUE_NEGATIVE", f"{int((values < 0).sum())} of {len(values)} "
+                                 f"values are negative (min {values.min():g})", acc_ptr)
+                if _number(max_distance) and len(values) and values.max() > max_distance * 1.001:
+                    issues.warning("BAKER_THICKNESS_VALUE_ABOVE_MAX", f"largest value {values.max():g} exceeds "
+                                   f"maxDistance {max_distance:g}", acc_ptr)
+        if ext.get("thicknessTexture") is True:
+            volume = (gltf["materials"][material].get("extensions") or {}).get(KHR_VOLUME)
+            info = volume.get("thicknessTexture") if isinstance(volume, dict) else None
+            vol_ptr = pointer("materials", material, "extensions", KHR_VOLUME)
+            if not isinstance(info, dict):
+                issues.error("BAKER_THICKNESS_TEXTURE_MISSING", "BAKER_thickness.thicknessTexture is true but the "
+                             "material has no KHR_materials_volume.thicknessTexture", ext_ptr + "/thicknessTexture")
+                continue
+            if not _is_index(info.get("index"), gltf.get("textures") or []):
+                continue  # reported as UNRESOLVED_REFERENCE
+            texcoord = info.get("texCoord", 0)
+            for m, p, prim in users:
+                if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
+                    issues.error("BAKER_THICKNESS_TEXCOORD_MISSING", f"the thickness texture reads TEXCOORD_{texcoord}"
+                                 " but this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
+            if KHR_VOLUME not in (gltf.get("extensionsUsed") or []):
+                issues.warning("BAKER_EXTENSION_NOT_DECLARED", "KHR_materials_volume is used but missing from "
+                               "extensionsUsed", vol_ptr)
