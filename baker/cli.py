@@ -14,7 +14,9 @@ from .progress import Progress
 from .steps import BAKES
 
 # modules with ``add_parser(subparsers)`` that set ``func(args) -> exit code``; a new command adds one line here
-COMMANDS: list = []
+from . import preview  # noqa: E402
+
+COMMANDS: list = [preview]
 
 
 def _parser() -> argparse.ArgumentParser:
