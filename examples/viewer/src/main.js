@@ -1,0 +1,176 @@
+// baker viewer: drag and drop a baked .glb; one toggle per baked technique found in it.
+// Test mode (?panel=FRAGMENT_URL&setup=JSON_URL&src=GLB_URL): renders the asset with one of `baker preview`'s
+// panel shaders and the camera/uniforms the test passes, so the page can be compared with `baker preview`.
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { registerBakerPlugins } from '../../../runtime-shaders/three/src/index.js';
+import translucency from '../../../runtime-shaders/baker_translucency.glsl';
+
+const shaders = { translucency };
+const params = new URLSearchParams(location.search);
+const view = document.getElementById('view');
+const status = document.getElementById('status');
+const toggles = document.getElementById('toggles');
+
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(1);
+view.appendChild(renderer.domElement);
+
+function fail(message) {
+	status.textContent = message;
+	console.error(message);
+	window.__bakerError = message;
+}
+
+async function loadGLB(url) {
+	const loader = registerBakerPlugins(new GLTFLoader(), { shaders });
+	return loader.loadAsync(url);
+}
+
+// ------------------------------------------------------------------------------------------------ viewer mode
+async function viewer() {
+	const scene = new THREE.Scene();
+	scene.background = new THREE.Color(0x292b30);
+	const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
+	const controls = new OrbitControls(camera, renderer.domElement);
+	scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 0.6));
+	const key = new THREE.DirectionalLight(0xffffff, 2.0);
+	scene.add(key, key.target);
+	let root = null;
+
+	function resize() {
+		renderer.setSize(innerWidth, innerHeight);
+		camera.aspect = innerWidth / innerHeight;
+		camera.updateProjectionMatrix();
+	}
+	addEventListener('resize', resize);
+	resize();
+
+	function frame(object) {
+		const box = new THREE.Box3().setFromObject(object);
+		const sphere = box.getBoundingSphere(new THREE.Sphere());
+		const distance = sphere.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
+		camera.position.copy(sphere.center).add(new THREE.Vector3(0.5, 0.25, 0.85).normalize().multiplyScalar(distance));
+		camera.near = distance / 100;
+		camera.far = distance * 10;
+		camera.updateProjectionMatrix();
+		controls.target.copy(sphere.center);
+		controls.update();
+		return sphere;
+	}
+
+	function setBackLight(on, sphere) {
+		// back light: behind the object as seen from the camera, so translucency shows
+		const dir = new THREE.Vector3().subVectors(camera.position, controls.target).normalize();
+		key.position.copy(sphere.center).addScaledVector(dir, on ? -sphere.radius * 4 : sphere.radius * 4);
+		key.target.position.copy(sphere.center);
+	}
+
+	async function show(url, name) {
+		try {
+			const gltf = await loadGLB(url);
+			if (root) scene.remove(root);
+			root = gltf.scene;
+			scene.add(root);
+			const sphere = frame(root);
+			const found = new Set();
+			root.traverse((o) => o.isMesh && [].concat(o.material).forEach((m) => m.userData.bakerThickness && found.add('translucency')));
+			toggles.innerHTML = '';
+			let back = true;
+			setBackLight(back, sphere);
+			const add = (label, checked, onChange) => {
+				const el = document.createElement('label');
+				el.innerHTML = `<input type="checkbox" ${checked ? 'checked' : ''}> ${label}`;
+				el.firstChild.addEventListener('change', (e) => onChange(e.target.checked));
+				toggles.appendChild(el);
+			};
+			if (found.has('translucency')) {
+				add('translucency (BAKER_thickness)', true, (on) => root.traverse((o) => o.isMesh && [].concat(o.material)
+					.forEach((m) => m.userData.bakerUniforms && (m.userData.bakerUniforms.u_bakerTranslucencyEnabled.value = on ? 1 : 0))));
+				add('light from behind', true, (on) => setBackLight(on, sphere));
+			}
+			status.textContent = `${name}: ${found.size ? [...found].join(', ') : 'no baked data found'}`;
+			window.__bakerReady = true;
+		} catch (e) {
+			fail(`cannot load ${name}: ${e.message || e}`);
+		}
+	}
+
+	addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
+	addEventListener('dragleave', () => document.body.classList.remove('dragging'));
+	addEventListener('drop', (e) => {
+		e.preventDefault();
+		document.body.classList.remove('dragging');
+		const file = e.dataTransfer.files[0];
+		if (file) show(URL.createObjectURL(file), file.name);
+	});
+	if (params.get('src')) show(params.get('src'), params.get('src'));
+	renderer.setAnimationLoop(() => renderer.render(scene, camera));
+}
+
+// ------------------------------------------------------------------------------------------------ panel mode
+const PANEL_VERTEX = `uniform mat4 u_viewProjection;
+uniform mat4 modelMatrix;
+in vec3 position;
+in vec3 normal;
+in float a_scalar;
+out vec3 v_position;
+out vec3 v_normal;
+out float v_scalar;
+void main() {
+	vec4 world = modelMatrix * vec4(position, 1.0);
+	v_position = world.xyz;
+	v_normal = transpose(inverse(mat3(modelMatrix))) * normal;
+	v_scalar = a_scalar;
+	gl_Position = u_viewProjection * world;
+}`;
+
+// three.js writes the #version line itself (glslVersion: GLSL3) ahead of its defines
+function toES(fragment) {
+	return fragment.replace('#version 330 core', 'precision highp float;\nprecision highp int;');
+}
+
+async function panel() {
+	document.getElementById('panel').style.display = 'none'; // the screenshot is compared pixel by pixel
+	THREE.ColorManagement.enabled = false;
+	renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
+	const [fragment, setup] = await Promise.all([
+		fetch(params.get('panel')).then((r) => r.text()),
+		fetch(params.get('setup')).then((r) => r.json()),
+	]);
+	const gltf = await loadGLB(params.get('src'));
+	const size = setup.size;
+	renderer.setSize(size, size);
+	renderer.setClearColor(new THREE.Color(...setup.background), 1);
+	const scene = new THREE.Scene();
+	scene.add(gltf.scene);
+	gltf.scene.updateMatrixWorld(true);
+	const uniforms = {
+		u_viewProjection: { value: new THREE.Matrix4().fromArray(setup.viewProjection) },
+		u_eye: { value: new THREE.Vector3(...setup.eye) },
+		u_light: { value: new THREE.Vector3(...setup.light) },
+	};
+	for (const [name, value] of Object.entries(setup.uniforms)) {
+		const [struct, field] = name.split('.');
+		const v = Array.isArray(value) ? new THREE.Vector3(...value) : value;
+		if (field) (uniforms[struct] ??= { value: {} }).value[field] = v;
+		else uniforms[name] = { value: Array.isArray(value) && value.length === 2 ? new THREE.Vector2(...value) : v };
+	}
+	const material = new THREE.RawShaderMaterial({
+		vertexShader: PANEL_VERTEX, fragmentShader: toES(fragment), uniforms, side: THREE.DoubleSide,
+		glslVersion: THREE.GLSL3,
+	});
+	gltf.scene.traverse((o) => {
+		if (!o.isMesh) return;
+		const scalar = setup.attribute && o.geometry.getAttribute(setup.attribute.toLowerCase());
+		o.geometry.setAttribute('a_scalar', scalar || new THREE.Float32BufferAttribute(new Float32Array(o.geometry.attributes.position.count), 1));
+		o.material = material;
+		o.frustumCulled = false; // the placeholder camera below has no frustum
+	});
+	const camera = new THREE.Camera(); // unused: the shader takes u_viewProjection
+	renderer.render(scene, camera);
+	window.__bakerReady = true;
+}
+
+(params.get('panel') ? panel() : viewer()).catch((e) => fail(String(e && e.stack || e)));
