@@ -14,9 +14,10 @@ from .progress import Progress
 from .steps import BAKES
 
 # modules with ``add_parser(subparsers)`` that set ``func(args) -> exit code``; a new command adds one line here
+from . import build as build_command  # noqa: E402
 from . import preview  # noqa: E402
 
-COMMANDS: list = [preview]
+COMMANDS: list = [build_command, preview]
 
 
 def _parser() -> argparse.ArgumentParser:

@@ -32,14 +32,14 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
     return asset
 
 
-def save(asset: Asset, path) -> None:
+def save(asset: Asset, path) -> list[Path]:
+    """Write ``asset`` as glTF/GLB or USD (by the suffix of ``path``); returns every file written."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in OUTPUT_SUFFIXES:
         raise BakerError(path, f"unsupported output type '{suffix}' (use one of {', '.join(sorted(OUTPUT_SUFFIXES))})")
     if suffix in (".glb", ".gltf"):
-        asset.doc.save(path)
-    else:
-        from .io.usd import write_usd
+        return asset.doc.save(path)
+    from .io.usd import write_usd
 
-        write_usd(asset.doc, path)
+    return write_usd(asset.doc, path)

@@ -280,7 +280,8 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
         _mean_chords(dist, cos_t, bias, max_distance, rays, out[start:stop])
         return stop - start
 
-    threads = threads or min(2, os.cpu_count() or 1)
+    # BAKER_THREADS caps the ray threads (``baker build --jobs`` sets 1 per process); results do not depend on it
+    threads = threads or int(os.environ.get("BAKER_THREADS", 0)) or min(2, os.cpu_count() or 1)
     with ThreadPoolExecutor(threads) as pool:
         for done in pool.map(run, range(0, n, batch)):
             if progress:

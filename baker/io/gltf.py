@@ -291,8 +291,10 @@ class GltfDocument:
                 req.append(name)
 
     # ------------------------------------------------------------------ writing
-    def save(self, path) -> None:
-        """Write ``.glb`` or ``.gltf`` (+ ``.bin`` + images) atomically, chosen by the file extension."""
+    def save(self, path) -> list[Path]:
+        """Write ``.glb`` or ``.gltf`` (+ ``.bin`` + images) atomically, chosen by the file extension.
+
+        Returns every file written (the main file last)."""
         path = Path(path)
         suffix = path.suffix.lower()
         if suffix not in (".glb", ".gltf"):
@@ -358,6 +360,7 @@ class GltfDocument:
                 tmp.write_bytes(data)
         with atomic_path(path) as tmp:
             tmp.write_bytes(blob)
+        return [path.parent / rel for rel in sorted(side_files)] + [path]
 
     def to_glb_bytes(self) -> bytes:
         import tempfile

@@ -276,10 +276,11 @@ def _interpolate(values, interpolation, indices, face_of_corner, n_points):
 
 
 # ====================================================================== writing
-def write_usd(doc, path) -> None:
+def write_usd(doc, path) -> list[Path]:
     """Write ``doc`` (a :class:`~baker.io.gltf.GltfDocument`) as ``.usda``, ``.usdc``, ``.usd`` or ``.usdz``.
 
     The file is written atomically; textures go to ``<stem>_textures/`` beside it, or into the ``.usdz`` package.
+    Returns every file written (the stage last).
     """
     path = Path(path)
     suffix = path.suffix.lower()
@@ -287,14 +288,17 @@ def write_usd(doc, path) -> None:
         raise BakerError(path, "output must end in .usd, .usda, .usdc or .usdz")
     if suffix == ".usdz":
         _write_usdz(doc, path)
-        return
+        return [path]
     folder = f"{path.stem}_textures"
     layer, images = _build_layer(doc, folder)
     # textures first, the stage last: a reader never sees a stage whose textures are missing
+    written = []
     for name, data in images:
         write_bytes_atomic(path.parent / folder / name, data)
+        written.append(path.parent / folder / name)
     with atomic_path(path) as tmp:
         _export(layer, tmp, path)
+    return written + [path]
 
 
 def _write_usdz(doc, path: Path) -> None:
