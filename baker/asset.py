@@ -56,8 +56,18 @@ class Asset:
         else:
             doc = _doc_from_trimesh_scene(path, _load_trimesh(path))
         asset = cls(doc=doc, source=path)
+        asset.check_supported()
         asset.check_has_triangles()
         return asset
+
+    # compressed geometry keeps its vertices inside the extension: reading the accessors would give zeros
+    UNSUPPORTED = {"KHR_draco_mesh_compression": "Draco-compressed", "EXT_meshopt_compression": "meshopt-compressed"}
+
+    def check_supported(self) -> None:
+        for name, what in self.UNSUPPORTED.items():
+            if name in self.doc.json.get("extensionsUsed", []):
+                raise BakerError(self.source, f"{what} geometry ({name}) is not supported: decompress it first "
+                                              "(e.g. gltf-transform copy --decompress) and bake the result")
 
     # ------------------------------------------------------------------ geometry
     def meshes(self) -> list:

@@ -136,3 +136,15 @@ def test_readme_documents_every_option_and_command():
             assert f"`{f.name.replace('_', '-')}`" in readme, f"README lacks option {name}.{f.name}"
     for command in ("baker bake", "baker validate", "baker inspect", "scripts/test"):
         assert command in readme
+
+
+def test_compressed_geometry_is_refused(tmp_path, sphere_glb):
+    from baker.io.gltf import GltfDocument as Doc
+
+    doc = Doc.load(sphere_glb)
+    doc.use_extension("KHR_draco_mesh_compression", required=True)
+    src = tmp_path / "draco.glb"
+    doc.save(src)
+    result = run("bake", src, "-o", tmp_path / "o.glb", "-q")
+    assert result.returncode == 2 and "Draco" in result.stderr and str(src) in result.stderr
+    assert not (tmp_path / "o.glb").exists()
