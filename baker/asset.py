@@ -94,7 +94,8 @@ class Asset:
         attrs = prim.get("attributes", {})
         if "POSITION" not in attrs:
             raise BakerError(self.source, f"mesh {mesh} primitive {primitive} has no POSITION attribute")
-        positions = self.doc.accessor(attrs["POSITION"]).astype(np.float64)
+        # _to_float honours normalized integers (KHR_mesh_quantization stores positions and normals that way)
+        positions = _to_float(self.doc, attrs["POSITION"])
         n = len(positions)
         if "indices" in prim:
             indices = self.doc.accessor(prim["indices"]).astype(np.int64)
@@ -105,7 +106,7 @@ class Asset:
         faces = _faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
         normals = None
         if "NORMAL" in attrs:
-            normals = self.doc.accessor(attrs["NORMAL"]).astype(np.float64)
+            normals = _to_float(self.doc, attrs["NORMAL"])
             normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-20)
         texcoords = {}
         for key, acc in attrs.items():
