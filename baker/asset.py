@@ -86,8 +86,11 @@ class Asset:
             raise BakerError(self.source, "no triangle faces (points or lines only, or empty meshes)")
 
     def triangle_primitives(self, mesh: int) -> list[int]:
+        """Triangle primitives of ``mesh``, without baker's own derived geometry (edge fins)."""
         prims = self.meshes()[mesh].get("primitives", [])
-        return [p for p, prim in enumerate(prims) if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)]
+        return [p for p, prim in enumerate(prims)
+                if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)
+                and "finsOf" not in (prim.get("extensions", {}).get("BAKER_edges") or {})]
 
     def primitive(self, mesh: int, primitive: int) -> PrimitiveGeometry:
         prim = self.meshes()[mesh]["primitives"][primitive]
@@ -138,23 +141,22 @@ def _to_float(doc: GltfDocument, accessor: int) -> np.ndarray:
 
 
 def _faces_from_indices(indices: np.ndarray, mode: int) -> np.ndarray:
+    """Triangles of a primitive in glTF's order (spec 3.7.2.1), degenerate ones included: per-triangle data such
+    as EXT_mesh_primitive_edge_visibility counts them, and they carry no area for the bakes that sample surfaces."""
+    n = len(indices)
     if mode == MODE_TRIANGLES:
-        faces = indices[: len(indices) // 3 * 3].reshape(-1, 3)
-    elif mode == MODE_STRIP:
-        k = np.arange(max(len(indices) - 2, 0))
+        return indices[: n // 3 * 3].reshape(-1, 3)
+    if n < 3 or mode not in (MODE_STRIP, MODE_FAN):
+        return np.zeros((0, 3), np.int64)
+    k = np.arange(n - 2)
+    if mode == MODE_STRIP:
         even = (k % 2) == 0
         a = indices[k]
         b = np.where(even, indices[k + 1], indices[k + 2])
         c = np.where(even, indices[k + 2], indices[k + 1])
-        faces = np.stack([a, b, c], axis=1)
-    elif mode == MODE_FAN:
-        k = np.arange(1, max(len(indices) - 1, 1))
-        faces = np.stack([np.full_like(k, indices[0]) if len(indices) else k, indices[k], indices[k + 1]], axis=1) if len(indices) > 2 else np.zeros((0, 3), np.int64)
-    else:
-        return np.zeros((0, 3), np.int64)
-    # drop degenerate index triples (strips use them as restarts); they carry no area and confuse topology
-    keep = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
-    return faces[keep]
+        return np.stack([a, b, c], axis=1)
+    # fan: triangle i is (v[i+1], v[i+2], v[0])
+    return np.stack([indices[k + 1], indices[k + 2], np.full_like(k, indices[0])], axis=1)
 
 
 def _load_trimesh(path: Path):

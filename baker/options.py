@@ -76,6 +76,7 @@ def add_arguments(parser, cls, prefix: str) -> None:
         text = meta.get("help", "")
         if shown is not None:  # None defaults are explained in the help text itself ("default: ...")
             text += f" (default: {shown})"
+        text = text.replace("%", "%%")  # argparse formats help strings with %
         metavar = "{" + ",".join(map(str, meta["choices"])) + "}" if meta.get("choices") else f.name.upper()
         group.add_argument(flag, dest=f"{prefix}__{f.name}", default=None, metavar=metavar, help=text)
 

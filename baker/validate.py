@@ -154,12 +154,16 @@ def _walk_extensions(node, parts=()):
 
 
 def check_extensions(gltf: dict, issues: Issues) -> dict:
-    """Schema-check every BAKER_* extension; return {name: [(object path parts, value)]} of the ones found."""
+    """Schema-check every BAKER_* extension; return {name: [(object path parts, value)]} of the ones found (plus the
+    other extensions an extension module checks)."""
     registry = schema_registry()
     known = {ext for ext, _ in registry}
+    checked = set(semantic_checks())  # non-BAKER extensions baker writes (e.g. EXT_mesh_primitive_edge_visibility)
     found: dict[str, list] = {}
     for parts, name, value in _walk_extensions(gltf):
         if not name.startswith("BAKER_"):
+            if name in checked:  # no schema of ours: only its module's semantic rules apply
+                found.setdefault(name, []).append((parts, value))
             continue
         owner = parts  # extensions nested in an extension have "extensions" in their owner path: no kind
         found.setdefault(name, []).append((owner, value))
