@@ -16,8 +16,13 @@ from .steps import BAKES
 # modules with ``add_parser(subparsers)`` that set ``func(args) -> exit code``; a new command adds one line here
 from . import build as build_command  # noqa: E402
 from . import preview  # noqa: E402
+from . import tam_commands  # noqa: E402
+from . import lines as lines_command  # noqa: E402
+from . import skin_commands  # noqa: E402
+from . import hair_command  # noqa: E402
+from . import glyphs_command, text_command  # noqa: E402
 
-COMMANDS: list = [build_command, preview]
+COMMANDS: list = [build_command, preview, tam_commands, lines_command, skin_commands, hair_command, glyphs_command, text_command]
 
 
 def _parser() -> argparse.ArgumentParser:

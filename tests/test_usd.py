@@ -291,3 +291,29 @@ def test_usd_input_broken_topology(tmp_path):
     stage.GetRootLayer().Save()
     with pytest.raises(BakerError, match="/World/Cube.*out of range"):
         Asset.load(path)
+
+
+def test_extension_textures_and_edge_curves_reach_usd(tmp_path):
+    # every texture a BAKER_* material extension references becomes a UsdUVTexture feeding a material output,
+    # and BAKER_edges' crease/boundary edges become a BasisCurves prim beside the mesh
+    import trimesh
+    from pxr import Usd, UsdGeom, UsdShade
+
+    import baker
+    from baker.pipeline import save
+
+    src = tmp_path / "box.glb"
+    trimesh.creation.box().export(str(src))
+    asset = baker.bake(src, bakes=["edges", "skin"], options={"skin": {"width": 16, "height": 16, "penumbra": False}})
+    out = tmp_path / "box.usda"
+    save(asset, out)
+    stage = Usd.Stage.Open(str(out))
+    curves = [UsdGeom.BasisCurves(p) for p in stage.Traverse() if p.IsA(UsdGeom.BasisCurves)]
+    assert len(curves) == 1
+    assert len(curves[0].GetCurveVertexCountsAttr().Get()) == 12  # the box's 12 crease edges
+    material = UsdShade.Material([p for p in stage.Traverse() if p.IsA(UsdShade.Material)][0])
+    output = material.GetOutput("baker:skin_lut:lutTexture")
+    assert output and output.HasConnectedSource()
+    shader = UsdShade.Shader(output.GetConnectedSources()[0][0].source.GetPrim())
+    assert shader.GetIdAttr().Get() == "UsdUVTexture"
+    assert (out.parent / shader.GetInput("file").Get().path).is_file()

@@ -22,6 +22,9 @@ def write_image(path, pixels: np.ndarray) -> None:
     spec = oiio.ImageSpec(w, h, c, _FORMATS[pixels.dtype])
     # no timestamps or host names in the file: outputs must be byte-identical run to run
     spec.attribute("DateTime", "")
+    # our alpha is straight (glTF, PNG and MTSDF atlases all expect that): without this OpenImageIO takes RGBA as
+    # premultiplied and divides colour by alpha when it writes a PNG
+    spec.attribute("oiio:UnassociatedAlpha", 1)
     out = oiio.ImageOutput.create(str(path))
     if out is None:
         raise BakerError(path, f"cannot write image: {oiio.geterror()}")
@@ -41,8 +44,10 @@ def encode_image(pixels: np.ndarray, suffix: str = ".png") -> bytes:
 
 
 def read_image(path) -> np.ndarray:
-    """Read an image as (H, W, C) in its stored pixel type."""
-    inp = oiio.ImageInput.open(str(path))
+    """Read an image as (H, W, C) in its stored pixel type, alpha as stored (not premultiplied)."""
+    config = oiio.ImageSpec()
+    config.attribute("oiio:UnassociatedAlpha", 1)
+    inp = oiio.ImageInput.open(str(path), config)
     if inp is None:
         raise BakerError(path, f"cannot read image: {oiio.geterror()}")
     try:

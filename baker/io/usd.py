@@ -445,7 +445,8 @@ class _Writer:
         mesh = doc.json["meshes"][mesh_index]
         prims = [(p, prim) for p, prim in enumerate(mesh.get("primitives", []))
                  if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)
-                 and "POSITION" in prim.get("attributes", {})]
+                 and "POSITION" in prim.get("attributes", {})
+                 and "finsOf" not in ((prim.get("extensions") or {}).get("BAKER_edges") or {})]  # glTF-only fins
         base = mesh.get("name") or f"mesh{mesh_index}"
         for p, prim in prims:
             attrs = prim["attributes"]
@@ -487,6 +488,13 @@ class _Writer:
             if "material" in prim:
                 material = self.material(prim["material"])
                 UsdShade.MaterialBindingAPI.Apply(usd_mesh.GetPrim()).Bind(material)
+            # extension modules add their own USD beside the mesh (e.g. BAKER_edges' crease curves)
+            from ..extensions import EXTENSIONS
+
+            for ext_name, module in EXTENSIONS.items():
+                if ext_name in (prim.get("extensions") or {}) and hasattr(module, "to_usd_primitive"):
+                    module.to_usd_primitive(self.stage, self.names.make(parent, f"{name}_{ext_name[6:]}", "extra"),
+                                            parent, doc, mesh_index, p)
 
     def _custom_primvar(self, primvars, key: str, acc: int) -> None:
         from pxr import Sdf, Tf, UsdGeom, Vt
@@ -555,7 +563,17 @@ class _Writer:
         prim = material.GetPrim()
         for ext_name, params in gltf.get("extensions", {}).items():
             if ext_name.startswith("BAKER_") and isinstance(params, dict):
-                _custom_attributes(prim, "baker:" + _valid_name(ext_name[6:]), params)
+                namespace = "baker:" + _valid_name(ext_name[6:])
+                _custom_attributes(prim, namespace, params)
+                # every texture the extension references: a UsdUVTexture feeding the material output
+                # outputs:baker:<ext>:<json path> (float4 rgba), e.g. outputs:baker:skin_lut:lutTexture
+                for path, info in _texture_infos(params):
+                    shader = "Baker_" + _valid_name("_".join([ext_name[6:], *map(str, path)]))
+                    tex = self._texture(mat_path, shader, info, "raw", readers)
+                    if tex is not None:
+                        out = tex.CreateOutput("rgba", Sdf.ValueTypeNames.Float4)
+                        name = ":".join([namespace, *(f"_{k}" if isinstance(k, int) else _valid_name(k) for k in path)])
+                        material.CreateOutput(name, Sdf.ValueTypeNames.Float4).ConnectToSource(out)
         return material
 
     def _texture(self, mat_path: str, shader_name: str, info: dict, color_space: str, readers: dict):
@@ -648,6 +666,21 @@ def _custom_attributes(prim, namespace: str, params: dict) -> None:
         else:
             continue  # null, empty or mixed lists: nothing typed to write
         prim.CreateAttribute(name, type_name, custom=True).Set(value)
+
+
+def _texture_infos(node, path=()):
+    """(JSON path, textureInfo) of every ``{"index": n, ...}`` texture reference nested in an extension object."""
+    if isinstance(node, dict):
+        if isinstance(node.get("index"), int) and not isinstance(node.get("index"), bool) and set(node) <= {
+                "index", "texCoord", "scale", "strength", "extensions", "extras"}:
+            yield path, node
+            return
+        for key, value in node.items():
+            if key not in ("extensions", "extras"):
+                yield from _texture_infos(value, path + (key,))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            yield from _texture_infos(value, path + (i,))
 
 
 def _st_name(texcoord: int) -> str:

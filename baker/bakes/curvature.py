@@ -1,0 +1,402 @@
+"""Per-vertex principal curvatures by local quadric fitting, then tensor smoothing.
+
+Pre-integrated skin shading (Penner 2011; RTR4 section 14.6.3) indexes its LUT by the curvature 1/r = ||dn/dp||,
+which is constant per triangle on a mesh and "must be baked and smoothed offline". This module bakes it:
+
+1. **Neighbourhood**: the k-ring of every vertex on the (welded) edge graph, or, with ``radius``, the vertices
+   reachable through edges without leaving a ball of that radius (geodesically connected, so the other side of a
+   thin part never leaks in).
+2. **Local frame**: z along the mean of the neighbourhood's vertex normals (outward), x/y a tangent basis.
+3. **Quadric fit** (the osculating-jet / "principal_curvature" approach of libigl, Panozzo et al. 2010, and CGAL's
+   Monge fitting, Cazals & Pouget 2005): least squares z = a x^2 + b xy + c y^2 + d x + e y + f over the
+   neighbourhood, in coordinates scaled to unit size for conditioning. The shape operator of that surface at the
+   vertex, S = I^-1 II from its first and second fundamental forms, gives the principal curvatures and directions.
+   The linear terms make the estimate independent of how well the frame normal matches the surface, and the
+   constant term lets the fit pass off a noisy centre vertex.
+4. **Smoothing**: each vertex's curvature tensor T = k1 d1 d1^T + k2 d2 d2^T (a 3x3 symmetric matrix, free of the
+   sign ambiguity of directions) is averaged with its 1-ring neighbours' tensors, each first rotated from the
+   neighbour's normal onto the vertex's (as Rusinkiewicz 2004 re-expresses tensors in a new frame), weighted by
+   vertex area; ``smoothing`` passes. Rotating first keeps the average exact on a sphere (no shrinkage from
+   averaging tensors that live in different tangent planes).
+
+Sign convention: with outward normals, convex is positive: a sphere of radius r has k1 = k2 = H = +1/r. Units are
+1 / mesh units. On a plane every value is 0 (to rounding).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from ..options import opt
+
+
+@dataclass(frozen=True)
+class CurvatureOptions:
+    """Options of the curvature bake (``--bakes curvature``)."""
+
+    rings: int = opt(2, "neighbourhood size in edge rings around each vertex for the quadric fit", min=1, max=8)
+    radius: float | None = opt(None, "neighbourhood radius in mesh units instead of rings: the vertices reachable "
+                                     "through edges within this distance (default: use rings)", min=0.0)
+    smoothing: int = opt(2, "smoothing passes of the curvature tensor over 1-ring neighbours", min=0, max=100)
+    per_vertex: bool = opt(True, "write _CURVATURE, _PRINCIPAL_CURVATURES and _PRINCIPAL_DIRECTION")
+    directions: bool = opt(True, "also write the principal curvatures and direction attributes")
+    per_texel: bool = opt(False, "also bake a mean-curvature texture (BAKER_curvature.curvatureTexture)")
+    texture_size: int = opt(512, "curvature texture width and height in texels", min=4, max=16384)
+    texture_bits: int = opt(16, "bits per channel of the curvature PNG", choices=(8, 16))
+
+
+@dataclass
+class CurvatureResult:
+    """Per-vertex curvature of a welded mesh. Curvatures in 1 / mesh units, convex positive."""
+
+    mean: np.ndarray  # (n,) H = (k1 + k2) / 2
+    k1: np.ndarray  # (n,) maximum principal curvature
+    k2: np.ndarray  # (n,) minimum principal curvature, k2 <= k1
+    direction1: np.ndarray  # (n, 3) unit tangent of k1 (zero where undefined)
+    normal: np.ndarray  # (n, 3) unit outward normal the tensor was expressed against
+
+    @property
+    def gaussian(self) -> np.ndarray:
+        return self.k1 * self.k2
+
+    @property
+    def direction2(self) -> np.ndarray:
+        return np.cross(self.normal, self.direction1)
+
+
+# ---------------------------------------------------------------------------------------------------- topology
+def vertex_adjacency(n: int, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """CSR adjacency of the edge graph: neighbours of v are ``indices[indptr[v]:indptr[v + 1]]`` (sorted)."""
+    faces = np.asarray(faces, np.int64)
+    a = np.concatenate([faces[:, 0], faces[:, 1], faces[:, 2], faces[:, 1], faces[:, 2], faces[:, 0]])
+    b = np.concatenate([faces[:, 1], faces[:, 2], faces[:, 0], faces[:, 0], faces[:, 1], faces[:, 2]])
+    keep = a != b
+    key = np.sort(a[keep] * n + b[keep])
+    key = key[np.concatenate([[True], key[1:] != key[:-1]])] if len(key) else key
+    src, dst = key // n, key % n
+    indptr = np.zeros(n + 1, np.int64)
+    np.cumsum(np.bincount(src, minlength=n), out=indptr[1:])
+    return indptr, dst.astype(np.int64)
+
+
+def area_weighted_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Unit area-weighted vertex normals (as :func:`baker.asset.vertex_normals`, summed with bincount)."""
+    fn = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
+    flat = faces.reshape(-1)
+    out = np.stack([np.bincount(flat, weights=np.repeat(fn[:, k], 3), minlength=len(vertices)) for k in range(3)], 1)
+    length = np.linalg.norm(out, axis=1, keepdims=True)
+    return np.where(length > 1e-30, out / np.maximum(length, 1e-30), np.array([0.0, 0.0, 1.0]))
+
+
+def vertex_areas(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """A third of the area of every incident triangle (barycentric vertex area)."""
+    cross = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
+    third = np.linalg.norm(cross, axis=1) / 6.0
+    return np.bincount(faces.reshape(-1), weights=np.repeat(third, 3), minlength=len(vertices))
+
+
+# ---------------------------------------------------------------------------------------------------- fitting
+@numba.njit(cache=True, nogil=True)
+def _gather(v, indptr, indices, positions, rings, radius, stamp, queue):
+    """Vertices of v's neighbourhood into ``queue`` (v first); returns their count. ``stamp`` marks visits by v."""
+    queue[0] = v
+    stamp[v] = v
+    count, head = 1, 0
+    ring_end = 1
+    ring = 0
+    use_radius = radius > 0.0
+    r2 = radius * radius
+    px, py, pz = positions[v, 0], positions[v, 1], positions[v, 2]
+    while head < count:
+        if head == ring_end:  # a ring is complete
+            ring += 1
+            ring_end = count
+        if not use_radius and ring >= rings:
+            break
+        u = queue[head]
+        head += 1
+        for k in range(indptr[u], indptr[u + 1]):
+            w = indices[k]
+            if stamp[w] == v:
+                continue
+            stamp[w] = v
+            if use_radius:
+                dx, dy, dz = positions[w, 0] - px, positions[w, 1] - py, positions[w, 2] - pz
+                if dx * dx + dy * dy + dz * dz > r2:
+                    continue
+            if count < queue.shape[0]:
+                queue[count] = w
+                count += 1
+    return count
+
+
+@numba.njit(cache=True, nogil=True)
+def _fit_vertex(v, count, queue, positions, normals, out_k, out_dir, out_normal, ata, atz, row):
+    """Quadric fit over ``queue[:count]`` around vertex v; writes k1, k2 (convex positive), d1 and the normal."""
+    # frame normal: mean of the neighbourhood's unit normals
+    nx, ny, nz = 0.0, 0.0, 0.0
+    for i in range(count):
+        u = queue[i]
+        nx += normals[u, 0]
+        ny += normals[u, 1]
+        nz += normals[u, 2]
+    length = math.sqrt(nx * nx + ny * ny + nz * nz)
+    if length < 1e-12:
+        nx, ny, nz = normals[v, 0], normals[v, 1], normals[v, 2]
+        length = math.sqrt(nx * nx + ny * ny + nz * nz)
+        if length < 1e-12:
+            return False
+    nx, ny, nz = nx / length, ny / length, nz / length
+    # tangent basis (Duff et al. 2017)
+    sign = 1.0 if nz >= 0.0 else -1.0
+    a = -1.0 / (sign + nz)
+    b = nx * ny * a
+    t1x, t1y, t1z = 1.0 + sign * nx * nx * a, sign * b, -sign * nx
+    t2x, t2y, t2z = b, sign + ny * ny * a, -ny
+    px, py, pz = positions[v, 0], positions[v, 1], positions[v, 2]
+    # scale: RMS tangential distance, so the 6x6 system is well conditioned at any mesh size
+    scale2 = 0.0
+    for i in range(1, count):
+        u = queue[i]
+        qx, qy, qz = positions[u, 0] - px, positions[u, 1] - py, positions[u, 2] - pz
+        x = qx * t1x + qy * t1y + qz * t1z
+        y = qx * t2x + qy * t2y + qz * t2z
+        scale2 += x * x + y * y
+    if count < 6 or scale2 <= 0.0:
+        return False
+    scale = math.sqrt(scale2 / (count - 1))
+    inv = 1.0 / scale
+    ata[:, :] = 0.0
+    atz[:] = 0.0
+    for i in range(count):
+        u = queue[i]
+        qx, qy, qz = positions[u, 0] - px, positions[u, 1] - py, positions[u, 2] - pz
+        x = (qx * t1x + qy * t1y + qz * t1z) * inv
+        y = (qx * t2x + qy * t2y + qz * t2z) * inv
+        z = (qx * nx + qy * ny + qz * nz) * inv
+        row[0], row[1], row[2], row[3], row[4], row[5] = x * x, x * y, y * y, x, y, 1.0
+        for r in range(6):
+            atz[r] += row[r] * z
+            for c in range(6):
+                ata[r, c] += row[r] * row[c]
+    trace = 0.0
+    for r in range(6):
+        trace += ata[r, r]
+    for r in range(6):
+        ata[r, r] += 1e-12 * trace  # a whisper of ridge: degenerate (collinear) neighbourhoods stay solvable
+    coef = np.linalg.solve(ata, atz)
+    qa, qb, qc, qd, qe = coef[0], coef[1], coef[2], coef[3], coef[4]
+    # fundamental forms of z(x, y) at the origin (in scaled units): r_x = (1, 0, d), r_y = (0, 1, e)
+    w = math.sqrt(1.0 + qd * qd + qe * qe)
+    E, F, G = 1.0 + qd * qd, qd * qe, 1.0 + qe * qe
+    L, M, N = 2.0 * qa / w, qb / w, 2.0 * qc / w
+    # orthonormal tangent basis of the fitted surface: e1 = r_x / |r_x|, e2 = Gram-Schmidt of r_y
+    # e1 = A11 r_x, e2 = A21 r_x + A22 r_y
+    A11 = 1.0 / math.sqrt(E)
+    proj = F / E
+    e2n = math.sqrt(max(G - F * F / E, 1e-300))
+    A21, A22 = -proj / e2n, 1.0 / e2n
+    # second fundamental form in that basis (symmetric): II(ei, ej)
+    s11 = A11 * A11 * L
+    s12 = A11 * (A21 * L + A22 * M)
+    s22 = A21 * A21 * L + 2.0 * A21 * A22 * M + A22 * A22 * N
+    # convex positive: the surface bends away from its outward normal, so negate (and undo the coordinate scale)
+    s11, s12, s22 = -s11 * inv, -s12 * inv, -s22 * inv
+    half_tr = 0.5 * (s11 + s22)
+    disc = math.sqrt(max(0.25 * (s11 - s22) * (s11 - s22) + s12 * s12, 0.0))
+    k1, k2 = half_tr + disc, half_tr - disc
+    # eigenvector of k1 in the (e1, e2) basis
+    if abs(s12) > 1e-300 or abs(s11 - s22) > 1e-300:
+        if s11 >= s22:
+            ex, ey = k1 - s22, s12
+        else:
+            ex, ey = s12, k1 - s11
+        el = math.sqrt(ex * ex + ey * ey)
+        ex, ey = ex / el, ey / el
+    else:
+        ex, ey = 1.0, 0.0
+    # back to 3D: e1 and e2 in frame coordinates (x, y, z) then to world
+    rx = (1.0, 0.0, qd)
+    ry = (0.0, 1.0, qe)
+    e1 = (A11 * rx[0], A11 * rx[1], A11 * rx[2])
+    e2 = (A21 * rx[0] + A22 * ry[0], A21 * rx[1] + A22 * ry[1], A21 * rx[2] + A22 * ry[2])
+    lx = ex * e1[0] + ey * e2[0]
+    ly = ex * e1[1] + ey * e2[1]
+    lz = ex * e1[2] + ey * e2[2]
+    out_dir[v, 0] = lx * t1x + ly * t2x + lz * nx
+    out_dir[v, 1] = lx * t1y + ly * t2y + lz * ny
+    out_dir[v, 2] = lx * t1z + ly * t2z + lz * nz
+    # the fitted surface's normal (-d, -e, 1) / w
+    fx, fy, fz = -qd / w, -qe / w, 1.0 / w
+    out_normal[v, 0] = fx * t1x + fy * t2x + fz * nx
+    out_normal[v, 1] = fx * t1y + fy * t2y + fz * ny
+    out_normal[v, 2] = fx * t1z + fy * t2z + fz * nz
+    out_k[v, 0] = k1
+    out_k[v, 1] = k2
+    return True
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _fit_all(positions, normals, indptr, indices, rings, radius, max_neighbours, chunks, out_k, out_dir,
+             out_normal, valid):
+    n = positions.shape[0]
+    step = (n + chunks - 1) // chunks
+    for c in numba.prange(chunks):
+        stamp = np.full(n, -1, np.int64)
+        queue = np.empty(max_neighbours, np.int64)
+        ata = np.empty((6, 6))
+        atz = np.empty(6)
+        row = np.empty(6)
+        for v in range(c * step, min(n, (c + 1) * step)):
+            count = _gather(v, indptr, indices, positions, rings, radius, stamp, queue)
+            valid[v] = _fit_vertex(v, count, queue, positions, normals, out_k, out_dir, out_normal, ata, atz, row)
+
+
+# ---------------------------------------------------------------------------------------------------- smoothing
+def _tensors(k: np.ndarray, d1: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    d2 = np.cross(normal, d1)
+    return (k[:, 0, None, None] * d1[:, :, None] * d1[:, None, :]
+            + k[:, 1, None, None] * d2[:, :, None] * d2[:, None, :])
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _rotate_into(src, dst, t, out, w):
+    """out += w * R t R^T with R the minimal rotation taking unit ``src`` onto unit ``dst`` (Rodrigues)."""
+    ax = src[1] * dst[2] - src[2] * dst[1]
+    ay = src[2] * dst[0] - src[0] * dst[2]
+    az = src[0] * dst[1] - src[1] * dst[0]
+    c = src[0] * dst[0] + src[1] * dst[1] + src[2] * dst[2]
+    r = np.empty((3, 3))
+    if c < -1.0 + 1e-9:  # opposite normals (a fold): no meaningful transport, keep the tensor as it is
+        for i in range(3):
+            for j in range(3):
+                r[i, j] = 1.0 if i == j else 0.0
+    else:
+        k = 1.0 / (1.0 + c)
+        r[0, 0] = c + k * ax * ax
+        r[0, 1] = k * ax * ay - az
+        r[0, 2] = k * ax * az + ay
+        r[1, 0] = k * ax * ay + az
+        r[1, 1] = c + k * ay * ay
+        r[1, 2] = k * ay * az - ax
+        r[2, 0] = k * ax * az - ay
+        r[2, 1] = k * ay * az + ax
+        r[2, 2] = c + k * az * az
+    for i in range(3):
+        for l in range(3):
+            acc = 0.0
+            for j in range(3):
+                rt = 0.0
+                for m in range(3):
+                    rt += t[j, m] * r[l, m]
+                acc += r[i, j] * rt
+            out[i, l] += w * acc
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _smooth_pass(tensors, normals, indptr, indices, areas, out):
+    n = tensors.shape[0]
+    for v in numba.prange(n):
+        acc = np.zeros((3, 3))
+        total = areas[v]
+        _rotate_into(normals[v], normals[v], tensors[v], acc, areas[v])
+        for k in range(indptr[v], indptr[v + 1]):
+            u = indices[k]
+            _rotate_into(normals[u], normals[v], tensors[u], acc, areas[u])
+            total += areas[u]
+        if total > 0.0:
+            for i in range(3):
+                for j in range(3):
+                    out[v, i, j] = acc[i, j] / total
+        else:
+            for i in range(3):
+                for j in range(3):
+                    out[v, i, j] = tensors[v, i, j]
+
+
+def smooth_tensors(tensors: np.ndarray, normals: np.ndarray, indptr: np.ndarray, indices: np.ndarray,
+                   areas: np.ndarray, passes: int) -> np.ndarray:
+    """Area-weighted 1-ring average of curvature tensors, each rotated into the receiving vertex's tangent plane."""
+    tensors = np.ascontiguousarray(tensors, np.float64)
+    normals = np.ascontiguousarray(normals, np.float64)
+    areas = np.ascontiguousarray(areas, np.float64)
+    for _ in range(max(0, passes)):
+        out = np.empty_like(tensors)
+        _smooth_pass(tensors, normals, indptr, indices, areas, out)
+        tensors = out
+    return tensors
+
+
+def principal_from_tensors(tensors: np.ndarray, normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Eigen-decompose each tensor in its vertex's tangent plane: ((n, 2) k1 >= k2, (n, 3) d1)."""
+    from .thickness import orthonormal_basis
+
+    t, b = orthonormal_basis(normals)
+    basis = np.stack([t, b], axis=1)  # (n, 2, 3)
+    small = np.einsum("nai,nij,nbj->nab", basis, tensors, basis)
+    small = 0.5 * (small + np.swapaxes(small, 1, 2))
+    values, vectors = np.linalg.eigh(small)  # ascending
+    k = values[:, ::-1].copy()
+    d1 = np.einsum("na,nai->ni", vectors[:, :, 1], basis)
+    # a deterministic sign for the direction (it is a line field): first non-negligible component positive
+    flip = np.take_along_axis(d1, np.argmax(np.abs(d1) > 1e-9, axis=1)[:, None], axis=1)[:, 0] < 0
+    d1[flip] *= -1.0
+    return k, d1
+
+
+# ---------------------------------------------------------------------------------------------------- entry point
+def principal_curvatures(vertices: np.ndarray, faces: np.ndarray, *, rings: int = 2, radius: float | None = None,
+                         smoothing: int = 2, normals: np.ndarray | None = None,
+                         max_neighbours: int = 4096) -> CurvatureResult:
+    """Principal curvatures and directions at every vertex of a triangle mesh.
+
+    Parameters
+    ----------
+    vertices : (n, 3) array
+        Vertex positions (welded: split copies of one position would each see half a neighbourhood).
+    faces : (m, 3) int array
+        Triangles, consistently wound with outward normals (counter-clockwise seen from outside).
+    rings : int
+        Neighbourhood of the quadric fit in edge rings (ignored when ``radius`` is given).
+    radius : float or None
+        Neighbourhood radius in mesh units (vertices reachable through edges inside the ball).
+    smoothing : int
+        Passes of 1-ring tensor smoothing after the fit.
+    normals : (n, 3) array or None
+        Outward unit vertex normals for the local frames; default area-weighted face normals.
+    max_neighbours : int
+        Cap of the neighbourhood size (a huge ``radius`` cannot exhaust memory).
+
+    Returns
+    -------
+    CurvatureResult with k1 >= k2 and H in 1 / mesh units, convex positive (a sphere of radius r gives +1/r).
+    """
+    vertices = np.ascontiguousarray(vertices, np.float64)
+    faces = np.ascontiguousarray(faces, np.int64)
+    n = len(vertices)
+    if normals is None:
+        normals = area_weighted_normals(vertices, faces) if len(faces) else np.tile([0.0, 0.0, 1.0], (n, 1))
+    normals = np.ascontiguousarray(normals, np.float64)
+    indptr, indices = vertex_adjacency(n, faces)
+    k = np.zeros((n, 2))
+    d1 = np.zeros((n, 3))
+    fit_normal = normals.copy()
+    valid = np.zeros(n, np.bool_)
+    if n:
+        chunks = max(1, min(64, n // 256))
+        _fit_all(vertices, normals, indptr, indices, int(rings), float(radius or 0.0), int(max_neighbours), chunks,
+                 k, d1, fit_normal, valid)
+    fit_normal /= np.maximum(np.linalg.norm(fit_normal, axis=1, keepdims=True), 1e-30)
+    # invalid vertices (too few neighbours) carry no curvature into the smoothing
+    k[~valid] = 0.0
+    d1 = d1 - fit_normal * np.einsum("ij,ij->i", d1, fit_normal)[:, None]
+    d1 /= np.maximum(np.linalg.norm(d1, axis=1, keepdims=True), 1e-30)
+    tensors = _tensors(k, d1, fit_normal)
+    tensors = smooth_tensors(tensors, fit_normal, indptr, indices, vertex_areas(vertices, faces), smoothing)
+    k, d1 = principal_from_tensors(tensors, fit_normal)
+    d1[~valid] = 0.0  # umbilics keep an arbitrary but deterministic tangent; isolated vertices none
+    return CurvatureResult(mean=0.5 * (k[:, 0] + k[:, 1]), k1=k[:, 0].copy(), k2=k[:, 1].copy(), direction1=d1,
+                           normal=fit_normal)

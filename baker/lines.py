@@ -1,0 +1,222 @@
+"""``baker lines IN -o drawing.svg``: a hidden-line drawing of an asset from a camera (RTR4 15.2.4-15.2.5).
+
+The scene's triangles (every node's mesh, in world space) are welded and classified (:mod:`baker.bakes.edges`), the
+contour edges for the camera are found by eq. 15.1 and chained with the crease, boundary and material edges,
+visibility comes from rays cast with Embree (:mod:`baker.bakes.lines`), and the polylines are written as SVG:
+visible lines solid, hidden ones dashed (``--hidden``), stroke widths by type.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .bakes import edges as E
+from .bakes import lines as L
+from .errors import BakerError
+
+DEFAULT_WIDTHS = {"contour": 2.0, "boundary": 1.5, "crease": 1.0, "material": 1.0}
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser("lines", help="draw contour, crease and boundary lines of an asset as SVG")
+    p.add_argument("input", help="input asset (.gltf .glb .obj .ply .stl .usd .usda .usdc .usdz)")
+    p.add_argument("-o", "--output", required=True, help="output .svg")
+    p.add_argument("--camera", help="a glTF camera (camera or node name), or the eye position X,Y,Z "
+                                    "(default: in front of the scene, along -Z)")
+    p.add_argument("--target", help="point looked at, X,Y,Z (default: the scene's bounding-box centre)")
+    p.add_argument("--up", default="0,1,0", help="up vector X,Y,Z (default: 0,1,0)")
+    p.add_argument("--fov", type=float, help="vertical field of view in degrees (default 40, or the glTF camera's)")
+    p.add_argument("--orthographic", type=float, metavar="HALF_HEIGHT",
+                   help="orthographic view of this half-height in scene units instead of a perspective one")
+    p.add_argument("--size", help="WIDTHxHEIGHT in pixels (default 800x800, or the glTF camera's aspect ratio)")
+    p.add_argument("--hidden", action="store_true", help="also draw hidden lines, dashed")
+    p.add_argument("--crease-angle", type=float, default=60.0, help="crease threshold in degrees (default 60)")
+    p.add_argument("--no-creases", action="store_true", help="draw contours and boundaries only")
+    p.add_argument("--widths", default=None, help="stroke widths in pixels, e.g. contour=2,boundary=1.5,crease=1,"
+                                                  "material=1")
+    p.add_argument("--step", type=float, default=2.0, help="visibility sampling step along lines, pixels (default 2)")
+    p.set_defaults(func=run)
+
+
+def _vector(text: str, what: str) -> np.ndarray:
+    try:
+        v = np.array([float(x) for x in text.split(",")], np.float64)
+    except ValueError:
+        raise BakerError(None, f"{what} must be three comma-separated numbers, got {text!r}") from None
+    if v.shape != (3,) or not np.all(np.isfinite(v)):
+        raise BakerError(None, f"{what} must be three comma-separated numbers, got {text!r}")
+    return v
+
+
+# ----------------------------------------------------------------------------------------------------------- scene
+def _local_matrix(node: dict) -> np.ndarray:
+    if "matrix" in node:
+        return np.array(node["matrix"], np.float64).reshape(4, 4).T  # glTF matrices are column-major
+    t = np.array(node.get("translation", [0, 0, 0]), np.float64)
+    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
+    s = np.array(node.get("scale", [1, 1, 1]), np.float64)
+    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    m = np.eye(4)
+    m[:3, :3] = r * s[None, :]
+    m[:3, 3] = t
+    return m
+
+
+def world_nodes(gltf: dict) -> list[tuple[int, np.ndarray]]:
+    """(node index, world matrix) of every node of the default scene, depth first."""
+    nodes = gltf.get("nodes") or []
+    scenes = gltf.get("scenes") or []
+    if scenes:
+        roots = scenes[gltf.get("scene", 0)].get("nodes", [])
+    else:
+        children = {c for n in nodes for c in n.get("children", [])}
+        roots = [i for i in range(len(nodes)) if i not in children]
+    out, stack = [], [(r, np.eye(4)) for r in reversed(roots)]
+    while stack:
+        i, parent = stack.pop()
+        world = parent @ _local_matrix(nodes[i])
+        out.append((i, world))
+        stack.extend((c, world) for c in reversed(nodes[i].get("children", [])))
+    return out
+
+
+def scene_triangles(asset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """World-space (positions, faces, face group) of every mesh instance of the default scene."""
+    gltf = asset.doc.json
+    instances = [(n["mesh"], w) for i, w in world_nodes(gltf) if "mesh" in (n := gltf["nodes"][i])]
+    if not instances:
+        instances = [(m, np.eye(4)) for m in range(len(asset.meshes()))]
+    positions, faces, groups, base, group = [], [], [], 0, 0
+    for mesh, world in instances:
+        for p in asset.triangle_primitives(mesh):
+            g = asset.primitive(mesh, p)
+            if not len(g.faces):
+                continue
+            pts = g.positions @ world[:3, :3].T + world[:3, 3]
+            f = g.faces if np.linalg.det(world[:3, :3]) >= 0 else g.faces[:, ::-1]  # mirrored: keep front faces
+            positions.append(pts)
+            faces.append(f + base)
+            groups.append(np.full(len(f), group))
+            base += len(pts)
+            group += 1
+    if not positions:
+        raise BakerError(asset.source, "no triangles in the default scene")
+    return np.concatenate(positions), np.concatenate(faces), np.concatenate(groups)
+
+
+def gltf_camera(gltf: dict, name: str):
+    """(world matrix, camera dict) of the camera named ``name`` (camera name or node name), or None."""
+    cameras = gltf.get("cameras") or []
+    for i, world in world_nodes(gltf):
+        node = gltf["nodes"][i]
+        if "camera" in node:
+            cam = cameras[node["camera"]]
+            if name in (cam.get("name"), node.get("name")):
+                return world, cam
+    return None
+
+
+def make_camera(args, asset, positions: np.ndarray) -> L.Camera:
+    size = None
+    if args.size:
+        try:
+            w, h = (int(x) for x in args.size.lower().split("x"))
+            assert w > 0 and h > 0
+        except (ValueError, AssertionError):
+            raise BakerError(None, f"--size must be WIDTHxHEIGHT, got {args.size!r}") from None
+        size = (w, h)
+    up = _vector(args.up, "--up")
+    center = (positions.min(0) + positions.max(0)) / 2.0
+    camera_spec = args.camera
+    if camera_spec and not all(c in "0123456789.,-+eE " for c in camera_spec):
+        found = gltf_camera(asset.doc.json, camera_spec)
+        if found is None:
+            raise BakerError(asset.source, f"no camera named {camera_spec!r}")
+        world, cam = found
+        eye = world[:3, 3]
+        forward = -world[:3, 2] / np.linalg.norm(world[:3, 2])
+        cam_up = world[:3, 1] / np.linalg.norm(world[:3, 1])
+        if cam.get("type") == "orthographic":
+            o = cam.get("orthographic", {})
+            aspect = float(o.get("xmag", 1.0)) / float(o.get("ymag", 1.0))
+            w, h = size or (int(round(800 * aspect)), 800)
+            return L.Camera(eye, eye + forward, cam_up, w, h, yfov=None, ymag=float(o.get("ymag", 1.0)))
+        persp = cam.get("perspective", {})
+        aspect = persp.get("aspectRatio") or 1.0
+        w, h = size or (int(round(800 * aspect)), 800)
+        yfov = math.radians(args.fov) if args.fov else float(persp.get("yfov", math.radians(40.0)))
+        return L.Camera(eye, eye + forward, cam_up, w, h, yfov, znear=float(persp.get("znear", 1e-3)))
+    w, h = size or (800, 800)
+    target = _vector(args.target, "--target") if args.target else center
+    fov = args.fov or 40.0
+    if camera_spec:
+        eye = _vector(camera_spec, "--camera")
+    else:
+        eye = L.fit_camera(positions, w, h, fov).eye + (target - center)
+    if np.linalg.norm(eye - target) < 1e-12:
+        raise BakerError(None, "the camera position equals the target")
+    if args.orthographic:
+        return L.Camera(eye, target, up, w, h, yfov=None, ymag=float(args.orthographic))
+    return L.Camera(eye, target, up, w, h, math.radians(fov))
+
+
+# ----------------------------------------------------------------------------------------------------------- SVG
+def _path(points: np.ndarray, closed: bool) -> str:
+    coords = [f"{x:.2f} {y:.2f}" for x, y in points.tolist()]
+    return "M" + " L".join(coords) + (" Z" if closed else "")
+
+
+def svg_document(lines: list, width: int, height: int, widths: dict, hidden: bool) -> str:
+    """SVG text: one group per (type, visibility), visible lines solid black, hidden lines dashed grey."""
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+           f'viewBox="0 0 {width} {height}">',
+           '<rect width="100%" height="100%" fill="white"/>']
+    for visible in ((False, True) if hidden else (True,)):  # hidden first: visible strokes draw on top
+        for kind, name in enumerate(L.TYPE_NAMES):
+            paths = [l for l in lines if l.kind == kind and l.visible == visible]
+            if not paths:
+                continue
+            w = widths[name] * (1.0 if visible else 0.6)
+            style = (f'stroke="#000000" stroke-width="{w:g}"' if visible else
+                     f'stroke="#808080" stroke-width="{w:g}" stroke-dasharray="{3 * w:g} {2 * w:g}"')
+            out.append(f'<g class="{name} {"visible" if visible else "hidden"}" fill="none" {style} '
+                       'stroke-linecap="round" stroke-linejoin="round">')
+            out.extend(f'<path d="{_path(l.points, l.closed)}"/>' for l in paths)
+            out.append("</g>")
+    out.append("</svg>")
+    return "\n".join(out) + "\n"
+
+
+def run(args) -> int:
+    from .asset import Asset
+    from .bakes.thickness import RayScene
+    from .io.atomic import write_bytes_atomic
+
+    out = Path(args.output)
+    if out.suffix.lower() != ".svg":
+        raise BakerError(out, "output must end in .svg")
+    widths = dict(DEFAULT_WIDTHS)
+    if args.widths:
+        for item in args.widths.split(","):
+            key, _, value = item.partition("=")
+            if key.strip() not in widths:
+                raise BakerError(None, f"--widths: unknown line type {key!r} (known: {', '.join(widths)})")
+            try:
+                widths[key.strip()] = float(value)
+            except ValueError:
+                raise BakerError(None, f"--widths: {item!r} is not TYPE=NUMBER") from None
+    if args.step <= 0:
+        raise BakerError(None, "--step must be > 0")
+    asset = Asset.load(args.input)
+    positions, faces, groups = scene_triangles(asset)
+    camera = make_camera(args, asset, positions)
+    options = E.EdgesOptions(crease_angle=args.crease_angle)
+    mesh = E.analyze_mesh(positions, faces, face_group=groups, options=options)
+    scene = RayScene(mesh.welded, mesh.faces_welded)
+    lines = L.trace_lines(mesh, camera, scene, step=args.step, creases=not args.no_creases)
+    write_bytes_atomic(out, svg_document(lines, camera.width, camera.height, widths, args.hidden).encode("utf-8"))
+    return 0

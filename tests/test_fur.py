@@ -1,0 +1,89 @@
+"""Fur shells and fins: shell coverage against the analytic union of the hair discs, files written and read back."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import baker
+from baker.bakes.fur import FurOptions, bake_fur_textures, make_volume, shell_heights
+from baker.io.gltf import GltfDocument
+from baker.pipeline import save
+from baker.validate import validate_file
+from conftest import assert_khronos_clean
+
+SPOT = "examples/spot/spot.obj"
+
+
+def test_shell_coverage_is_the_union_of_hair_discs():
+    opts = FurOptions(shells=8, texture_size=256, hairs=600)
+    tex = bake_fur_textures(opts, seed=4)
+    vol = make_volume(opts, seed=4)
+    for i, h in enumerate(shell_heights(opts.shells)):
+        alive = vol.height > h
+        r = opts.root_radius + (opts.tip_radius - opts.root_radius) * h / vol.height[alive]
+        # independent discs at uniform positions in a periodic unit tile: P(texel uncovered) = prod(1 - pi r^2)
+        expected = 1.0 - np.prod(1.0 - math.pi * r ** 2)
+        assert abs(tex.shells[i, ..., 3].mean() / 255.0 - expected) < 0.02 + 0.1 * expected, (i, expected)
+    # taller shells hold fewer, thinner hairs
+    assert (np.diff(tex.coverage) < 0).all()
+    # the fin: sparse at the tip (row 0), dense at the root
+    alpha = tex.fin[..., 3].mean(axis=1)
+    assert alpha[: len(alpha) // 4].mean() < alpha[-len(alpha) // 4:].mean()
+
+
+def test_tileable():
+    # a hair crossing the tile border shows up on the other side: opposite edges continue each other
+    tex = bake_fur_textures(FurOptions(shells=2, texture_size=128, hairs=3000), seed=1)
+    a = tex.shells[0, ..., 3].astype(float)
+    seam = np.abs(a[:, 0] - a[:, -1]).mean()
+    inner = np.abs(a[:, 64] - a[:, 63]).mean()
+    assert seam < 2.0 * inner + 1.0
+
+
+def test_fur_bake_writes_valid_gltf(tmp_path):
+    opts = {"shells": 4, "texture_size": 32, "hairs": 200}
+    asset = baker.bake(SPOT, bakes=["fur"], options={"fur": opts}, seed=2)
+    out = tmp_path / "fur.glb"
+    save(asset, out)
+    report = validate_file(out, khronos=False)
+    assert report["issues"]["numErrors"] == 0, report["issues"]["messages"]
+    assert_khronos_clean(out)
+    doc = GltfDocument.load(out)
+    material = doc.json["materials"][doc.json["meshes"][0]["primitives"][0]["material"]]
+    ext = material["extensions"]["BAKER_fur"]
+    assert ext["shellCount"] == 4 and len(ext["shellTextures"]) == 4
+    assert math.isclose(ext["shellSpacing"] * 4, ext["length"], rel_tol=1e-9)
+    # shell texture 0 read back from the file is the kernel's
+    kernel = bake_fur_textures(FurOptions(**opts), seed=2)
+    image = doc.json["textures"][ext["shellTextures"][0]["index"]]["source"]
+    from PIL import Image
+    import io
+
+    stored = np.array(Image.open(io.BytesIO(doc.image_bytes(image))))  # PIL: straight alpha, as PNG stores it
+    assert np.array_equal(stored, kernel.shells[0])
+    # fins: one degenerate quad per edge of the (closed) mesh: E = 3F / 2 after welding
+    (fin_ref,) = ext["fins"]
+    fin = doc.json["meshes"][fin_ref["mesh"]]["primitives"][fin_ref["primitive"]]
+    assert fin["extensions"]["BAKER_fur"]["finsOf"] == 0
+    faces = len(doc.accessor(doc.json["meshes"][0]["primitives"][0]["indices"])) // 3
+    pos = doc.accessor(fin["attributes"]["POSITION"])
+    assert len(pos) == 4 * (3 * faces // 2)
+    tri = pos[doc.accessor(fin["indices"]).reshape(-1, 3)]
+    area = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    assert area.max() < 1e-6  # plain viewers rasterize nothing
+    n = doc.accessor(fin["attributes"]["_FUR_FIN_NORMAL"])
+    assert np.allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-5)
+    # same seed, same bytes
+    again = tmp_path / "again.glb"
+    save(baker.bake(SPOT, bakes=["fur"], options={"fur": opts}, seed=2), again)
+    assert again.read_bytes() == out.read_bytes()
+
+
+def test_fur_without_fins(tmp_path):
+    asset = baker.bake(SPOT, bakes=["fur"], options={"fur": {"shells": 2, "texture_size": 16, "hairs": 50,
+                                                             "fins": False}})
+    doc = asset.doc
+    assert len(doc.json["meshes"][0]["primitives"]) == 1
+    ext = doc.json["materials"][0]["extensions"]["BAKER_fur"]
+    assert ext["fins"] == []

@@ -1,0 +1,239 @@
+"""Pre-integrated skin tables: Penner's LUT against its defining properties and a brute-force integral, the penumbra
+LUT against direct integration, the Jimenez and d'Eon kernels, profiles, ``baker skin-lut`` outputs and the glTF
+extension's round trip and checks."""
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+
+import numpy as np
+import pytest
+import trimesh
+
+import baker
+from baker import validate
+from baker.bakes import skin_lut as S
+from baker.errors import BakerError
+from baker.io.gltf import GltfDocument
+from baker.io.images import decode_image, encode_image, read_image
+from baker.pipeline import save
+from conftest import assert_khronos_clean
+
+Q = 1.0 / 255.0
+
+
+@pytest.fixture(scope="module")
+def lut():
+    return S.diffusion_lut()  # defaults: 256 x 256, radii 1 mm .. 100 mm, d'Eon skin, 256 samples
+
+
+def brute_force(cos_theta, curvature, profile, samples):
+    """Independent reference: a plain midpoint sum over the whole ring x in [-pi, pi] with ``samples`` points, all
+    columns at once as one matrix product (no per-Gaussian ranges, no trapezoid ends)."""
+    v, w = profile.arrays()
+    x = -math.pi + (np.arange(samples) + 0.5) * (2 * math.pi / samples)
+    theta = np.arccos(np.clip(cos_theta, -1, 1))
+    lit = np.maximum(np.cos(theta[:, None] + x[None, :]), 0.0)  # (cols, samples)
+    d = 2.0 / curvature[None, :] * np.sin(x / 2)[:, None]  # (samples, rows)
+    kernel = (np.exp(-d[..., None] ** 2 / (2 * v)) / (2 * math.pi * v)) @ w.T  # (samples, rows, 3)
+    numerator = (lit @ kernel.reshape(samples, -1)).reshape(len(cos_theta), len(curvature), 3)
+    return np.swapaxes(numerator / kernel.sum(axis=0)[None], 0, 1)
+
+
+def test_flattest_row_is_saturated_ndotl(lut):
+    values, axes = lut
+    assert values.shape == (256, 256, 3)
+    assert axes.curvature[0] == pytest.approx(1.0 / 100.0) and axes.curvature[-1] == pytest.approx(1.0)
+    saturate = np.clip(axes.ndotl, 0.0, 1.0)[:, None]
+    assert np.abs(values[0] - saturate).max() < Q
+
+
+def test_rows_do_not_decrease_with_ndotl(lut):
+    values, _ = lut
+    assert np.all(np.diff(values, axis=1) >= 0.0)
+    assert np.all(values >= 0.0) and np.all(values <= 1.0)
+
+
+def test_red_scatters_farthest(lut):
+    values, axes = lut
+    # exactly at N.L = 0 and the smallest radius (1 mm)
+    d = S.penner_integral([0.0], [1.0])[0, 0]
+    assert d[0] > d[1] > d[2] > 0.0
+    # and in the LUT itself, at the two columns around N.L = 0 of the last row
+    for col in (127, 128):
+        r, g, b = values[-1, col]
+        assert r > g > b
+    # more curvature, more light wraps past the terminator
+    assert np.all(np.diff(values[:, 127, 0]) >= 0.0)
+
+
+def test_matches_brute_force_at_8x_samples(lut):
+    values, axes = lut
+    samples = 8 * len(S.DEON_SKIN.variances) * 256  # 8x the nodes the kernel spends per texel
+    reference = brute_force(axes.ndotl, axes.curvature, S.DEON_SKIN, samples)
+    assert np.abs(values - reference).max() < 0.5 * Q
+
+
+def test_flat_and_single_gaussian_limits():
+    # zero curvature is exactly saturate(N.L)
+    d = S.penner_integral(np.linspace(-1, 1, 9), [0.0])
+    np.testing.assert_allclose(d[0], np.clip(np.linspace(-1, 1, 9), 0, 1)[:, None].repeat(3, 1), atol=1e-12)
+    # one wide Gaussian on a small ring ~ the ring-averaged light: N.L = 1 gets much less than 1
+    wide = S.Profile("wide", (100.0,), ((1.0,), (1.0,), (1.0,)))
+    d = S.penner_integral([1.0, -1.0], [10.0], wide)
+    assert d[0, 0, 0] == pytest.approx(1.0 / math.pi, abs=0.01)  # uniform kernel: mean of saturate(cos) = 1/pi
+    assert d[0, 1, 0] == pytest.approx(1.0 / math.pi, abs=0.01)
+
+
+def test_penumbra_lut_matches_direct_integration():
+    lut, rng = S.penumbra_lut(size=32, sharpening=2.0)
+    assert rng == (pytest.approx(0.01), pytest.approx(1.0))
+    assert np.all(np.diff(lut, axis=1) >= -1e-12)
+    # direct numerical integration at a few texels
+    v, w = S.DEON_SKIN.arrays()
+    y = np.linspace(-40.0, 40.0, 400001)
+    for row, col in ((0, 5), (31, 10), (31, 16), (15, 25)):
+        width = 1.0 / np.linspace(rng[0], rng[1], 32)[row]
+        x = (col / 31 - 0.5) * width
+        shadow = np.clip(2.0 * (x - y) / width + 0.5, 0.0, 1.0)
+        profile = (np.exp(-y[:, None] ** 2 / (2 * v)) / np.sqrt(2 * math.pi * v)) @ w.T
+        expected = np.trapezoid(shadow[:, None] * profile, y, axis=0) / np.trapezoid(profile, y, axis=0)
+        np.testing.assert_allclose(lut[row, col], expected, atol=1e-5)
+    # a narrow penumbra lets red bleed furthest into the shadow
+    r, g, b = lut[-1, 0]
+    assert r > g > b
+
+
+def test_jimenez_kernel():
+    for taps in (11, 17, 25):
+        k = S.jimenez_kernel(taps)
+        assert k.shape == (taps, 4)
+        np.testing.assert_allclose(k[:, :3].sum(axis=0), 1.0, atol=1e-12)  # energy-preserving per channel
+        assert k[0, 3] == 0.0  # centre tap first
+        extent = 3.0 if taps > 20 else 2.0
+        assert k[1:, 3].min() == pytest.approx(-extent) and k[1:, 3].max() == pytest.approx(extent)
+        # symmetric weights, red widest: less of red stays in the centre tap
+        order = np.argsort(k[1:, 3])
+        np.testing.assert_allclose(k[1:, :3][order], k[1:, :3][order][::-1], rtol=1e-12)
+        assert k[0, 0] < k[0, 1] < k[0, 2]
+    # strength 0: the identity kernel
+    k = S.jimenez_kernel(11, strength=(0, 0, 0))
+    assert np.all(k[0, :3] == 1.0) and np.all(k[1:, :3] == 0.0)
+
+
+def test_deon_gaussians():
+    g = S.deon_gaussians()
+    assert [x["variance"] for x in g] == list(S.DEON_SKIN.variances)
+    np.testing.assert_allclose(sum(x["incrementalVariance"] for x in g), 7.41)
+    np.testing.assert_allclose(np.sum([x["weights"] for x in g], axis=0), 1.0)
+    # GPU Gems 3's 7-tap weights
+    np.testing.assert_allclose(g[0]["taps7"]["weights"], [0.006, 0.061, 0.242, 0.383, 0.242, 0.061, 0.006], atol=1.5e-3)
+
+
+def test_profile_json(tmp_path):
+    path = tmp_path / "p.json"
+    path.write_text(json.dumps({"name": "cm skin", "unit": "cm", "variances": [0.01, 0.04],
+                                "red": [0.5, 0.5], "green": [1, 0], "blue": [1, 0]}))
+    p = S.load_profile(path)
+    assert p.variances == (pytest.approx(1.0), pytest.approx(4.0))
+    for bad in ({"variances": [1], "red": [1], "green": [1]}, {"variances": [-1], "red": [1], "green": [1], "blue": [1]},
+                {"variances": [1, 2], "red": [1], "green": [1], "blue": [1]}, [1, 2]):
+        path.write_text(json.dumps(bad))
+        with pytest.raises(BakerError):
+            S.load_profile(path)
+    path.write_text("{not json")
+    with pytest.raises(BakerError):
+        S.load_profile(path)
+
+
+# ------------------------------------------------------------------------------------------------------- command
+def _cli(*args):
+    """Run the command in-process (as ``baker`` would): (exit code, stderr)."""
+    import contextlib
+    import io
+
+    from baker.cli import main
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        code = main([str(a) for a in args])
+    return subprocess.CompletedProcess(args, code, "", err.getvalue())
+
+
+@pytest.mark.parametrize("name,bits,dtype", [("lut.exr", 16, np.float32), ("lut.png", 16, np.uint16),
+                                             ("lut8.png", 8, np.uint8)])
+def test_skin_lut_command(tmp_path, lut, name, bits, dtype):
+    out = tmp_path / name
+    run = _cli("skin-lut", "-o", out, "--skin-bits", bits, "-q")
+    assert run.returncode == 0, run.stderr
+    pixels = read_image(out)
+    assert pixels.dtype == dtype and pixels.shape == (256, 256, 3)
+    values = pixels.astype(np.float64) / (np.iinfo(dtype).max if dtype != np.float32 else 1.0)
+    step = 1.0 / np.iinfo(dtype).max if dtype != np.float32 else 1e-7
+    assert np.abs(values - lut[0]).max() <= 0.5 * step + 1e-7
+    meta = json.loads(out.with_suffix(".json").read_text())
+    assert meta["lut"]["file"] == name and meta["lut"]["v"]["range"] == [0.01, 1.0]
+    assert meta["lut"]["v"]["unit"] == "1/mm" and meta["lut"]["u"]["range"] == [-1.0, 1.0]
+    assert meta["profile"]["variances"] == list(S.DEON_SKIN.variances)
+    assert len(meta["jimenezKernel"]["kernel"]) == 17 and len(meta["deonGaussians"]["gaussians"]) == 6
+    penumbra = read_image(tmp_path / meta["penumbra"]["file"])
+    assert penumbra.shape == (128, 128, 3)
+    # same options, same bytes
+    again = tmp_path / ("again" + out.suffix)
+    assert _cli("skin-lut", "-o", again, "--skin-bits", bits, "-q").returncode == 0
+    assert again.read_bytes() == out.read_bytes()
+
+
+def test_skin_lut_command_errors(tmp_path):
+    run = _cli("skin-lut", "-o", tmp_path / "x.jpg")
+    assert run.returncode == 2 and "unsupported" in run.stderr
+    run = _cli("skin-lut", "-o", tmp_path / "x.png", "--skin-min-radius", "50", "--skin-max-radius", "10")
+    assert run.returncode == 2 and not (tmp_path / "x.png").exists()
+    run = _cli("skin-lut", "-o", tmp_path / "x.png", "--skin-profile", tmp_path / "missing.json")
+    assert run.returncode == 2 and "missing.json" in run.stderr
+
+
+# ------------------------------------------------------------------------------------------------------- glTF
+@pytest.fixture(scope="module")
+def baked(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("skin")
+    source = folder / "sphere.glb"
+    trimesh.creation.icosphere(subdivisions=3, radius=0.02).export(str(source))  # 2 cm: curvature 0.05 / mm
+    out = folder / "skin.glb"
+    save(baker.bake(str(source), bakes=["curvature", "skin"], options={"skin": {"width": 64, "height": 32}}), out)
+    return out
+
+
+def test_extension_round_trip(baked):
+    assert_khronos_clean(baked)
+    report = validate.validate_file(baked, khronos=False)
+    assert report["issues"]["numErrors"] == 0, report["issues"]["messages"]
+    doc = GltfDocument.load(baked)
+    ext = doc.json["materials"][0]["extensions"]["BAKER_skin_lut"]
+    assert ext["curvatureScale"] == pytest.approx(0.001) and ext["curvatureAttribute"] == "_CURVATURE"
+    image = doc.json["textures"][ext["lutTexture"]["index"]]["source"]
+    pixels = decode_image(doc.image_bytes(image), ".png")
+    assert pixels.dtype == np.uint16 and pixels.shape == (32, 64, 3)
+    expected, _ = S.diffusion_lut(64, 32)
+    assert np.abs(pixels / 65535.0 - expected).max() <= 0.5 / 65535 + 1e-9
+    sampler = doc.json["samplers"][doc.json["textures"][ext["lutTexture"]["index"]]["sampler"]]
+    assert sampler["wrapS"] == sampler["wrapT"] == 33071
+    # the baked curvature lands inside the LUT's axis once scaled: 1 / 20 mm
+    curvature = doc.accessor(doc.json["meshes"][0]["primitives"][0]["attributes"]["_CURVATURE"])
+    assert np.median(curvature * ext["curvatureScale"]) == pytest.approx(0.05, rel=0.04)  # icosphere(3): 2.7% coarse-mesh bias
+
+
+def test_validator_catches_broken_lut(baked, tmp_path):
+    doc = GltfDocument.load(baked)
+    ext = doc.json["materials"][0]["extensions"]["BAKER_skin_lut"]
+    image = doc.json["textures"][ext["lutTexture"]["index"]]["source"]
+    pixels = decode_image(doc.image_bytes(image), ".png")[:, ::-1].copy()  # N.L reversed: rows decrease
+    view = doc.add_buffer_view(encode_image(pixels, ".png"))
+    doc.json["images"][image]["bufferView"] = view
+    ext["curvatureRange"] = [1.0, 0.01]
+    del ext["unit"]
+    out = tmp_path / "broken.glb"
+    doc.save(out)
+    codes = {m["code"] for m in validate.validate_file(out, khronos=False)["issues"]["messages"]}
+    assert {"BAKER_SKIN_LUT_NOT_MONOTONIC", "BAKER_SKIN_LUT_RANGE", "BAKER_SCHEMA"} <= codes
