@@ -8,7 +8,7 @@ import pytest
 import trimesh
 
 import baker
-from baker.bakes.thickness import RayScene, hemisphere_samples, local_thickness, ray_directions
+from baker.bakes.thickness import RayScene, _make_rays, hemisphere_samples, local_thickness
 from baker.io.gltf import GltfDocument
 from baker.io.images import decode_image
 from baker.pipeline import save
@@ -66,11 +66,16 @@ def test_misses_count_as_max_distance():
 
 @pytest.mark.parametrize("distribution", ["cosine", "uniform"])
 def test_ray_directions_follow_their_distribution(distribution):
-    axes = np.tile([[0.0, 0.0, -1.0]], (1, 1))
+    axes = np.array([[0.0, 0.0, -1.0]])
     samples = hemisphere_samples(4096, 0)
-    d, cos_t = ray_directions(axes, samples, np.zeros((1, 2)), distribution, 180.0)
+    origins = np.empty((4096, 3), np.float32)
+    d = np.empty((4096, 3), np.float32)
+    cos_t = np.empty(4096)
+    _make_rays(np.zeros((1, 3)), axes, samples, np.zeros((1, 2)), distribution == "cosine", 1.0, 0.0, 0.0,
+               origins, d, cos_t)
     assert np.allclose(np.linalg.norm(d, axis=-1), 1.0, atol=1e-6)
-    cos_along = -d[0, :, 2]
+    cos_along = -d[:, 2]
+    assert np.allclose(cos_along, cos_t, atol=1e-6)
     assert cos_along.min() >= -1e-6
     # E[cos] is 2/3 for cosine-weighted and 1/2 for uniform directions on the hemisphere
     assert cos_along.mean() == pytest.approx(2 / 3 if distribution == "cosine" else 0.5, abs=2e-3)

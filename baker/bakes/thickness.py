@@ -65,33 +65,9 @@ def hemisphere_samples(n: int, seed: int) -> np.ndarray:
     return np.stack([(i.astype(np.float64) + 0.5) / n, bits.astype(np.float64) / 2.0**32], axis=1)
 
 
-def ray_directions(axes: np.ndarray, samples: np.ndarray, shifts: np.ndarray, distribution: str,
-                   spread_deg: float) -> tuple[np.ndarray, np.ndarray]:
-    """Directions around each unit ``axes[i]``: (len(axes), len(samples), 3) float32, and cos(theta).
-
-    Each point's samples get a Cranley-Patterson rotation ``shifts[i]`` so neighbouring points do not share the
-    same ray pattern (which would show as banding), while each point keeps the stratification of the set.
-    """
-    u = (samples[None, :, :] + shifts[:, None, :]) % 1.0
-    half = math.radians(spread_deg) / 2.0
-    if distribution == "cosine":
-        # cosine-weighted within a cone of half-angle `half`: sin^2(theta) uniform on [0, sin^2(half)]
-        sin_t = np.sqrt(u[..., 0]) * math.sin(min(half, math.pi / 2))
-        cos_t = np.sqrt(np.maximum(0.0, 1.0 - sin_t * sin_t))
-    elif distribution == "uniform":
-        cos_t = 1.0 - u[..., 0] * (1.0 - math.cos(half))
-        sin_t = np.sqrt(np.maximum(0.0, 1.0 - cos_t * cos_t))
-    else:
-        raise ValueError(f"unknown distribution {distribution!r}")
-    phi = 2.0 * math.pi * u[..., 1]
-    t, b = orthonormal_basis(axes)
-    d = (t[:, None, :] * (sin_t * np.cos(phi))[..., None] + b[:, None, :] * (sin_t * np.sin(phi))[..., None]
-         + axes[:, None, :] * cos_t[..., None])
-    return d.astype(np.float32), cos_t
-
-
 def orthonormal_basis(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit tangents completing each unit normal to a right-handed frame (Duff et al. 2017, branchless)."""
+    """Two unit tangents completing each unit normal to a right-handed frame (Duff et al. 2017, branchless);
+    the vectorized twin of :func:`_frame`."""
     sign = np.where(n[:, 2] >= 0.0, 1.0, -1.0)
     a = -1.0 / (sign + n[:, 2])
     b = n[:, 0] * n[:, 1] * a
@@ -130,6 +106,31 @@ class RayScene:
                                np.ascontiguousarray(directions, np.float32), query="DISTANCE")
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _frame(nx, ny, nz):
+    """Two unit tangents completing the unit axis (nx, ny, nz) to a right-handed frame (Duff et al. 2017)."""
+    sign = 1.0 if nz >= 0.0 else -1.0
+    a = -1.0 / (sign + nz)
+    b = nx * ny * a
+    return 1.0 + sign * nx * nx * a, sign * b, -sign * nx, b, sign + ny * ny * a, -ny
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _direction(u0, u1, cosine, sin_max, cos_max):
+    """Local direction (x, y along the tangents; cos theta along the axis) for a sample (u0, u1) in [0, 1)^2.
+
+    Cosine-weighted within a cone of half-angle theta_max: sin^2(theta) uniform on [0, sin^2(theta_max)];
+    uniform: cos(theta) uniform on [cos(theta_max), 1]."""
+    if cosine:
+        st = np.sqrt(u0) * sin_max
+        ct = np.sqrt(max(0.0, 1.0 - st * st))
+    else:
+        ct = 1.0 - u0 * (1.0 - cos_max)
+        st = np.sqrt(max(0.0, 1.0 - ct * ct))
+    phi = 2.0 * np.pi * u1
+    return st * np.cos(phi), st * np.sin(phi), ct
+
+
 @numba.njit(nogil=True)
 def _thickness_direct(scene, points, axes, samples, shifts, cosine, sin_max, cos_max, bias, max_distance, out):
     """Generate, trace and average each point's rays in one GIL-free loop (Embree called directly)."""
@@ -139,24 +140,12 @@ def _thickness_direct(scene, points, axes, samples, shifts, cosine, sin_max, cos
     rays = samples.shape[0]
     for i in range(points.shape[0]):
         nx, ny, nz = axes[i, 0], axes[i, 1], axes[i, 2]
-        sign = 1.0 if nz >= 0.0 else -1.0
-        a = -1.0 / (sign + nz)
-        b = nx * ny * a
-        tx, ty, tz = 1.0 + sign * nx * nx * a, sign * b, -sign * nx
-        bx, by, bz = b, sign + ny * ny * a, -ny
+        tx, ty, tz, bx, by, bz = _frame(nx, ny, nz)
         ox, oy, oz = points[i, 0] + nx * bias, points[i, 1] + ny * bias, points[i, 2] + nz * bias
         acc = 0.0
         for k in range(rays):
-            u0 = (samples[k, 0] + shifts[i, 0]) % 1.0
-            u1 = (samples[k, 1] + shifts[i, 1]) % 1.0
-            if cosine:
-                st = np.sqrt(u0) * sin_max
-                ct = np.sqrt(max(0.0, 1.0 - st * st))
-            else:
-                ct = 1.0 - u0 * (1.0 - cos_max)
-                st = np.sqrt(max(0.0, 1.0 - ct * ct))
-            phi = 2.0 * np.pi * u1
-            c, s = st * np.cos(phi), st * np.sin(phi)
+            c, s, ct = _direction((samples[k, 0] + shifts[i, 0]) % 1.0, (samples[k, 1] + shifts[i, 1]) % 1.0,
+                                  cosine, sin_max, cos_max)
             t = embree.trace_one(scene, rayhit, ox, oy, oz, tx * c + bx * s + nx * ct, ty * c + by * s + ny * ct,
                                  tz * c + bz * s + nz * ct)
             acc += min(t + bias * ct, max_distance)
@@ -165,27 +154,15 @@ def _thickness_direct(scene, points, axes, samples, shifts, cosine, sin_max, cos
 
 @numba.njit(cache=True, nogil=True)
 def _make_rays(points, axes, samples, shifts, cosine, sin_max, cos_max, bias, origins, directions, cos_theta):
-    """Fused, GIL-free version of :func:`ray_directions` + origin offset for one batch (float32 outputs)."""
+    """The rays of :func:`_thickness_direct` written out (float32), for the embreex batch path and benchmarks."""
     rays = samples.shape[0]
     for i in range(points.shape[0]):
         nx, ny, nz = axes[i, 0], axes[i, 1], axes[i, 2]
-        sign = 1.0 if nz >= 0.0 else -1.0
-        a = -1.0 / (sign + nz)
-        b = nx * ny * a
-        tx, ty, tz = 1.0 + sign * nx * nx * a, sign * b, -sign * nx
-        bx, by, bz = b, sign + ny * ny * a, -ny
+        tx, ty, tz, bx, by, bz = _frame(nx, ny, nz)
         ox, oy, oz = points[i, 0] + nx * bias, points[i, 1] + ny * bias, points[i, 2] + nz * bias
         for k in range(rays):
-            u0 = (samples[k, 0] + shifts[i, 0]) % 1.0
-            u1 = (samples[k, 1] + shifts[i, 1]) % 1.0
-            if cosine:
-                st = np.sqrt(u0) * sin_max
-                ct = np.sqrt(max(0.0, 1.0 - st * st))
-            else:
-                ct = 1.0 - u0 * (1.0 - cos_max)
-                st = np.sqrt(max(0.0, 1.0 - ct * ct))
-            phi = 2.0 * np.pi * u1
-            c, s = st * np.cos(phi), st * np.sin(phi)
+            c, s, ct = _direction((samples[k, 0] + shifts[i, 0]) % 1.0, (samples[k, 1] + shifts[i, 1]) % 1.0,
+                                  cosine, sin_max, cos_max)
             r = i * rays + k
             directions[r, 0] = tx * c + bx * s + nx * ct
             directions[r, 1] = ty * c + by * s + ny * ct
