@@ -15,6 +15,7 @@ import numpy as np
 from .bakes import edges as E
 from .bakes import lines as L
 from .errors import BakerError
+from .io.gltf import world_nodes
 
 DEFAULT_WIDTHS = {"contour": 2.0, "boundary": 1.5, "crease": 1.0, "material": 1.0}
 
@@ -51,39 +52,6 @@ def _vector(text: str, what: str) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------------------------------------- scene
-def _local_matrix(node: dict) -> np.ndarray:
-    if "matrix" in node:
-        return np.array(node["matrix"], np.float64).reshape(4, 4).T  # glTF matrices are column-major
-    t = np.array(node.get("translation", [0, 0, 0]), np.float64)
-    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
-    s = np.array(node.get("scale", [1, 1, 1]), np.float64)
-    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-    m = np.eye(4)
-    m[:3, :3] = r * s[None, :]
-    m[:3, 3] = t
-    return m
-
-
-def world_nodes(gltf: dict) -> list[tuple[int, np.ndarray]]:
-    """(node index, world matrix) of every node of the default scene, depth first."""
-    nodes = gltf.get("nodes") or []
-    scenes = gltf.get("scenes") or []
-    if scenes:
-        roots = scenes[gltf.get("scene", 0)].get("nodes", [])
-    else:
-        children = {c for n in nodes for c in n.get("children", [])}
-        roots = [i for i in range(len(nodes)) if i not in children]
-    out, stack = [], [(r, np.eye(4)) for r in reversed(roots)]
-    while stack:
-        i, parent = stack.pop()
-        world = parent @ _local_matrix(nodes[i])
-        out.append((i, world))
-        stack.extend((c, world) for c in reversed(nodes[i].get("children", [])))
-    return out
-
-
 def scene_triangles(asset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """World-space (positions, faces, face group) of every mesh instance of the default scene."""
     gltf = asset.doc.json

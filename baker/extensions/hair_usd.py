@@ -25,7 +25,7 @@ from ..io.atomic import atomic_path, write_bytes_atomic
 
 
 def _emitter_world_matrix(gltf: dict, emitter_mesh: int) -> np.ndarray:
-    from ..io.usd import node_matrix
+    from ..io.gltf import node_matrix
 
     nodes = gltf.get("nodes", [])
     parent = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}

@@ -371,6 +371,41 @@ class GltfDocument:
             return p.read_bytes()
 
 
+def node_matrix(node: dict) -> np.ndarray:
+    """The local 4x4 matrix (column-vector convention, ``p' = M @ p``) of a glTF node: ``matrix`` or T * R * S."""
+    if "matrix" in node:
+        return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T  # glTF stores columns
+    x, y, z, w = node.get("rotation", [0.0, 0.0, 0.0, 1.0])
+    rotation = np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+    out = np.eye(4)
+    out[:3, :3] = rotation * np.array(node.get("scale", [1.0, 1.0, 1.0]), dtype=np.float64)[None, :]
+    out[:3, 3] = node.get("translation", [0.0, 0.0, 0.0])
+    return out
+
+
+def world_nodes(gltf: dict) -> list[tuple[int, np.ndarray]]:
+    """(node index, world matrix) of every node of the default scene, depth first (every root node when the
+    document has no scene)."""
+    nodes = gltf.get("nodes") or []
+    scenes = gltf.get("scenes") or []
+    if scenes:
+        roots = scenes[gltf.get("scene", 0)].get("nodes", [])
+    else:
+        children = {c for n in nodes for c in n.get("children", [])}
+        roots = [i for i in range(len(nodes)) if i not in children]
+    out, stack = [], [(r, np.eye(4)) for r in reversed(roots)]
+    while stack:
+        i, parent = stack.pop()
+        world = parent @ node_matrix(nodes[i])
+        out.append((i, world))
+        stack.extend((c, world) for c in reversed(nodes[i].get("children", [])))
+    return out
+
+
 def _sniff_mime(data: bytes) -> str:
     if data[:8] == b"\x89PNG\r\n\x1a\n":
         return "image/png"

@@ -62,6 +62,7 @@ import numpy as np
 
 from ..errors import BakerError
 from .atomic import atomic_path, write_bytes_atomic
+from .gltf import node_matrix
 
 UV_NAMES = ("st", "uv", "st0", "UVMap")
 WRAP_MODES = {10497: "repeat", 33071: "clamp", 33648: "mirror"}
@@ -407,22 +408,6 @@ def _build_layer(doc, texture_folder: str):
     for index in roots:
         visit(index, "/Root", 0)
     return stage.GetRootLayer(), writer.image_files
-
-
-def node_matrix(node: dict) -> np.ndarray:
-    """The local 4x4 matrix (column-vector convention, ``p' = M @ p``) of a glTF node."""
-    if "matrix" in node:
-        return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T  # glTF stores columns
-    x, y, z, w = node.get("rotation", [0.0, 0.0, 0.0, 1.0])
-    rotation = np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ])
-    out = np.eye(4)
-    out[:3, :3] = rotation * np.array(node.get("scale", [1.0, 1.0, 1.0]), dtype=np.float64)[None, :]
-    out[:3, 3] = node.get("translation", [0.0, 0.0, 0.0])
-    return out
 
 
 class _Writer:
