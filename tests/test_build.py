@@ -163,3 +163,60 @@ def test_parallel_and_dask_builds_are_byte_identical(project, tmp_path_factory):
         report = build(load_recipe(dask_root / "baker.toml"), scheduler=cluster.scheduler_address)
     assert len(report["baked"]) == 3 and not report["failed"]
     assert _files(dask_root) == serial
+
+
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "assets" / "meshes"
+
+
+def make_thirty(root: Path) -> None:
+    """30 assets: each shared mesh as 5 scaled/rotated copies, as .glb and .obj."""
+    import numpy as np
+
+    meshes = sorted(SHARED.glob("*.obj"))
+    rng = np.random.default_rng(0)
+    (root / "assets").mkdir(parents=True, exist_ok=True)
+    for path in meshes:
+        base = trimesh.load(str(path), process=False, force="mesh")
+        for k in range(30 // len(meshes)):
+            m = base.copy()
+            angle = rng.uniform(0, 2 * np.pi)
+            m.apply_transform(trimesh.transformations.rotation_matrix(angle, rng.normal(size=3)))
+            m.apply_scale(rng.uniform(0.5, 2.0))
+            m.export(str(root / "assets" / f"{path.stem}_{k}.{'glb' if k % 2 else 'obj'}"))
+
+
+THIRTY = """
+[build]
+output = "baked"
+bakes = ["thickness"]
+
+[options.thickness]
+rays = 4
+per_texel = false
+
+[[assets]]
+inputs = ["assets/*.glb", "assets/*.obj"]
+"""
+
+
+@pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/assets is not beside the checkout")
+def test_thirty_assets_one_touched_rebakes_exactly_one(tmp_path):
+    project, clean = tmp_path / "project", tmp_path / "clean"
+    for root in (project, clean):
+        make_thirty(root)
+        (root / "baker.toml").write_text(THIRTY)
+    assert len(load_recipe(project / "baker.toml").tasks) == 30
+    first = build(load_recipe(project / "baker.toml"), jobs=2)
+    assert len(first["baked"]) == 30 and not first["failed"]
+    # touch one input: same mesh, one vertex moved
+    target = project / "assets" / "spot_1.glb"
+    mesh = trimesh.load(str(target), force="mesh", process=False)
+    mesh.vertices[0] += 1e-3
+    mesh.export(str(target))
+    second = build(load_recipe(project / "baker.toml"))
+    assert second["baked"] == ["baked/assets/spot_1.glb"] and len(second["skipped"]) == 29
+    # the incremental result equals a clean build of the same inputs, byte for byte
+    shutil.copy(target, clean / "assets" / "spot_1.glb")
+    build(load_recipe(clean / "baker.toml"), jobs=2)
+    assert _files(project) == _files(clean)
+    assert (project / LOCK_NAME).read_bytes() == (clean / LOCK_NAME).read_bytes()
