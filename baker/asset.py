@@ -90,7 +90,7 @@ class Asset:
         prims = self.meshes()[mesh].get("primitives", [])
         return [p for p, prim in enumerate(prims)
                 if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)
-                and "finsOf" not in (prim.get("extensions", {}).get("BAKER_edges") or {})]
+                and not _derived_fins(prim)]
 
     def primitive(self, mesh: int, primitive: int) -> PrimitiveGeometry:
         prim = self.meshes()[mesh]["primitives"][primitive]
@@ -128,6 +128,13 @@ class Asset:
         if not verts:
             return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
         return np.concatenate(verts), np.concatenate(faces)
+
+
+def _derived_fins(prim: dict) -> bool:
+    """True for fin primitives baker derives from a mesh (BAKER_edges / BAKER_fur ``finsOf``): zero-area quads that
+    bakes must not sample."""
+    exts = prim.get("extensions") or {}
+    return any("finsOf" in (exts.get(name) or {}) for name in ("BAKER_edges", "BAKER_fur"))
 
 
 def _to_float(doc: GltfDocument, accessor: int) -> np.ndarray:

@@ -5,12 +5,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy import ndimage
 
 import baker
 from baker.cli import main
 from baker.io.images import read_image
 from baker.pipeline import save
 from baker.preview import BACKGROUND, preview
+from conftest import assert_khronos_clean
 
 SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
 
@@ -65,3 +67,119 @@ def test_cli_writes_png_and_rejects_bad_output(baked_spot, tmp_path):
     assert image.shape[1] == 3 * 96 and image.shape[2] == 3
     assert main(["preview", str(baked_spot), "-o", str(tmp_path / "sheet.glb"), "-q"]) == 2
     assert not (tmp_path / "sheet.glb").exists()
+
+
+# ---------------------------------------------------------------------------------------------------- every technique
+BAKES = ["thickness", "curvature", "skin", "edges", "tam", "toon", "fur"]
+OPTIONS = {"thickness": {"rays": 16, "per_texel": False},
+           "skin": {"width": 64, "height": 64, "samples": 32, "unit_scale": 2.0},  # spot as a 2 mm miniature: wide scattering
+           "tam": {"size": 64, "levels": 3, "candidates": 4, "scale": 256.0},
+           "toon": {"bands": 3},
+           "fur": {"shells": 6, "texture_size": 64, "hairs": 200}}
+SIZE = 192
+
+
+@pytest.fixture(scope="module")
+def sheet(tmp_path_factory):
+    out = tmp_path_factory.mktemp("preview_all") / "spot.glb"
+    save(baker.bake(SPOT, bakes=BAKES, seed=1, options=OPTIONS), out)
+    assert_khronos_clean(out)
+    return preview(out, size=SIZE, azimuth=60, elevation=15)
+
+
+def _lum(image):
+    return image @ np.array([0.299, 0.587, 0.114])
+
+
+def test_every_baked_technique_gets_its_panel(sheet):
+    assert [n for n, _, _ in sheet.panels] == ["lambert", "thickness", "translucency", "skin", "toon", "hatching",
+                                               "outline", "wireframe", "fur"]
+
+
+def test_hatching_darkens_from_lit_to_shadowed_side(sheet):
+    lambert = _lum(_panel(sheet, "lambert"))
+    inside = ndimage.binary_erosion(_covered(_panel(sheet, "lambert")), iterations=2)
+    darkness = 1.0 - _lum(_panel(sheet, "hatching"))
+    # lambert = 0.8 (0.15 + 0.85 max(N.L, 0)): lit N.L > 0.7, half-lit N.L ~ 0.15-0.45, shadow N.L <= 0
+    lit, half, shadow = inside & (lambert > 0.6), inside & (lambert > 0.2) & (lambert < 0.42), \
+        inside & (lambert < 0.125)
+    means = [float(darkness[m].mean()) for m in (lit, half, shadow)]
+    print("hatching darkness lit/half/shadow", means, [int(m.sum()) for m in (lit, half, shadow)])
+    assert all(m.sum() > 50 for m in (lit, half, shadow))
+    assert means[0] + 0.05 < means[1] < means[2] - 0.05
+    # Praun's blend keeps the mean tone near the darkness asked for: 1 - (0.5 + 0.5 N.L), clamped by the TAM's range
+    assert means[2] > 0.4 and means[0] < 0.3
+
+
+def test_toon_has_at_most_bands_levels(sheet):
+    toon = _panel(sheet, "toon")
+    inside = ndimage.binary_erosion(_covered(_panel(sheet, "lambert")), iterations=2)
+    levels, counts = np.unique(np.round(_lum(toon[inside]) * 255).astype(int), return_counts=True)
+    major = levels[counts > 0.01 * inside.sum()]
+    print("toon levels", major, counts[counts > 0.01 * inside.sum()] / inside.sum())
+    assert 2 <= len(major) <= 3
+    assert counts[counts > 0.01 * inside.sum()].sum() > 0.97 * inside.sum()  # only band edges in between
+
+
+def test_skin_is_redder_than_lambert_at_the_terminator(sheet):
+    lambert, skin = _panel(sheet, "lambert"), _panel(sheet, "skin")
+    inside = ndimage.binary_erosion(_covered(lambert), iterations=2)
+    terminator = inside & (_lum(lambert) < 0.3)  # N.L < 0.26, the shadowed side included
+    red_skin = (skin[..., 0] - skin[..., 2])[terminator].mean()
+    red_lambert = (lambert[..., 0] - lambert[..., 2])[terminator].mean()
+    print("terminator red - blue: skin", red_skin, "lambert", red_lambert, int(terminator.sum()))
+    assert terminator.sum() > 100
+    assert red_skin > red_lambert + 0.008  # lambert is grey: exactly 0
+
+
+def test_outline_ring_and_wireframe_lines(sheet):
+    covered = _covered(_panel(sheet, "lambert"))
+    ring = ndimage.binary_dilation(covered, iterations=2) & ~covered
+    outline = _panel(sheet, "outline")
+    dark = outline.max(axis=2) < 0.1  # darker than the background (0.19) and the shading (>= 0.12)
+    print("outline: dark fraction of the 2-px ring", dark[ring].mean())
+    assert dark[ring].mean() > 0.5
+    assert dark[ndimage.binary_dilation(covered, iterations=6) & ~ndimage.binary_dilation(covered, iterations=4)].mean() < 0.02
+    inside = ndimage.binary_erosion(covered, iterations=2)
+    ink = _lum(_panel(sheet, "wireframe")) < _lum(_panel(sheet, "lambert")) - 0.2
+    print("wireframe ink fraction", ink[inside].mean())
+    assert 0.05 < ink[inside].mean() < 0.9
+
+
+def test_fur_shells_stand_out_of_the_surface(sheet):
+    covered = _covered(_panel(sheet, "lambert"))
+    fur = _covered(_panel(sheet, "fur"))
+    print("fur pixels outside the surface", int((fur & ~covered).sum()))
+    assert (fur & ~covered).sum() > 100
+
+
+def test_text_and_hair_panels(tmp_path):
+    font = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
+    if not font.exists():
+        pytest.skip("no DejaVu font")
+    text = tmp_path / "text.glb"
+    assert main(["text", "Hi", "--font", str(font), "-o", str(text), "--outline-width", "0.05", "-q"]) == 0
+    result = preview(text, size=128)
+    assert [n for n, _, _ in result.panels] == ["text"]
+    ink = _lum(_panel(result, "text")) > 0.8  # white fill on the dark background
+    print("text ink pixels", int(ink.sum()))
+    assert ink.sum() > 300
+
+    import trimesh
+
+    ball = tmp_path / "ball.glb"
+    trimesh.creation.icosphere(subdivisions=2, radius=0.5).export(str(ball))
+    hair = tmp_path / "hair.glb"
+    assert main(["hair", str(ball), "-o", str(hair), "--guides", "20", "--children", "10", "--segments", "6",
+                 "--length", "0.4", "-q"]) == 0
+    result = preview(hair, size=128)
+    assert [n for n, _, _ in result.panels] == ["lambert", "hair"]
+    emitter = ndimage.binary_dilation(_covered(_panel(result, "lambert")), iterations=2)
+    strands = _covered(_panel(result, "hair")) & ~emitter
+    print("hair pixels outside the emitter", int(strands.sum()))
+    assert strands.sum() > 100
+
+
+def test_unknown_panel_is_an_error(baked_spot):
+    with pytest.raises(baker.errors.BakerError):
+        preview(baked_spot, size=32, panels=["nope"])

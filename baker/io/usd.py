@@ -424,14 +424,14 @@ class _Writer:
     def mesh(self, mesh_index: int, parent: str) -> None:
         from pxr import Sdf, UsdGeom, UsdShade, Vt
 
-        from ..asset import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, _faces_from_indices, _to_float
+        from ..asset import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, _derived_fins, _faces_from_indices, _to_float
 
         doc = self.doc
         mesh = doc.json["meshes"][mesh_index]
         prims = [(p, prim) for p, prim in enumerate(mesh.get("primitives", []))
                  if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)
                  and "POSITION" in prim.get("attributes", {})
-                 and "finsOf" not in ((prim.get("extensions") or {}).get("BAKER_edges") or {})]  # glTF-only fins
+                 and not _derived_fins(prim)]  # fins are glTF runtime geometry
         base = mesh.get("name") or f"mesh{mesh_index}"
         for p, prim in prims:
             attrs = prim["attributes"]
