@@ -23,6 +23,7 @@ import numpy as np
 
 from .asset import Asset, vertex_normals
 from .errors import BakerError
+from .io.gltf import world_nodes
 
 SHADER_ROOT = Path(__file__).resolve().parents[1] / "runtime-shaders"
 BACKGROUND = (0.16, 0.17, 0.19)
@@ -156,37 +157,13 @@ def srgb_to_linear(c: np.ndarray) -> np.ndarray:
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4).astype(np.float32)
 
 
-def _node_matrix(node: dict) -> np.ndarray:
-    if "matrix" in node:
-        return np.array(node["matrix"], np.float64).reshape(4, 4).T  # glTF stores column-major
-    t = np.array(node.get("translation", [0, 0, 0]), np.float64)
-    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
-    s = np.array(node.get("scale", [1, 1, 1]), np.float64)
-    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-    m = np.eye(4)
-    m[:3, :3] = r * s[None, :]
-    m[:3, 3] = t
-    return m
-
-
 def _placements(asset: Asset) -> list:
     """(mesh index, world matrix, node JSON or None) of every mesh drawn by the default scene."""
     gltf = asset.doc.json
     nodes = gltf.get("nodes", [])
-    scenes = gltf.get("scenes", [])
-    if not scenes:
+    placements = [(nodes[i]["mesh"], world, nodes[i]) for i, world in world_nodes(gltf) if "mesh" in nodes[i]]
+    if not placements and not gltf.get("scenes"):
         return [(m, np.eye(4), None) for m in range(len(asset.meshes()))]
-    placements = []
-    stack = [(n, np.eye(4)) for n in scenes[gltf.get("scene", 0)].get("nodes", [])]
-    while stack:
-        index, parent = stack.pop()
-        node = nodes[index]
-        world = parent @ _node_matrix(node)
-        if "mesh" in node:
-            placements.append((node["mesh"], world, node))
-        stack.extend((c, world) for c in node.get("children", []))
     return sorted(placements, key=lambda p: p[0])
 
 
