@@ -9,7 +9,6 @@ what their numpy twins (``tests/gl/twins_hair.py``) say, on the GPU (moderngl, E
 from __future__ import annotations
 
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -17,12 +16,10 @@ import pytest
 
 from . import twins_hair as twins
 
+from .glsl import HEADERS, assert_compiles
+
 REPO = Path(__file__).parents[2]
 MODULES = {name: (REPO / "runtime-shaders" / f"baker_{name}.glsl").read_text() for name in ("hair", "fur")}
-HEADERS = {
-    "300 es": "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n",
-    "330 core": "#version 330 core\n",
-}
 SIZE = 64
 TOLERANCE = 2.0 / 255.0
 
@@ -128,10 +125,7 @@ def test_modules_are_includable():
 @pytest.mark.parametrize("name", sorted(STAGES))
 @pytest.mark.parametrize("version", sorted(HEADERS))
 def test_compiles(glslang_validator, tmp_path, version, name, stage):
-    path = tmp_path / f"{name}.{stage}"
-    path.write_text(source(version, STAGES[name][0 if stage == "vert" else 1]))
-    run = subprocess.run([glslang_validator, str(path)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, f"#version {version} {name}.{stage}:\n{run.stdout}{run.stderr}"
+    assert_compiles(glslang_validator, tmp_path, version, name, stage, source(version, STAGES[name][0 if stage == "vert" else 1]))
 
 
 def _unit(rng, shape):

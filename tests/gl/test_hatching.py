@@ -11,7 +11,6 @@ monotonically from the lit to the shadowed side, close to the tone the shader wa
 from __future__ import annotations
 
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -26,13 +25,11 @@ from baker.pipeline import save
 from . import twins_hatching as twins
 from .test_translucency import look_at, perspective
 
+from .glsl import HEADERS, assert_compiles
+
 REPO = Path(__file__).parents[2]
 HATCHING = (REPO / "runtime-shaders" / "baker_hatching.glsl").read_text()
 TOON = (REPO / "runtime-shaders" / "baker_toon.glsl").read_text()
-HEADERS = {
-    "300 es": "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n",
-    "330 core": "#version 330 core\n",
-}
 SIZE = 256
 TOLERANCE = 2.0 / 255.0
 EYE = np.array([0.0, 0.0, 4.0])
@@ -170,10 +167,7 @@ def test_module_is_includable(module):
 @pytest.mark.parametrize("version", sorted(HEADERS))
 def test_compiles(glslang_validator, tmp_path, version, name, stage):
     vs, fs, module = PROGRAMS[name]
-    path = tmp_path / f"{name}.{stage}"
-    path.write_text(shader_source(version, module, vs if stage == "vert" else fs))
-    run = subprocess.run([glslang_validator, str(path)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, f"#version {version} {name}.{stage}:\n{run.stdout}{run.stderr}"
+    assert_compiles(glslang_validator, tmp_path, version, name, stage, shader_source(version, module, vs if stage == "vert" else fs))
 
 
 # ---------------------------------------------------------------------------------------------------------- sphere

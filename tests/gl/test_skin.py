@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -24,12 +23,10 @@ from baker.pipeline import save
 
 from . import twins_skin as twins
 
+from .glsl import HEADERS, assert_compiles
+
 REPO = Path(__file__).parents[2]
 MODULE = (REPO / "runtime-shaders" / "baker_skin.glsl").read_text()
-HEADERS = {
-    "300 es": "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n",
-    "330 core": "#version 330 core\n",
-}
 SIZE = 192
 TOLERANCE = 2.0 / 255.0
 EYE = np.array([0.0, 0.0, 0.1])
@@ -129,10 +126,7 @@ def test_module_is_includable():
 @pytest.mark.parametrize("name", sorted(PROGRAMS))
 @pytest.mark.parametrize("version", sorted(HEADERS))
 def test_compiles(glslang_validator, tmp_path, version, name, stage):
-    path = tmp_path / f"{name}.{stage}"
-    path.write_text(source(version, PROGRAMS[name][0 if stage == "vert" else 1]))
-    run = subprocess.run([glslang_validator, str(path)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, f"#version {version} {name}.{stage}:\n{run.stdout}{run.stderr}"
+    assert_compiles(glslang_validator, tmp_path, version, name, stage, source(version, PROGRAMS[name][0 if stage == "vert" else 1]))
 
 
 @pytest.fixture(scope="module")

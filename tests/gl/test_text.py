@@ -9,7 +9,6 @@ within 2/255 on every pixel.
 from __future__ import annotations
 
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -21,13 +20,11 @@ from baker.io.images import decode_image
 
 from . import twins_text as twins
 
+from .glsl import HEADERS, assert_compiles
+
 REPO = Path(__file__).parents[2]
 MODULE = (REPO / "runtime-shaders" / "baker_text.glsl").read_text()
 FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
-HEADERS = {
-    "300 es": "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n",
-    "330 core": "#version 330 core\n",
-}
 TOLERANCE = 2.0 / 255.0
 SIZE = (384, 160)
 
@@ -139,10 +136,7 @@ def test_module_is_includable():
 @pytest.mark.parametrize("version", sorted(HEADERS))
 def test_compiles(glslang_validator, tmp_path, version, name, stage):
     body = PROGRAMS[name][0 if stage == "vert" else 1]
-    path = tmp_path / f"{name}.{stage}"
-    path.write_text(source(version, body))
-    run = subprocess.run([glslang_validator, str(path)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, f"#version {version} {name}.{stage}:\n{run.stdout}{run.stderr}"
+    assert_compiles(glslang_validator, tmp_path, version, name, stage, source(version, body))
 
 
 # ---------------------------------------------------------------------------------------------------------- label

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -23,16 +22,14 @@ from baker.pipeline import save
 
 from . import twins
 
+from .glsl import HEADERS, assert_compiles
+
 REPO = Path(__file__).parents[2]
 MODULE_PATH = REPO / "runtime-shaders" / "baker_translucency.glsl"
 MODULE = MODULE_PATH.read_text()
 
 # The includer's header (the module has none). highp sampler2D: WebGL2 defaults samplers to lowp in fragment shaders,
 # too coarse for a 16-bit thickness texture.
-HEADERS = {
-    "300 es": "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n",
-    "330 core": "#version 330 core\n",
-}
 
 SIZE = 256
 TOLERANCE = 2.0 / 255.0
@@ -172,10 +169,7 @@ def test_module_is_includable():
 @pytest.mark.parametrize("version", sorted(HEADERS))
 def test_compiles(glslang_validator, tmp_path, version, name, stage):
     body = PROGRAMS[name][0 if stage == "vert" else 1]
-    path = tmp_path / f"{name}.{stage}"  # glslangValidator picks the stage from the suffix
-    path.write_text(shader_source(version, body))
-    run = subprocess.run([glslang_validator, str(path)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, f"#version {version} {name}.{stage}:\n{run.stdout}{run.stderr}"
+    assert_compiles(glslang_validator, tmp_path, version, name, stage, shader_source(version, body))
 
 
 # ---------------------------------------------------------------------------------------------------------- baked sphere
