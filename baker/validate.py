@@ -468,10 +468,14 @@ def check_indices(doc: GltfDocument, issues: Issues) -> None:
 
 # ---------------------------------------------------------------------------------------------------- semantics
 def _primitives_using(gltf: dict, material: int):
-    """(mesh, primitive, primitive dict) of every triangle primitive drawn with ``material``."""
+    """(mesh, primitive, primitive dict) of every triangle primitive drawn with ``material``, without the fin
+    primitives baker derives from a mesh (they carry no baked surface data)."""
+    from .asset import _derived_fins
+
     for m, mesh in enumerate(gltf.get("meshes") or []):
         for p, prim in enumerate(mesh.get("primitives") or []):
-            if prim.get("material") == material and prim.get("mode", 4) in TRIANGLE_MODES:
+            if prim.get("material") == material and prim.get("mode", 4) in TRIANGLE_MODES \
+                    and not _derived_fins(prim):
                 yield m, p, prim
 
 

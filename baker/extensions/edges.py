@@ -77,8 +77,8 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: kernel
         "mode": 4,
         "extensions": {NAME: {"finsOf": primitive}},
     }
-    if "material" in source:
-        fin["material"] = source["material"]
+    # no material: fins are drawn by baker_edges.glsl with the source primitive's material (found through finsOf);
+    # copying it would bind its textures to a primitive without their TEXCOORD sets (invalid glTF)
     prims.append(fin)
     return len(prims) - 1
 

@@ -65,8 +65,8 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: n
         "mode": 4,
         "extensions": {NAME: {"finsOf": int(primitive)}},
     }
-    if "material" in prims[primitive]:
-        fin["material"] = prims[primitive]["material"]
+    # no material: the fur runtime takes BAKER_fur from the source primitive's material (through finsOf); binding it
+    # here would ask for TEXCOORD sets the fin lacks (invalid glTF when the material has textures)
     prims.append(fin)
     return len(prims) - 1
 
@@ -135,5 +135,5 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                                    "_FUR_FIN_UV") if a not in attrs]
             if missing:
                 issues.error("BAKER_FUR_FIN_ATTRIBUTES", f"fin primitive lacks {', '.join(missing)}", ptr)
-            if prims[p].get("material") != prims[src].get("material"):
+            if "material" in prims[p] and prims[p]["material"] != prims[src].get("material"):
                 issues.warning("BAKER_FUR_FIN_MATERIAL", "the fin primitive's material differs from its source's", ptr)
