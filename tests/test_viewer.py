@@ -1,5 +1,8 @@
 """The web viewer in headless Chromium: loads a baked asset without console errors, and draws `baker preview`'s
-translucency panel (same GLSL module, same camera and uniforms) like the moderngl render, within a tolerance."""
+translucency panel (same GLSL module, same camera and uniforms) like the moderngl render, within a tolerance.
+Then every technique of @baker/three (runtime-shaders/three): assets with many bakes, a `baker text` label and a
+`baker hair` groom load with no console errors (three.js reports shader compile errors there), the status lists
+every technique the asset's extensions imply, and switching each one (?off= / ?on=) changes the picture."""
 from __future__ import annotations
 
 import functools
@@ -8,6 +11,7 @@ import json
 import os
 import shutil
 import subprocess
+import struct
 import threading
 from pathlib import Path
 
@@ -18,7 +22,9 @@ from scipy import ndimage
 import baker
 from baker import preview as pv
 from baker.io.images import read_image
+from baker.cli import main as baker_main
 from baker.pipeline import save
+from conftest import assert_khronos_clean
 
 ROOT = Path(__file__).parents[1]
 VIEWER = ROOT / "examples" / "viewer"
@@ -115,3 +121,122 @@ def test_viewer_matches_baker_preview(site, tmp_path):
     diff = np.abs(image - reference)[interior]
     assert diff.mean() < 2 / 255, diff.mean() * 255
     assert np.percentile(diff, 99) < 8 / 255, np.percentile(diff, 99) * 255
+
+
+# ------------------------------------------------------------------------------------------ every technique
+FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
+W, H = 400, 300
+
+
+def _gltf_json(path):
+    data = Path(path).read_bytes()
+    assert data[:4] == b"glTF"
+    length = struct.unpack("<I", data[12:16])[0]
+    return json.loads(data[20:20 + length])
+
+
+def _expected_techniques(doc):
+    """The viewer's switches implied by the extensions in a glTF document (independent of the plugin's code)."""
+    found = set()
+    materials = [m.get("extensions", {}) for m in doc.get("materials", [])]
+    per_material = {"BAKER_thickness": "translucency", "BAKER_skin_lut": "skin", "BAKER_toon_ramp": "toon",
+                    "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature"}
+    for ext in materials:
+        found |= {technique for name, technique in per_material.items() if name in ext}
+    for mesh in doc.get("meshes", []):
+        for prim in mesh["primitives"]:
+            edges = prim.get("extensions", {}).get("BAKER_edges")
+            if edges is not None:
+                if "finsOf" in edges:
+                    found.add("fins")
+                else:
+                    if edges.get("outlineNormal") in prim["attributes"]:
+                        found.add("outline")
+                    if "wireframeMask" in edges:
+                        found.add("wireframe")
+            if "BAKER_hair" in prim.get("extensions", {}):
+                found.add("hair")
+    if any("BAKER_text" in n.get("extensions", {}) for n in doc.get("nodes", [])):
+        found.add("text")
+    return found
+
+
+DEFAULT_OFF = {"curvature", "wireframe"}  # debug views: off until asked for
+
+
+@pytest.fixture(scope="module")
+def assets(site):
+    """Small, fast bakes of every technique, written next to the viewer."""
+    root = site["root"]
+    asset = baker.bake(SPOT, bakes=("thickness", "curvature", "skin", "edges", "tam", "toon", "fur"), options={
+        "thickness": {"rays": 8, "per_texel": False},
+        "skin": {"width": 64, "height": 64, "penumbra_size": 32},
+        "edges": {"fins": True},
+        "tam": {"size": 64, "levels": 3},
+        "fur": {"shells": 4, "texture_size": 64},
+    })
+    save(asset, root / "spot_all.glb")
+    assert baker_main(["text", "Baker", "--font", str(FONT), "-o", str(root / "label.glb"), "--outline-width", "0.02",
+                       "-q"]) == 0
+    assert baker_main(["hair", str(SPOT), "-o", str(root / "hair.glb"), "--guides", "40", "--children", "4",
+                       "--segments", "6", "-q"]) == 0
+    names = ["spot_all.glb", "label.glb", "hair.glb"]
+    for name in names:
+        assert_khronos_clean(root / name)
+    return {name: _expected_techniques(_gltf_json(root / name)) for name in names}
+
+
+def _shoot(jobs, tmp_path):
+    spec = tmp_path / "jobs.json"
+    spec.write_text(json.dumps(jobs))
+    result = subprocess.run(["node", str(VIEWER / "test" / "screenshots.mjs"), str(spec)],
+                            capture_output=True, text=True, timeout=600, cwd=VIEWER)
+    assert result.returncode == 0, result.stderr
+    infos = [json.loads(line) for line in result.stdout.strip().splitlines() if line.startswith("{")]
+    assert len(infos) == len(jobs), result.stdout
+    images = [read_image(job["out"])[..., :3].astype(np.float32) / 255.0 for job in jobs]
+    return infos, images
+
+
+def test_viewer_switches_every_technique(site, assets, tmp_path):
+    expected_all = {"spot_all.glb": {"translucency", "skin", "toon", "tam", "fins", "outline", "wireframe", "fur",
+                                     "curvature"},
+                    "label.glb": {"text"}, "hair.glb": {"hair"}}
+    assert assets == expected_all  # the bakes wrote what the test is about
+    jobs, keys = [], []
+    for name, techniques in assets.items():
+        base = f"{site['url']}/index.html?hud=0&src={name}"
+        jobs.append({"url": base, "out": str(tmp_path / f"{name}.png"), "width": W, "height": H})
+        keys.append((name, None))
+        for technique in sorted(techniques):
+            flip = "on" if technique in DEFAULT_OFF else "off"
+            jobs.append({"url": f"{base}&{flip}={technique}", "out": str(tmp_path / f"{name}-{technique}.png"),
+                         "width": W, "height": H})
+            keys.append((name, technique))
+    infos, images = _shoot(jobs, tmp_path)
+    shots = dict(zip(keys, zip(infos, images)))
+    background = np.array([0x29, 0x2B, 0x30]) / 255.0
+    changed = {}
+    for (name, technique), (info, image) in shots.items():
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert set(info["techniques"]) == assets[name], info
+        for t in assets[name]:
+            assert t in info["status"], info
+        if technique is None:
+            drawn = np.abs(image - background).max(axis=2) > 0.03
+            assert 0.01 < drawn.mean() < 0.9, (name, drawn.mean())  # the asset is on screen
+            continue
+        base = shots[(name, None)][1]
+        changed[(name, technique)] = int((np.abs(image - base).max(axis=2) > 4 / 255).sum())
+    # every switch changes a visible part of the picture (>= 100 pixels of 120,000)
+    assert all(n >= 100 for n in changed.values()), changed
+
+
+def test_viewer_without_baked_data_reports_none(site, tmp_path):
+    """A plain glTF (no BAKER_* extension) loads with no switches: the plugins add nothing they did not find."""
+    plain = baker.bake(SPOT, bakes=())
+    save(plain, site["root"] / "plain.glb")
+    infos, images = _shoot([{"url": f"{site['url']}/index.html?src=plain.glb", "out": str(tmp_path / "plain.png"),
+                             "width": W, "height": H}], tmp_path)
+    assert infos[0]["ready"] and not infos[0]["errors"], infos[0]
+    assert infos[0]["techniques"] == [] and "no baked data found" in infos[0]["status"]

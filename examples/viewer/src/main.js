@@ -1,13 +1,22 @@
 // baker viewer: drag and drop a baked .glb; one toggle per baked technique found in it.
+// ?src=URL loads an asset; ?off=tam,fins switches techniques off and ?on=curvature on (names: TECHNIQUES of
+// @baker/three), so a test can render the same view with and without one technique.
 // Test mode (?panel=FRAGMENT_URL&setup=JSON_URL&src=GLB_URL): renders the asset with one of `baker preview`'s
 // panel shaders and the camera/uniforms the test passes, so the page can be compared with `baker preview`.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { registerBakerPlugins } from '../../../runtime-shaders/three/src/index.js';
+import { registerBakerPlugins, TECHNIQUES } from '../../../runtime-shaders/three/src/index.js';
 import translucency from '../../../runtime-shaders/baker_translucency.glsl';
+import skin from '../../../runtime-shaders/baker_skin.glsl';
+import toon from '../../../runtime-shaders/baker_toon.glsl';
+import hatching from '../../../runtime-shaders/baker_hatching.glsl';
+import edges from '../../../runtime-shaders/baker_edges.glsl';
+import fur from '../../../runtime-shaders/baker_fur.glsl';
+import hair from '../../../runtime-shaders/baker_hair.glsl';
+import text from '../../../runtime-shaders/baker_text.glsl';
 
-const shaders = { translucency };
+const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text };
 const params = new URLSearchParams(location.search);
 const view = document.getElementById('view');
 const status = document.getElementById('status');
@@ -30,6 +39,7 @@ async function loadGLB(url) {
 
 // ------------------------------------------------------------------------------------------------ viewer mode
 async function viewer() {
+	if (params.get('hud') === '0') document.getElementById('panel').style.visibility = 'hidden'; // clean screenshots
 	const scene = new THREE.Scene();
 	scene.background = new THREE.Color(0x292b30);
 	const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
@@ -37,6 +47,10 @@ async function viewer() {
 	scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 0.6));
 	const key = new THREE.DirectionalLight(0xffffff, 2.0);
 	scene.add(key, key.target);
+	const fill = new THREE.DirectionalLight(0xffffff, 1.2); // from the upper left of the camera, moves with it
+	fill.position.set(-1, 1.5, 2);
+	camera.add(fill);
+	scene.add(camera);
 	let root = null;
 
 	function resize() {
@@ -67,6 +81,10 @@ async function viewer() {
 		key.target.position.copy(sphere.center);
 	}
 
+	const listParam = (key) => new Set((params.get(key) || '').split(',').map((x) => x.trim()).filter(Boolean));
+	const off = listParam('off');
+	const on = listParam('on');
+
 	async function show(url, name) {
 		try {
 			const gltf = await loadGLB(url);
@@ -74,23 +92,27 @@ async function viewer() {
 			root = gltf.scene;
 			scene.add(root);
 			const sphere = frame(root);
-			const found = new Set();
-			root.traverse((o) => o.isMesh && [].concat(o.material).forEach((m) => m.userData.bakerThickness && found.add('translucency')));
+			const baker = gltf.userData.baker;
+			const found = baker ? baker.techniques : [];
 			toggles.innerHTML = '';
-			let back = true;
-			setBackLight(back, sphere);
-			const add = (label, checked, onChange) => {
+			const add = (label, key, checked, onChange) => {
 				const el = document.createElement('label');
 				el.innerHTML = `<input type="checkbox" ${checked ? 'checked' : ''}> ${label}`;
+				el.firstChild.dataset.technique = key;
 				el.firstChild.addEventListener('change', (e) => onChange(e.target.checked));
 				toggles.appendChild(el);
 			};
-			if (found.has('translucency')) {
-				add('translucency (BAKER_thickness)', true, (on) => root.traverse((o) => o.isMesh && [].concat(o.material)
-					.forEach((m) => m.userData.bakerUniforms && (m.userData.bakerUniforms.u_bakerTranslucencyEnabled.value = on ? 1 : 0))));
-				add('light from behind', true, (on) => setBackLight(on, sphere));
+			for (const technique of found) {
+				if (off.has(technique)) baker.setEnabled(technique, false);
+				if (on.has(technique)) baker.setEnabled(technique, true);
+				const info = TECHNIQUES[technique] || { label: technique, extension: '' };
+				add(`${info.label} (${info.extension})`, technique, baker.isEnabled(technique), (v) => baker.setEnabled(technique, v));
 			}
-			status.textContent = `${name}: ${found.size ? [...found].join(', ') : 'no baked data found'}`;
+			const back = found.includes('translucency') && !off.has('backlight');
+			setBackLight(back, sphere);
+			if (found.includes('translucency')) add('light from behind', 'backlight', back, (v) => setBackLight(v, sphere));
+			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}`;
+			window.__bakerTechniques = found;
 			window.__bakerReady = true;
 		} catch (e) {
 			fail(`cannot load ${name}: ${e.message || e}`);

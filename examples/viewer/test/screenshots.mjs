@@ -1,0 +1,37 @@
+// Screenshot several viewer pages in one headless Chromium (Debian's): one browser launch for a whole test.
+//   node test/screenshots.mjs JOBS.json       JOBS.json: [{"url": ..., "out": ..., "width": 480, "height": 360}, ...]
+// Prints one JSON line per job, {url, errors, warnings, status, techniques, ready}. Used by tests/test_viewer.py.
+import { readFileSync } from 'node:fs';
+import { chromium } from 'playwright-core';
+
+const jobs = JSON.parse(readFileSync(process.argv[2], 'utf8'));
+const browser = await chromium.launch({
+	executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+	args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+		'--disable-background-networking', '--disable-component-update', '--disable-sync', '--use-angle=swiftshader',
+		'--enable-unsafe-swiftshader'],
+});
+try {
+	for (const job of jobs) {
+		const errors = [];
+		const warnings = [];
+		const page = await browser.newPage({ viewport: { width: job.width || 480, height: job.height || 360 }, deviceScaleFactor: 1 });
+		page.on('console', (msg) => {
+			if (msg.type() === 'error') errors.push(msg.text());
+			// three.js reports shader problems as errors, program info logs that are not fatal as warnings
+			if (msg.type() === 'warning' && /THREE\.WebGL(Program|Shader)/.test(msg.text())) warnings.push(msg.text());
+		});
+		page.on('pageerror', (err) => errors.push(String(err)));
+		await page.goto(job.url);
+		await page.waitForFunction(() => window.__bakerReady || window.__bakerError, null, { timeout: 60000 });
+		await page.waitForTimeout(300); // let the animation loop draw a frame
+		const status = await page.evaluate(() => document.getElementById('status').textContent);
+		const techniques = await page.evaluate(() => window.__bakerTechniques || []);
+		const ready = await page.evaluate(() => Boolean(window.__bakerReady));
+		await page.locator('canvas').screenshot({ path: job.out });
+		console.log(JSON.stringify({ url: job.url, errors, warnings, status, techniques, ready }));
+		await page.close();
+	}
+} finally {
+	await browser.close();
+}
