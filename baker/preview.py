@@ -999,12 +999,13 @@ def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: fl
         y, x = r * (size + label_h) + label_h, c * size
         sheet[y: y + size, x: x + size] = np.round(image * 255).astype(np.uint8)
         placed.append((panel.name, panel.label, (y, x, size)))
-    _draw_labels(sheet, [(label, y - label_h, x, label_h) for _, label, (y, x, _) in placed])
+    _draw_labels(sheet, [(label, y - label_h, x, label_h) for _, label, (y, x, _) in placed], size)
     return Preview(sheet, placed)
 
 
-def _draw_labels(sheet: np.ndarray, labels) -> None:
-    """Write panel labels with DejaVu Sans through Pillow (silently unlabelled when neither is available)."""
+def _draw_labels(sheet: np.ndarray, labels, width: int) -> None:
+    """Write panel labels with DejaVu Sans through Pillow (silently unlabelled when neither is available), each
+    shrunk until it fits its panel's ``width``."""
     try:
         from PIL import Image, ImageDraw, ImageFont
     except ImportError:
@@ -1012,11 +1013,15 @@ def _draw_labels(sheet: np.ndarray, labels) -> None:
     image = Image.fromarray(sheet)
     draw = ImageDraw.Draw(image)
     for text, y, x, h in labels:
+        size = int(h * 0.7)
         try:
-            font = ImageFont.truetype("DejaVuSans.ttf", int(h * 0.7))
+            font = ImageFont.truetype("DejaVuSans.ttf", size)
+            while size > 6 and draw.textlength(text, font=font) > width - 12:
+                size -= 1
+                font = ImageFont.truetype("DejaVuSans.ttf", size)
         except OSError:
             font = ImageFont.load_default()
-        draw.text((x + 6, y + h * 0.12), text, fill=(230, 230, 230), font=font)
+        draw.text((x + 6, y + (h - size) * 0.5), text, fill=(230, 230, 230), font=font)
     sheet[...] = np.asarray(image)
 
 
