@@ -9,7 +9,7 @@ skin LUT generation time.
   error; and on the same torus with every vertex jittered by a Gaussian of 5% of the mean edge length (seed 0), a
   stand-in for scan noise (the truth is the smooth torus's H at the unjittered vertex). pymeshlab's value is its per-vertex quality with curvcolormethod = mean; MeshLab's "Principal Component
   Analysis" and "Normal Cycles" report other scales (not H) and are left out. baker runs with its defaults
-  (2 rings, 2 smoothing passes).
+  (adjacent-normal cubic fit, 2 rings, 2 smoothing passes), and its quadric fit for comparison.
 - LUT: Penner's 256 x 256 diffusion LUT (d'Eon skin, 256 samples per Gaussian and row) and the 128 x 128 penumbra LUT.
 """
 from __future__ import annotations
@@ -87,12 +87,17 @@ def main(argv=None) -> int:
     noisy = tv + np.random.default_rng(0).normal(scale=0.05 * edge, size=tv.shape)
     principal_curvatures(tv[:200], tf[:0])  # compile the numba kernels outside the timings
     principal_curvatures(tv, tf)
+    principal_curvatures(tv, tf, fit="quadric")
 
     rows = []
     t_bunny, _ = best_of(args.repeat, lambda: principal_curvatures(welded, faces))
     t_torus, result = best_of(args.repeat, lambda: principal_curvatures(tv, tf))
-    rows.append(("baker quadric, 2 rings, 2 smoothing passes", t_bunny, t_torus, *errors(result.mean, truth),
+    rows.append(("baker adjacent-normal cubic fit (default), 2 rings, 2 smoothing passes", t_bunny, t_torus, *errors(result.mean, truth),
                  errors(principal_curvatures(noisy, tf).mean, truth)[0]))
+    t_b, _ = best_of(args.repeat, lambda: principal_curvatures(welded, faces, fit="quadric"))
+    t_t, result = best_of(args.repeat, lambda: principal_curvatures(tv, tf, fit="quadric"))
+    rows.append(("baker quadric fit, 2 rings, 2 smoothing passes", t_b, t_t, *errors(result.mean, truth),
+                 errors(principal_curvatures(noisy, tf, fit="quadric").mean, truth)[0]))
     for method, name in MESHLAB_METHODS.items():
         if method == 4 and args.skip_slow:
             continue

@@ -73,6 +73,30 @@ def test_torus_matches_analytic_mean_curvature(smoothing):
     assert np.median(np.abs(np.einsum("ij,ij->i", result.direction1, ring_tangent))) < 0.05
 
 
+def test_cubic_fit_beats_quadric_fit_on_torus():
+    """The adjacent-normal cubic fit (default) against the quadric fit of positions: same rings and smoothing."""
+    vertices, faces = torus()
+    truth = torus_mean_curvature(vertices)
+    errors = {}
+    for fit in ("cubic", "quadric"):
+        result = principal_curvatures(vertices, faces, fit=fit)
+        errors[fit] = np.median(np.abs(result.mean - truth) / truth)
+    assert errors["cubic"] < 0.5 * errors["quadric"], errors
+    # the plain polynomial equations (no osculating-circle correction) carry the O((k h)^2) bias
+    plain = principal_curvatures(vertices, faces, osculating=False)
+    assert errors["cubic"] < 0.5 * np.median(np.abs(plain.mean - truth) / truth)
+    with pytest.raises(ValueError):
+        principal_curvatures(vertices, faces, fit="quartic")
+
+
+def test_cubic_fit_is_exact_on_a_sphere_with_exact_normals():
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=0.5)
+    result = principal_curvatures(sphere.vertices, sphere.faces, normals=sphere.vertices / 0.5, smoothing=0,
+                                  jet_normals=False)
+    np.testing.assert_allclose(result.k1, 2.0, rtol=1e-8)
+    np.testing.assert_allclose(result.k2, 2.0, rtol=1e-8)
+
+
 def test_radius_neighbourhood_matches_rings():
     vertices, faces = torus()
     result = principal_curvatures(vertices, faces, radius=0.12)

@@ -55,7 +55,7 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, valu
                               mean_curvature: float, per_vertex: bool, directions: bool,
                               texture: int | None = None, texcoord: int = 0, texture_range: list | None = None) -> dict:
     ext = {
-        "method": "quadric",
+        "method": options.fit,
         "smoothingPasses": int(options.smoothing),
         "range": [float(value_range[0]), float(value_range[1])],
         "meanCurvature": float(mean_curvature),

@@ -32,7 +32,7 @@ def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progre
         faces = faces[(faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])]
         with progress.task(f"curvature mesh {m}", 1) as advance:
             result = principal_curvatures(welded, faces, rings=options.rings, radius=options.radius,
-                                          smoothing=options.smoothing)
+                                          smoothing=options.smoothing, fit=options.fit)
             advance(1)
         welded_results[m] = (welded, result.mean)
         principal = np.stack([result.k1, result.k2], axis=1)
