@@ -520,6 +520,14 @@ def check_vertex_attribute(doc: GltfDocument, mesh: int, primitive: int, name: s
 
 
 # one entry per extension with rules a schema cannot express: (document, [(object path, value)], issues) -> None
+def _also_checked() -> dict:
+    """Non-BAKER extensions an extension module validates itself: name -> (name, accessor-valued properties)."""
+    from .extensions import EXTENSIONS
+
+    return {ext: (ext, tuple(fields)) for module in EXTENSIONS.values()
+            for ext, fields in getattr(module, "ALSO_CHECKS", {}).items()}
+
+
 def semantic_checks() -> dict:
     """Extension name -> check function, from the extension modules (each may define ``check``)."""
     from .extensions import EXTENSIONS
@@ -555,10 +563,57 @@ def khronos_report(path) -> dict:
     return json.loads(proc.stdout)
 
 
-def _merge_khronos(report: dict, issues: Issues, validated: set) -> None:
+def extension_references(gltf: dict, found: dict) -> set:
+    """JSON pointers (``/accessors/3``, ``/textures/5``, and those textures' images and samplers) of the objects the
+    extensions baker checks refer to. Khronos' validator does not know these extensions and calls such objects
+    unused. Texture references are ``{"index": n}`` objects; accessor references are the integer properties whose
+    schema description starts with "Accessor" (the convention of every schema in ``schemas/``)."""
+    registry = schema_registry()
+    pointers = set()
+
+    def walk(value, schema):
+        schema = schema or {}
+        if isinstance(value, dict):
+            if isinstance(value.get("index"), int) and not isinstance(value.get("index"), bool):
+                pointers.add(f"/textures/{value['index']}")
+            props = schema.get("properties", {})
+            for key, item in value.items():
+                sub = props.get(key, {})
+                if isinstance(item, int) and not isinstance(item, bool) and \
+                        str(sub.get("description", "")).startswith("Accessor"):
+                    pointers.add(f"/accessors/{item}")
+                walk(item, sub)
+        elif isinstance(value, list):
+            for item in value:
+                walk(item, schema.get("items", {}))
+
+    for name, places in found.items():
+        for parts, value in places:
+            path = registry.get((name, _object_kind(parts)))
+            walk(value, json.loads(path.read_text()) if path else {})
+    also = {ext: fields for ext, (_, fields) in _also_checked().items()}
+    for _, name, value in _walk_extensions(gltf):
+        if name in also and isinstance(value, dict):
+            for field_name in also[name]:
+                if isinstance(value.get(field_name), int) and not isinstance(value.get(field_name), bool):
+                    pointers.add(f"/accessors/{value[field_name]}")
+    textures = gltf.get("textures") or []
+    for ptr in list(pointers):
+        if ptr.startswith("/textures/"):
+            i = int(ptr.rsplit("/", 1)[1])
+            if 0 <= i < len(textures) and isinstance(textures[i], dict):
+                for key, collection in (("source", "images"), ("sampler", "samplers")):
+                    if isinstance(textures[i].get(key), int):
+                        pointers.add(f"/{collection}/{textures[i][key]}")
+    return pointers
+
+
+def _merge_khronos(report: dict, issues: Issues, validated: set, referenced: set = frozenset()) -> None:
     for msg in (report.get("issues") or {}).get("messages", []):
         if msg.get("code") == "UNSUPPORTED_EXTENSION" and any(f"'{e}'" in msg.get("message", "") for e in validated):
             continue  # baker validates it
+        if msg.get("code") == "UNUSED_OBJECT" and msg.get("pointer") in referenced:
+            continue  # used by one of our extensions, which Khronos' validator cannot see
         issues.add(msg.get("code", "?"), msg.get("message", ""), int(msg.get("severity", ERROR)),
                    msg.get("pointer"), source="khronos")
 
@@ -605,6 +660,9 @@ def validate_file(path, khronos: bool = True) -> dict:
         readable = not any(m["severity"] == ERROR and m["code"] not in NON_BLOCKING for m in issues.messages)
         found = check_extensions(gltf, issues)
         validated = {name for name in found if any(e == name for e, _ in schema_registry())}
+        validated |= {name for name in found if name in semantic_checks()}
+        validated |= set(_also_checked())
+        referenced = extension_references(gltf, found)
         if readable:
             try:
                 doc = GltfDocument.load(path)
@@ -631,7 +689,7 @@ def validate_file(path, khronos: bool = True) -> dict:
             except (RuntimeError, subprocess.TimeoutExpired, json.JSONDecodeError) as exc:
                 issues.warning("KHRONOS_VALIDATOR_FAILED", str(exc))
             else:
-                _merge_khronos(k, issues, validated)
+                _merge_khronos(k, issues, validated, referenced if gltf is not None else set())
                 khronos_state = {"ran": True, "validatorVersion": k.get("validatorVersion")}
                 if "info" in k:
                     report["info"] = k["info"]

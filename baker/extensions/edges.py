@@ -20,6 +20,8 @@ from ..io.gltf import TARGET_ARRAY_BUFFER, TARGET_ELEMENT_ARRAY_BUFFER, GltfDocu
 
 NAME = "BAKER_edges"
 EXT_VISIBILITY = "EXT_mesh_primitive_edge_visibility"
+# other extensions this module's ``check`` validates, with their accessor-valued properties (for baker validate)
+ALSO_CHECKS = {EXT_VISIBILITY: ("visibility", "silhouetteMates")}
 OUTLINE_NORMAL = "_OUTLINE_NORMAL"
 FIN_ATTRIBUTES = ("_FIN_V0", "_FIN_V1", "_FIN_V2", "_FIN_V3", "_FIN_CORNER", "_FIN_FLAGS")
 FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
