@@ -111,16 +111,6 @@ def source(version: str, body: str) -> str:
     return HEADERS[version] + MODULES["hair"] + MODULES["fur"] + body
 
 
-def test_modules_are_includable():
-    for name, text in MODULES.items():
-        code = re.sub(r"//[^\n]*", "", text)
-        assert not re.search(r"^\s*#\s*version", code, re.M)
-        assert not re.search(r"^\s*precision\b", code, re.M)
-        assert not re.search(r"^\s*(uniform|in|out|attribute|varying)\b", code, re.M)
-        for fn in re.findall(r"^\s*(?:float|vec2|vec3|vec4|void)\s+(baker_\w+)\s*\(", code, re.M):
-            assert hasattr(twins, fn), f"no numpy twin for {fn}"
-
-
 @pytest.mark.parametrize("stage", ["vert", "frag"])
 @pytest.mark.parametrize("name", sorted(STAGES))
 @pytest.mark.parametrize("version", sorted(HEADERS))

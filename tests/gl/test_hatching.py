@@ -152,16 +152,6 @@ def program(ctx, name: str, version: str = "330 core"):
 
 
 # ---------------------------------------------------------------------------------------------------------- modules
-@pytest.mark.parametrize("module", [HATCHING, TOON], ids=["hatching", "toon"])
-def test_module_is_includable(module):
-    code = re.sub(r"//[^\n]*", "", module)
-    assert not re.search(r"^\s*#\s*version", code, re.M)
-    assert not re.search(r"^\s*precision\b", code, re.M)
-    assert not re.search(r"^\s*(uniform|in|out|attribute|varying)\b", code, re.M)
-    for name in re.findall(r"^\s*(?:float|vec2|vec3|void)\s+(baker_\w+)\s*\(", code, re.M):
-        assert hasattr(twins, name), f"no numpy twin for {name}"
-
-
 @pytest.mark.parametrize("stage", ["vert", "frag"])
 @pytest.mark.parametrize("name", sorted(PROGRAMS))
 @pytest.mark.parametrize("version", sorted(HEADERS))

@@ -113,15 +113,6 @@ def program(ctx, name: str, version: str = "330 core"):
     return ctx.program(vertex_shader=source(version, vs), fragment_shader=source(version, fs))
 
 
-def test_module_is_includable():
-    code = re.sub(r"//[^\n]*", "", MODULE)
-    assert not re.search(r"^\s*#\s*version", code, re.M)
-    assert not re.search(r"^\s*precision\b", code, re.M)
-    assert not re.search(r"^\s*(uniform|in|out|attribute|varying)\b", code, re.M)
-    for name in re.findall(r"^\w+\s+(baker_\w+)\s*\(", code, re.M):
-        assert hasattr(twins, name), f"no numpy twin for {name}"
-
-
 @pytest.mark.parametrize("stage", ["vert", "frag"])
 @pytest.mark.parametrize("name", sorted(PROGRAMS))
 @pytest.mark.parametrize("version", sorted(HEADERS))
