@@ -365,36 +365,48 @@ def build(recipe: Recipe, *, jobs: int = 1, scheduler: str | None = None, fail_f
     root = recipe.root
     lock = read_lock(root)
     report = {"baked": [], "skipped": [], "failed": [], "seconds": 0.0}
-    todo = []
-    for task in recipe.tasks:
-        task.key, task_inputs = task_key(root, task)
-        entry = lock.get(task.output)
-        if entry and entry.get("key") == task.key and _outputs_current(root, entry):
-            report["skipped"].append(task.output)
-        else:
-            todo.append((task, task_inputs))
-    by_output = {t.output: (t, i) for t, i in todo}
-    bar = _bar(progress, len(recipe.tasks), len(report["skipped"]))
-    for result in _execute([_payload(root, t) for t, _ in todo], jobs, scheduler, fail_fast):
-        task, task_inputs = by_output[result["output"]]
-        if result["error"]:
-            report["failed"].append((task.output, result["error"]))
-        else:
-            out_dir = (root / task.output).parent
-            written = {}
-            # side files first, the main output last (as a single bake writes them)
-            main_name = Path(task.output).name
-            for rel in sorted(result["files"], key=lambda r: (r == main_name, r)):
-                write_bytes_atomic(out_dir / rel, result["files"][rel])
-                written[(Path(task.output).parent / rel).as_posix()] = hashlib.sha256(result["files"][rel]).hexdigest()
-            lock[task.output] = {"output": task.output, "key": task.key, "kind": task.kind, "inputs": task_inputs,
-                                 "bakes": task.bakes, "options": task.options, "seed": task.seed,
-                                 "command": task.command, "args": task.args, "outputs": written}
-            write_lock(root, lock)  # after every task: an interrupted build resumes where it stopped
-            report["baked"].append(task.output)
-        if bar:
-            bar.set_postfix_str(task.output[-40:])
-            bar.update(1)
+    bar = _bar(progress, len(recipe.tasks), 0)
+    # bakes first, then commands: a command's input may be a baked output, hashed only once it exists
+    for phase in ("bake", "command"):
+        todo = []
+        for task in (t for t in recipe.tasks if t.kind == phase):
+            try:
+                task.key, task_inputs = task_key(root, task)
+            except BakerError as exc:
+                report["failed"].append((task.output, exc.message if exc.path is None else f"{exc.path}: {exc.message}"))
+                continue
+            entry = lock.get(task.output)
+            if entry and entry.get("key") == task.key and _outputs_current(root, entry):
+                report["skipped"].append(task.output)
+                if bar:
+                    bar.update(1)
+            else:
+                todo.append((task, task_inputs))
+        by_output = {t.output: (t, i) for t, i in todo}
+        for result in _execute([_payload(root, t) for t, _ in todo], jobs, scheduler, fail_fast):
+            task, task_inputs = by_output[result["output"]]
+            if result["error"]:
+                report["failed"].append((task.output, result["error"]))
+            else:
+                out_dir = (root / task.output).parent
+                written = {}
+                # side files first, the main output last (as a single bake writes them)
+                main_name = Path(task.output).name
+                for rel in sorted(result["files"], key=lambda r: (r == main_name, r)):
+                    write_bytes_atomic(out_dir / rel, result["files"][rel])
+                    written[(Path(task.output).parent / rel).as_posix()] = \
+                        hashlib.sha256(result["files"][rel]).hexdigest()
+                lock[task.output] = {"output": task.output, "key": task.key, "kind": task.kind,
+                                     "inputs": task_inputs, "bakes": task.bakes, "options": task.options,
+                                     "seed": task.seed, "command": task.command, "args": task.args,
+                                     "outputs": written}
+                write_lock(root, lock)  # after every task: an interrupted build resumes where it stopped
+                report["baked"].append(task.output)
+            if bar:
+                bar.set_postfix_str(task.output[-40:])
+                bar.update(1)
+        if fail_fast and report["failed"]:
+            break
     if bar:
         bar.close()
     report["seconds"] = time.perf_counter() - start
@@ -409,7 +421,11 @@ def check(recipe: Recipe, khronos: bool = True) -> list[dict]:
     lock = read_lock(root)
     problems = []
     for task in recipe.tasks:
-        task.key, _ = task_key(root, task)
+        try:
+            task.key, _ = task_key(root, task)
+        except BakerError as exc:  # e.g. a command whose input is a baked output not built yet
+            problems.append({"output": task.output, "problem": "missing", "detail": f"input missing: {exc.path}"})
+            continue
         entry = lock.get(task.output)
         if entry is None or not all((root / rel).is_file() for rel in entry["outputs"]):
             problems.append({"output": task.output, "problem": "missing", "detail": "not built"})
@@ -436,9 +452,7 @@ def _bar(progress, total: int, skipped: int):
         return None
     from tqdm import tqdm
 
-    bar = tqdm(total=total, initial=skipped, desc="baker build", unit="asset", file=sys.stderr, dynamic_ncols=True)
-    bar.set_postfix_str(f"{skipped} cached")
-    return bar
+    return tqdm(total=total, initial=skipped, desc="baker build", unit="asset", file=sys.stderr, dynamic_ncols=True)
 
 
 def _table(report: dict) -> str:

@@ -220,3 +220,20 @@ def test_thirty_assets_one_touched_rebakes_exactly_one(tmp_path):
     build(load_recipe(clean / "baker.toml"), jobs=2)
     assert _files(project) == _files(clean)
     assert (project / LOCK_NAME).read_bytes() == (clean / LOCK_NAME).read_bytes()
+
+
+def test_example_recipe_builds_and_checks(tmp_path):
+    # examples/baker.toml: a per-glob override and a command whose input is a baked output (built after it)
+    examples = Path(__file__).parents[1] / "examples"
+    shutil.copytree(examples / "spot", tmp_path / "spot")
+    text = (examples / "baker.toml").read_text().replace("rays = 64", "rays = 8").replace("texture_size = 512",
+                                                                                          "texture_size = 64")
+    (tmp_path / "baker.toml").write_text(text)
+    assert check(load_recipe(tmp_path / "baker.toml"), khronos=False)[-1]["problem"] == "missing"
+    report = build(load_recipe(tmp_path / "baker.toml"))
+    assert report["baked"] == ["out/spot/spot.glb", "out/spot_preview.png"] and not report["failed"]
+    lock = {e["output"]: e for e in json.loads((tmp_path / LOCK_NAME).read_text())["entries"]}
+    assert lock["out/spot/spot.glb"]["bakes"] == ["thickness", "curvature", "skin", "edges", "tam", "toon"]
+    assert lock["out/spot/spot.glb"]["options"]["tam"]["style"] == "cross-hatching"
+    assert check(load_recipe(tmp_path / "baker.toml"), khronos=False) == []
+    assert_khronos_clean(tmp_path / "out" / "spot" / "spot.glb")

@@ -148,3 +148,12 @@ def test_compressed_geometry_is_refused(tmp_path, sphere_glb):
     result = run("bake", src, "-o", tmp_path / "o.glb", "-q")
     assert result.returncode == 2 and "Draco" in result.stderr and str(src) in result.stderr
     assert not (tmp_path / "o.glb").exists()
+
+
+def test_python_api_example_runs(tmp_path):
+    example = Path(__file__).parents[1] / "examples" / "bake_api.py"
+    spot = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
+    result = subprocess.run([sys.executable, str(example), str(spot), str(tmp_path)], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert "validation errors: 0" in result.stdout
+    assert {"spot.glb", "spot.usdz", "spot_preview.png"} <= {p.name for p in tmp_path.iterdir()}
