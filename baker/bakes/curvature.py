@@ -251,17 +251,24 @@ def _tangential_scale(v, count, queue, positions, t1x, t1y, t1z, t2x, t2y, t2z):
     return math.sqrt(scale2 / (count - 1))
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _local_frame(v, count, queue, positions, normals, include_self):
+    """The fitting frame at v: normal (nx, ny, nz), tangents t1, t2, and 1 / (tangential scale) of the
+    neighbourhood, or inv = 0 when the neighbourhood is degenerate."""
+    nx, ny, nz = _frame_normal(v, count, queue, normals, include_self)
+    if nx == 0.0 and ny == 0.0 and nz == 0.0:
+        return nx, ny, nz, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    t1x, t1y, t1z, t2x, t2y, t2z = _tangent_frame(nx, ny, nz)
+    scale = _tangential_scale(v, count, queue, positions, t1x, t1y, t1z, t2x, t2y, t2z)
+    return nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z, (1.0 / scale if scale > 0.0 else 0.0)
+
+
 @numba.njit(cache=True, nogil=True)
 def _fit_vertex(v, count, queue, positions, normals, out_k, out_dir, out_normal, ata, atz, row):
     """Quadric fit over ``queue[:count]`` around vertex v; writes k1, k2 (convex positive), d1 and the normal."""
-    nx, ny, nz = _frame_normal(v, count, queue, normals, True)
-    if nx == 0.0 and ny == 0.0 and nz == 0.0:
+    nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z, inv = _local_frame(v, count, queue, positions, normals, True)
+    if count < 6 or inv == 0.0:
         return False
-    t1x, t1y, t1z, t2x, t2y, t2z = _tangent_frame(nx, ny, nz)
-    scale = _tangential_scale(v, count, queue, positions, t1x, t1y, t1z, t2x, t2y, t2z)
-    if count < 6 or scale <= 0.0:
-        return False
-    inv = 1.0 / scale
     px, py, pz = positions[v, 0], positions[v, 1], positions[v, 2]
     ata[:, :] = 0.0
     atz[:] = 0.0
@@ -309,15 +316,10 @@ def _fit_vertex_cubic(v, count, queue, positions, normals, osculating, out_k, ou
       so the equations take -a, -b for the gradient.
     Both agree with the plain fit to second order; the cubic terms still absorb the variation of curvature.
     """
-    nx, ny, nz = _frame_normal(v, count, queue, normals, False)
-    if nx == 0.0 and ny == 0.0 and nz == 0.0:
-        return False
-    t1x, t1y, t1z, t2x, t2y, t2z = _tangent_frame(nx, ny, nz)
-    scale = _tangential_scale(v, count, queue, positions, t1x, t1y, t1z, t2x, t2y, t2z)
+    nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z, inv = _local_frame(v, count, queue, positions, normals, False)
     # 7 unknowns: heights (v itself is the origin, no equation) plus up to two normal equations per neighbour
-    if scale <= 0.0 or 3 * (count - 1) < 7:
+    if inv == 0.0 or 3 * (count - 1) < 7:
         return False
-    inv = 1.0 / scale
     px, py, pz = positions[v, 0], positions[v, 1], positions[v, 2]
     ata[:, :] = 0.0
     atz[:] = 0.0
@@ -366,14 +368,9 @@ def _jet_normal(v, count, queue, positions, normals, out_normal, ata, atz, row):
     adjacent-normal fit. Returns False (``out_normal`` untouched) with fewer than 14 neighbours."""
     if count < 15:
         return False
-    nx, ny, nz = _frame_normal(v, count, queue, normals, True)
-    if nx == 0.0 and ny == 0.0 and nz == 0.0:
+    nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z, inv = _local_frame(v, count, queue, positions, normals, True)
+    if inv == 0.0:
         return False
-    t1x, t1y, t1z, t2x, t2y, t2z = _tangent_frame(nx, ny, nz)
-    scale = _tangential_scale(v, count, queue, positions, t1x, t1y, t1z, t2x, t2y, t2z)
-    if scale <= 0.0:
-        return False
-    inv = 1.0 / scale
     px, py, pz = positions[v, 0], positions[v, 1], positions[v, 2]
     ata[:, :] = 0.0
     atz[:] = 0.0
