@@ -27,18 +27,10 @@ sys.path.insert(0, str(ROOT))
 from baker.asset import weld  # noqa: E402
 from baker.bakes.curvature import principal_curvatures  # noqa: E402
 from baker.bakes import skin_lut  # noqa: E402
+from common import best_of  # noqa: E402
 
 DEFAULT_MESH = ROOT.parent / "shared" / "assets" / "meshes" / "stanford-bunny.obj"
 MESHLAB_METHODS = {0: "Taubin approximation", 3: "Quadric Fitting (default)", 4: "Scale Dependent Quadric Fitting"}
-
-
-def best_of(repeat, fn):
-    times, result = [], None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), result
 
 
 def torus(major=2.0, minor=0.5, sections=(264, 132)):

@@ -17,7 +17,6 @@ import argparse
 import math
 import os
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -26,17 +25,9 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from baker.bakes import edges as E  # noqa: E402
+from common import best_of  # noqa: E402
 
 DEFAULT_MESH = ROOT.parent / "shared" / "assets" / "meshes" / "stanford-bunny.obj"
-
-
-def best_of(repeat, fn):
-    times, result = [], None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), result
 
 
 def main(argv=None) -> int:

@@ -34,6 +34,7 @@ sys.path.insert(0, str(ROOT))
 
 from baker.bakes.glyphs import GlyphOptions, bake_atlas, load_font  # noqa: E402
 from baker.bakes.glyphs.quality import glyph_errors  # noqa: E402
+from common import best_of  # noqa: E402
 
 DEFAULT_FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
 NODE_MODULES = ROOT / ".cache" / "node" / "node_modules"
@@ -66,17 +67,6 @@ def msdfgen_shape(shape) -> dict:
                                                         for x, y in shape.points[s, : d + 1]]})
         contours.append({"edges": edges})
     return {"contours": contours, "inverseYAxis": False}
-
-
-def best_of(repeat, fn):
-    best, result = float("inf"), None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = fn()
-        dt = time.perf_counter() - t
-        if dt < best:
-            best, result = dt, out
-    return best, result
 
 
 def score(blocks: list, items: list) -> dict:

@@ -19,7 +19,6 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -30,17 +29,9 @@ sys.path.insert(0, str(ROOT))
 from baker.asset import Asset  # noqa: E402
 from baker.bakes import hair  # noqa: E402
 from baker.hair_command import emitter_from_asset  # noqa: E402
+from common import best_of  # noqa: E402
 
 DEFAULT_MESH = ROOT / "examples" / "spot" / "spot.obj"
-
-
-def best_of(repeat, fn):
-    times, result = [], None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), result
 
 
 def numpy_ftl(pos, rest):

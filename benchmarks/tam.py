@@ -23,7 +23,6 @@ import dataclasses
 import math
 import os
 import sys
-import time
 from pathlib import Path
 
 import numba
@@ -33,6 +32,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from baker.bakes.tam import TamOptions, _stamp, generate_tam  # noqa: E402
+from common import best_of  # noqa: E402
 
 
 @numba.njit(cache=True, nogil=True)
@@ -97,15 +97,6 @@ def quality(darkness: list, targets: np.ndarray) -> tuple[float, float, float]:
     finest = darkness[0][-1]
     blocks = finest.reshape(finest.shape[0] // 16, 16, -1, 16).mean(axis=(1, 3))
     return tone_error, missing / max(inked, 1), float(blocks.std())
-
-
-def best_of(repeat, fn):
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), result
 
 
 def main(argv=None) -> int:

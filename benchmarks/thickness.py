@@ -16,7 +16,6 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -27,17 +26,9 @@ sys.path.insert(0, str(ROOT))
 
 from baker.asset import vertex_normals, weld  # noqa: E402
 from baker.bakes.thickness import RayScene, _make_rays, hemisphere_samples, local_thickness, morton_order  # noqa: E402
+from common import best_of  # noqa: E402
 
 DEFAULT_MESH = ROOT.parent / "shared" / "assets" / "meshes" / "stanford-bunny.obj"
-
-
-def best_of(repeat, fn):
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), result
 
 
 def main(argv=None) -> int:
