@@ -8,6 +8,7 @@ result must pass `baker validate` and Khronos' validator. A control run without 
 """
 from __future__ import annotations
 
+import json
 import math
 import os
 import re
@@ -30,7 +31,12 @@ SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
 FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
 EDGE_VISIBILITY = "EXT_mesh_primitive_edge_visibility"
 
-# where each extension references other glTF objects (independent of the JS classes under test); '*' = any index
+# Where each extension references other glTF objects; '*' = any index. The classes under test do not keep such a
+# list: they read runtime-shaders/gltf-transform/src/references.js, generated from the schemas by
+# tools/references.mjs. This table is kept by hand on purpose, as the test's independent statement of what the
+# schemas mean: test_reference_table_matches_the_schemas checks the generated table against it, so a schema whose
+# reference does not follow the convention the generator reads (e.g. an accessor index described without
+# "Accessor") fails there instead of silently losing its reference in the classes and in this comparison alike.
 REFS = {
     "BAKER_curvature": {"curvatureTexture": "texture"},
     "BAKER_skin_lut": {"lutTexture": "texture", "penumbraTexture": "texture", "curvatureTexture": "texture"},
@@ -39,7 +45,8 @@ REFS = {
     "BAKER_edges": {"edges": "accessor", "oppositeVertices": "accessor", "flags": "accessor",
                     "dihedralAngles": "accessor", "wireframeMask": "accessor", "fins": "primitive",
                     "finsOf": "primitive"},
-    EDGE_VISIBILITY: {"visibility": "accessor", "silhouetteMates": "accessor"},
+    EDGE_VISIBILITY: {"visibility": "accessor", "silhouetteMates": "accessor", "lineStrings/*/indices": "accessor",
+                      "lineStrings/*/material": "material"},  # baker writes no lineStrings
     "BAKER_hair": {"widthScale": "accessor", "ribbonIndices": "accessor", "guides/ids": "accessor",
                    "guides/weights": "accessor", "guides/primitive": "primitive"},
     "BAKER_fur": {"shellTextures/*": "texture", "finTexture": "texture", "finsOf": "primitive",
@@ -60,6 +67,12 @@ def _require_package():
         if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
             pytest.fail("glTF-Transform is required in CI (scripts/install-node-tools installs it)")
         pytest.skip("node or @gltf-transform not installed (run scripts/install-node-tools)")
+
+
+def _node_tool(*args):
+    result = subprocess.run(["node", str(PACKAGE / "tools" / "references.mjs"), *args], capture_output=True, text=True,
+                            timeout=60)
+    return result
 
 
 def _transform(src, out, control=False):
@@ -288,3 +301,20 @@ def test_control_without_our_classes_loses_the_extensions(assets, tmp_path):
         assert not any(_ours(n) for n in after.json.get("extensionsUsed") or [])
         if label in ("spot", "spot_fins"):
             assert len(after.json.get("images") or []) < len(before.json["images"])
+
+
+def test_reference_table_matches_the_schemas():
+    # the classes' reference fields come from src/references.js: it must be what tools/references.mjs derives from
+    # schemas/ now, and that derivation must agree with the hand-kept REFS above
+    _require_package()
+    check = _node_tool("--check")
+    assert check.returncode == 0, check.stderr
+    derived = _node_tool("--json")
+    assert derived.returncode == 0, derived.stderr
+    table = json.loads(derived.stdout)
+    flat = {name: {pattern: kind for refs in places.values() for pattern, kind, *_ in refs}
+            for name, places in table.items()}
+    assert flat == REFS
+    # extensions with a schema in schemas/ are all in the table (none forgotten)
+    schemas = {p.parent.parent.name for p in (PACKAGE.parents[1] / "schemas").glob("*/schema/*.schema.json")}
+    assert schemas <= set(table), schemas - set(table)

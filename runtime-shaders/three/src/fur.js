@@ -1,0 +1,128 @@
+// BAKER_fur: Lengyel et al. 2001 shells (one blended pass per shell texture) and fins.
+import * as THREE from 'three';
+import { BAKER_EDGES, BAKER_FUR, controls, DIRECTIONAL_DIFFUSE, litShaderMaterial, primitiveOf, requireShader, sceneMaterials, textureOf } from './common.js';
+
+const FUR_SHELL_VERTEX = `
+uniform float u_shell;
+uniform float u_shellCount;
+uniform float u_shellSpacing;
+uniform float u_tiling;
+varying vec2 vUvFur;
+varying vec3 vNormalView;
+void main() {
+	vec3 p = baker_fur_shell_position(position, normal, u_shell, u_shellSpacing, u_shellCount, vec3(0.0));
+	vUvFur = baker_fur_shell_uv(uv, u_tiling);
+	vNormalView = normalize(normalMatrix * normal);
+	gl_Position = projectionMatrix * modelViewMatrix * vec4(p, 1.0);
+}`;
+
+const FUR_SHELL_FRAGMENT = `
+uniform sampler2D u_texture;
+uniform float u_shell;
+uniform float u_shellCount;
+varying vec2 vUvFur;
+varying vec3 vNormalView;
+void main() {
+	vec4 texel = texture(u_texture, vUvFur);
+	if (texel.a < 0.01) discard;
+	vec4 shaded = baker_fur_shell_shade(texel, baker_fur_shell_height(u_shell, u_shellCount), 0.35);
+	vec3 light = ambientLightColor + baker_directional_diffuse(normalize(vNormalView)) * 0.5;
+	gl_FragColor = vec4(shaded.rgb * light, shaded.a);
+}`;
+
+const FUR_FIN_VERTEX = `
+attribute vec3 _fin_v0;
+attribute vec3 _fin_v1;
+attribute vec3 _fin_v2;
+attribute vec3 _fin_v3;
+attribute float _fin_corner;
+attribute vec3 _fur_fin_normal;
+attribute vec2 _fur_fin_uv;
+uniform float u_length;
+uniform float u_threshold;
+varying vec2 vUvFin;
+varying float vWeight;
+varying vec3 vNormalView;
+void main() {
+	vec3 p = baker_fur_fin_position(_fin_v0, _fin_v1, _fur_fin_normal, _fin_corner, u_length);
+	vec3 n0;
+	vec3 n1;
+	baker_fur_fin_face_normals(_fin_v0, _fin_v1, _fin_v2, _fin_v3, n0, n1);
+	vec3 eye = (inverse(modelMatrix) * vec4(cameraPosition, 1.0)).xyz;
+	vWeight = baker_fur_fin_weight(n0, n1, normalize(eye - p), u_threshold);
+	vUvFin = _fur_fin_uv;
+	vNormalView = normalize(normalMatrix * _fur_fin_normal);
+	gl_Position = projectionMatrix * modelViewMatrix * vec4(p, 1.0);
+}`;
+
+const FUR_FIN_FRAGMENT = `
+uniform sampler2D u_texture;
+varying vec2 vUvFin;
+varying float vWeight;
+varying vec3 vNormalView;
+void main() {
+	vec4 texel = texture(u_texture, vUvFin);
+	float a = texel.a * vWeight;
+	if (a < 0.01) discard;
+	vec3 light = ambientLightColor + baker_directional_diffuse(normalize(vNormalView)) * 0.5;
+	gl_FragColor = vec4(texel.rgb * light, a);
+}`;
+
+/** GLTFLoader plugin for BAKER_fur: shells (one transparent pass per shell texture) and fins (Lengyel et al. 2001). */
+export class BakerFurPlugin {
+	constructor(parser, options = {}) {
+		this.parser = parser;
+		this.name = BAKER_FUR;
+		this.shaders = options.shaders || {};
+		this.finThreshold = options.fur?.finThreshold ?? 0.4;
+	}
+
+	async afterRoot(result) {
+		const c = controls(this.parser);
+		const materials = this.parser.json.materials || [];
+		const glsl = () => requireShader(this.shaders, 'fur');
+		for (const [object, , index] of sceneMaterials(this.parser, result.scene)) {
+			const ext = materials[index]?.extensions?.[BAKER_FUR];
+			if (!ext) continue;
+			const primitive = primitiveOf(this.parser, object);
+			const finOf = primitive?.extensions?.[BAKER_FUR]?.finsOf;
+			if (finOf !== undefined) {
+				const texture = await textureOf(this.parser, ext.finTexture);
+				if (!texture) continue;
+				const uniforms = { u_texture: { value: texture }, u_length: { value: ext.length }, u_threshold: { value: this.finThreshold } };
+				object.material = litShaderMaterial({
+					name: 'baker fur fins', uniforms, vertexShader: glsl() + FUR_FIN_VERTEX,
+					fragmentShader: `#include <common>\n#include <lights_pars_begin>\n${glsl()}${DIRECTIONAL_DIFFUSE}${FUR_FIN_FRAGMENT}`,
+					transparent: true, depthWrite: false, side: THREE.DoubleSide,
+				});
+				object.frustumCulled = false;
+				object.renderOrder = 3;
+				c.add('fur', (on) => { object.visible = on; });
+				continue;
+			}
+			if (primitive?.extensions?.[BAKER_EDGES]?.finsOf !== undefined) continue;
+			const textures = await Promise.all((ext.shellTextures || []).map((t) => textureOf(this.parser, t)));
+			const shells = new THREE.Group();
+			shells.name = 'baker fur shells';
+			textures.forEach((texture, i) => {
+				texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+				texture.needsUpdate = true;
+				const uniforms = {
+					u_texture: { value: texture }, u_shell: { value: i }, u_shellCount: { value: ext.shellCount ?? textures.length },
+					u_shellSpacing: { value: ext.shellSpacing ?? (ext.length / textures.length) }, u_tiling: { value: ext.tiling ?? 1 },
+				};
+				const shell = new THREE.Mesh(object.geometry, litShaderMaterial({
+					name: `baker fur shell ${i}`, uniforms, vertexShader: glsl() + FUR_SHELL_VERTEX,
+					fragmentShader: `#include <common>\n#include <lights_pars_begin>\n${glsl()}${DIRECTIONAL_DIFFUSE}${FUR_SHELL_FRAGMENT}`,
+					transparent: true, depthWrite: false,
+				}));
+				shell.renderOrder = 4 + i; // inner to outer
+				shell.frustumCulled = false;
+				shells.add(shell);
+			});
+			object.add(shells);
+			c.add('fur', (on) => { shells.visible = on; });
+		}
+		return null;
+	}
+}

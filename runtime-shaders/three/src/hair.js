@@ -1,0 +1,126 @@
+// BAKER_hair: view-facing ribbons extruded in the vertex shader, Kajiya-Kay shading.
+import * as THREE from 'three';
+import { BAKER_HAIR, controls, litShaderMaterial, primitiveOf, requireShader, trackViewport } from './common.js';
+
+const HAIR_VERTEX = `
+attribute vec3 baker_tangent;
+attribute float baker_param;
+attribute float baker_side;
+attribute float baker_widthScale;
+uniform float u_rootWidth;
+uniform float u_tipWidth;
+uniform vec2 u_viewport;
+varying float vOpacity;
+varying vec3 vTangent;
+varying vec3 vView;
+void main() {
+	vec3 eye = (inverse(modelMatrix) * vec4(cameraPosition, 1.0)).xyz;  // object space
+	float w = baker_hair_width(u_rootWidth, u_tipWidth, baker_param, baker_widthScale);
+	float tanHalfFovY = 1.0 / projectionMatrix[1][1];
+	vec2 cov = baker_hair_coverage(w, baker_hair_pixel_size(distance(eye, position), tanHalfFovY, u_viewport.y));
+	vec3 p = baker_hair_ribbon_position(position, baker_tangent, eye, cov.x, baker_side);
+	vOpacity = cov.y;
+	vec4 view = modelViewMatrix * vec4(p, 1.0);
+	vTangent = normalize((modelViewMatrix * vec4(baker_tangent, 0.0)).xyz);
+	vView = -view.xyz;
+	gl_Position = projectionMatrix * view;
+}`;
+
+const HAIR_FRAGMENT = `
+uniform vec3 u_color;
+uniform vec3 u_specular;
+uniform float u_exponent;
+varying float vOpacity;
+varying vec3 vTangent;
+varying vec3 vView;
+void main() {
+	vec3 T = normalize(vTangent);
+	vec3 V = normalize(vView);
+	vec3 color = ambientLightColor * u_color;
+#if NUM_DIR_LIGHTS > 0
+	for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
+		color += directionalLights[i].color * baker_hair_kajiya_kay(T, directionalLights[i].direction, V, u_color, u_specular, u_exponent);
+	}
+#endif
+	gl_FragColor = vec4(color, vOpacity);
+}`;
+
+/**
+ * Ribbon geometry of a BAKER_hair primitive: ribbon vertex r is line vertex r / 2 on side r % 2 (the extension's
+ * ribbonIndices index them), with the strand's widthScale per vertex.
+ */
+export function ribbonGeometry(line, ribbonIndices, widthScale, verticesPerStrand, attributes) {
+	const count = line.attributes.position.count;
+	const double = (attribute, size) => {
+		const out = new Float32Array(count * 2 * size);
+		for (let v = 0; v < count; v++) {
+			for (let k = 0; k < size; k++) {
+				const x = attribute ? attribute.getComponent(v, k) : 0;
+				out[(2 * v) * size + k] = x;
+				out[(2 * v + 1) * size + k] = x;
+			}
+		}
+		return new THREE.BufferAttribute(out, size);
+	};
+	const geometry = new THREE.BufferGeometry();
+	geometry.setAttribute('position', double(line.attributes.position, 3));
+	geometry.setAttribute('baker_tangent', double(line.getAttribute(attributes.tangent), 3));
+	geometry.setAttribute('baker_param', double(line.getAttribute(attributes.param), 1));
+	const side = new Float32Array(count * 2);
+	const scale = new Float32Array(count * 2);
+	for (let r = 0; r < count * 2; r++) {
+		side[r] = r % 2;
+		scale[r] = widthScale ? widthScale[Math.floor(Math.floor(r / 2) / verticesPerStrand)] : 1;
+	}
+	geometry.setAttribute('baker_side', new THREE.BufferAttribute(side, 1));
+	geometry.setAttribute('baker_widthScale', new THREE.BufferAttribute(scale, 1));
+	geometry.setIndex(new THREE.BufferAttribute(ribbonIndices, 1));
+	return geometry;
+}
+
+/** GLTFLoader plugin for BAKER_hair: view-facing ribbons extruded in the vertex shader, Kajiya-Kay shading. */
+export class BakerHairPlugin {
+	constructor(parser, options = {}) {
+		this.parser = parser;
+		this.name = BAKER_HAIR;
+		this.shaders = options.shaders || {};
+	}
+
+	async afterRoot(result) {
+		const c = controls(this.parser);
+		const lines = [];
+		result.scene.traverse((o) => (o.isLineSegments || o.isLine) && lines.push(o));
+		for (const object of lines) {
+			const ext = primitiveOf(this.parser, object)?.extensions?.[BAKER_HAIR];
+			if (!ext || ext.ribbonIndices === undefined) continue;
+			const [indices, widths] = await Promise.all([
+				this.parser.getDependency('accessor', ext.ribbonIndices),
+				ext.widthScale !== undefined ? this.parser.getDependency('accessor', ext.widthScale) : null,
+			]);
+			const geometry = ribbonGeometry(object.geometry, indices.array, widths && widths.array, ext.verticesPerStrand,
+				{ tangent: (ext.tangentAttribute ?? '_STRAND_TANGENT').toLowerCase(), param: (ext.paramAttribute ?? '_STRAND_PARAM').toLowerCase() });
+			const base = object.material.color ? object.material.color.clone() : new THREE.Color(0.18, 0.11, 0.06);
+			const uniforms = {
+				u_rootWidth: { value: ext.rootWidth }, u_tipWidth: { value: ext.tipWidth },
+				u_viewport: { value: new THREE.Vector2(1, 1) },
+				u_color: { value: new THREE.Vector3(base.r, base.g, base.b) },
+				u_specular: { value: new THREE.Vector3(0.3, 0.28, 0.25) }, u_exponent: { value: 60 },
+			};
+			const glsl = requireShader(this.shaders, 'hair');
+			const ribbons = new THREE.Mesh(geometry, litShaderMaterial({
+				name: 'baker hair ribbons', uniforms, vertexShader: glsl + HAIR_VERTEX,
+				fragmentShader: `#include <common>\n#include <lights_pars_begin>\n${glsl}${HAIR_FRAGMENT}`,
+				transparent: true, side: THREE.DoubleSide,
+			}));
+			ribbons.name = 'baker hair ribbons';
+			ribbons.frustumCulled = false;
+			trackViewport(ribbons, uniforms);
+			object.parent.add(ribbons);
+			ribbons.position.copy(object.position);
+			ribbons.quaternion.copy(object.quaternion);
+			ribbons.scale.copy(object.scale);
+			c.add('hair', (on) => { ribbons.visible = on; object.visible = !on; }); // off: the plain lines glTF defines
+		}
+		return null;
+	}
+}

@@ -1,0 +1,137 @@
+// The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature):
+// the plugins of those extensions each build one part (GLSL module, uniforms, attributes); BakerSurface composes
+// the parts of one material in a single onBeforeCompile.
+import { DIRECTIONAL_DIFFUSE, TECHNIQUES, controls, sceneMaterials } from './common.js';
+
+// ------------------------------------------------------------------------------------------------ surface
+// The surface techniques of one material, composed in one onBeforeCompile: per directional light the Lambert term
+// max(N.L, 0) is replaced by f (vec3): skin LUT (Penner) and/or toon ramp of it; translucency is added; hatching
+// multiplies the outgoing light by the TAM brightness; the curvature view replaces it.
+export class BakerSurface {
+	constructor(material, shaders) {
+		this.material = material;
+		this.shaders = shaders;
+		this.parts = {};       // technique -> { glsl, uniforms, vertex, fragment }
+		this.uniforms = {};
+		const previous = material.onBeforeCompile;
+		material.onBeforeCompile = (shader, renderer) => {
+			if (previous) previous(shader, renderer);
+			this.inject(shader);
+		};
+		material.customProgramCacheKey = () => `baker-surface-${Object.keys(this.parts).sort().join('-')}-${this.attributes().join('-')}`;
+	}
+
+	static of(material, shaders) {
+		material.userData.bakerSurface ??= new BakerSurface(material, shaders);
+		return material.userData.bakerSurface;
+	}
+
+	add(name, part) {
+		this.parts[name] = part;
+		Object.assign(this.uniforms, part.uniforms);
+		this.uniforms[`u_baker_${name}_on`] = { value: 1 };
+		this.material.needsUpdate = true;
+	}
+
+	setEnabled(name, on) {
+		const u = this.uniforms[`u_baker_${name}_on`];
+		if (u) u.value = on ? 1 : 0;
+	}
+
+	attributes() {
+		const names = new Map();
+		for (const p of Object.values(this.parts)) for (const [name, type] of p.attributes || []) names.set(name, type);
+		return [...names.entries()].sort((a, b) => (a[0] < b[0] ? -1 : 1));
+	}
+
+	inject(shader) {
+		const p = this.parts;
+		Object.assign(shader.uniforms, this.uniforms);
+		const attributes = this.attributes();
+		const modules = [...new Set(Object.values(p).map((x) => x.glsl).filter(Boolean))].join('\n');
+		const declarations = Object.keys(this.uniforms).map((name) => {
+			const part = Object.values(p).find((x) => x.types && x.types[name]);
+			return `uniform ${part ? part.types[name] : 'float'} ${name};`;
+		}).join('\n');
+		const varyings = attributes.map(([name, type]) => `varying ${type} vBaker${name};`).join('\n');
+		shader.vertexShader = shader.vertexShader
+			.replace('#include <common>', `#include <common>\n${attributes.map(([n, t]) => `attribute ${t} ${n};`).join('\n')}
+${varyings}\nvarying vec2 vBakerUv;`)
+			.replace('#include <begin_vertex>', `#include <begin_vertex>\n${attributes.map(([n]) => `vBaker${n} = ${n};`).join('\n')}
+vBakerUv = uv;`);
+
+		const diffuse = [];
+		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
+			f = baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, ${p.skin.curvature});
+		}`);
+		if (p.toon) diffuse.push(`if (u_baker_toon_on > 0.5) {
+			// the ramp indexed by the lit shade so far (N.L, or the skin LUT's luminance mapped back to -1..1)
+			float nl = ${p.skin ? 'u_baker_skin_on > 0.5 ? 2.0 * dot(f, vec3(0.2126, 0.7152, 0.0722)) - 1.0 : dotNL' : 'dotNL'};
+			f = vec3(u_bakerToonXtoon == 0 ? baker_toon_ramp(u_bakerToonRamp, nl)
+				: baker_xtoon(u_bakerToonRamp, nl, u_bakerToonXtoon == 1
+					? baker_xtoon_detail_depth(-vViewPosition.z, u_bakerToonDepthRange.x, u_bakerToonDepthRange.y)
+					: baker_xtoon_detail_orientation(normal, normalize(vViewPosition) * -1.0, u_bakerToonOrientationPower)));
+		}`);
+		let lights = '';
+		if (diffuse.length || p.translucency) {
+			lights = `
+#if NUM_DIR_LIGHTS > 0
+	for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
+		vec3 L = directionalLights[i].direction;  // view space, towards the light
+		float dotNL = dot(normal, L);
+		vec3 f = vec3(saturate(dotNL));
+		${diffuse.join('\n\t\t')}
+		reflectedLight.directDiffuse += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * (f - vec3(saturate(dotNL)));
+		${p.translucency ? `reflectedLight.directDiffuse += u_baker_translucency_on * diffuseColor.rgb * directionalLights[i].color *
+			baker_translucency(u_bakerThickness, normal, normalize(vViewPosition), L, vBaker${p.translucency.attribute});` : ''}
+	}
+#endif`;
+		}
+		let outgoing = '';
+		if (p.tam) outgoing += `
+	if (u_baker_tam_on > 0.5) {
+		vec2 tile = baker_tam_coord(vBakerUv, u_bakerTamScale, u_bakerTamFinestSize);
+		float lod = baker_tam_lod(dFdx(tile), dFdy(tile), u_bakerTamFinestSize, u_bakerTamLevels);
+		float darkness = baker_hatching_darkness(normal, baker_key_light(vec3(0.0, 0.0, 1.0)), 1.0);
+		outgoingLight *= baker_hatching(u_bakerTam012, u_bakerTam345, tile, lod, darkness, u_bakerTamTonesA, u_bakerTamTonesB);
+	}`;
+		if (p.curvature) outgoing += `
+	if (u_baker_curvature_on > 0.5) {
+		// diverging map: blue concave, white flat, red convex; curvature * meanLength, saturating at +-1
+		float k = clamp(vBaker${p.curvature.attribute} / u_bakerCurvatureScale, -1.0, 1.0);
+		outgoingLight = k > 0.0 ? mix(vec3(1.0), vec3(0.85, 0.1, 0.05), k) : mix(vec3(1.0), vec3(0.05, 0.2, 0.85), -k);
+		outgoingLight *= 0.35 + 0.65 * saturate(dot(normal, baker_key_light(vec3(0.0, 0.0, 1.0))));
+	}`;
+		shader.fragmentShader = shader.fragmentShader
+			.replace('#include <common>', `#include <common>\n${modules}\n${declarations}\n${varyings}\nvarying vec2 vBakerUv;`)
+			.replace('#include <lights_pars_begin>', `#include <lights_pars_begin>\n${DIRECTIONAL_DIFFUSE}`)
+			.replace('#include <lights_fragment_end>', `#include <lights_fragment_end>\n${lights}`)
+			.replace('#include <opaque_fragment>', `${outgoing}\n#include <opaque_fragment>`);
+	}
+}
+
+export function surfacePlugin(name, build) {
+	return class {
+		constructor(parser, options = {}) {
+			this.parser = parser;
+			this.name = TECHNIQUES[name]?.extension ?? name;
+			this.shaders = options.shaders || {};
+			this.options = options;
+		}
+		async afterRoot(result) {
+			const json = this.parser.json.materials || [];
+			const done = new Set();
+			for (const [object, material, index] of sceneMaterials(this.parser, result.scene)) {
+				const ext = json[index]?.extensions?.[this.name];
+				if (!ext || done.has(material) || ext.finsOf !== undefined) continue;
+				const part = await build.call(this, ext, object, material);
+				if (!part) continue;
+				done.add(material);
+				const surface = BakerSurface.of(material, this.shaders);
+				surface.add(name, part);
+				controls(this.parser).add(name, (on) => surface.setEnabled(name, on));
+			}
+			return null;
+		}
+	};
+}

@@ -1,0 +1,90 @@
+// BAKER_text: a label's glyph quads drawn with the distance-field shader (outline, glow, shadow).
+import * as THREE from 'three';
+import { BAKER_TEXT, controls, requireShader } from './common.js';
+import { BakerGlyphAtlasPlugin } from './glyph_atlas.js';
+
+const TEXT_VERTEX = `
+varying vec2 vUvText;
+void main() {
+	vUvText = uv;
+	gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+}`;
+
+const TEXT_FRAGMENT = `
+uniform sampler2D u_atlas;
+uniform BakerTextStyle u_style;
+uniform int u_fieldType;
+uniform float u_distanceRange;
+uniform vec2 u_shadowOffset;
+varying vec2 vUvText;
+void main() {
+	vec2 atlasSize = vec2(textureSize(u_atlas, 0));
+	float range = baker_text_screen_px_range(u_distanceRange, atlasSize, fwidth(vUvText));
+	vec4 texel = texture(u_atlas, vUvText);
+	vec4 shadowTexel = texture(u_atlas, vUvText - u_shadowOffset);
+	vec4 color = baker_text_shade(u_style, texel, shadowTexel, u_fieldType, u_distanceRange, range);
+	if (color.a <= 0.0) discard;
+	gl_FragColor = color;  // premultiplied
+}`;
+
+const FIELD_TYPES = { sdf: 0, psdf: 1, msdf: 2, mtsdf: 3 };
+
+/** GLTFLoader plugin for BAKER_text: the label's glyph quads drawn with the distance-field shader (outline, glow, shadow). */
+export class BakerTextPlugin {
+	constructor(parser, options = {}) {
+		this.parser = parser;
+		this.name = BAKER_TEXT;
+		this.shaders = options.shaders || {};
+		this.atlas = new BakerGlyphAtlasPlugin(parser);
+	}
+
+	async afterRoot(result) {
+		const c = controls(this.parser);
+		const nodes = this.parser.json.nodes || [];
+		const labels = [];
+		result.scene.traverse((o) => {
+			const index = this.parser.associations.get(o)?.nodes;
+			const ext = index !== undefined && nodes[index]?.extensions?.[BAKER_TEXT];
+			if (ext) labels.push([o, ext]);
+		});
+		for (const [node, ext] of labels) {
+			const atlas = await this.atlas.font(ext.font ?? 0);
+			if (!atlas) continue;
+			const { font, texture } = atlas;
+			const size = font.size ?? 32;
+			const rgba = (a, d) => new THREE.Vector4(...(a ?? d).concat([1, 1, 1, 1]).slice(0, 4));
+			const style = {
+				color: rgba(ext.color, [1, 1, 1, 1]), softness: ext.softness ?? 0,
+				outlineColor: rgba(ext.outline?.color, [0, 0, 0, 1]), outlineWidth: (ext.outline?.width ?? 0) * size,
+				glowColor: rgba(ext.glow?.color, [1, 1, 1, 0]), glowWidth: (ext.glow?.width ?? 0) * size,
+				shadowColor: rgba(ext.shadow?.color, [0, 0, 0, 0]), shadowSoftness: (ext.shadow?.softness ?? 0) * size,
+			};
+			if (!ext.shadow) style.shadowColor.w = 0;
+			// the field saturates half a range outside the glyph: a wider outline would fill the whole quad
+			const widest = 0.5 * (font.distanceRange ?? 4) - 0.5;
+			if (style.outlineWidth > widest) {
+				console.warn(`@baker/three: BAKER_text outline (${style.outlineWidth.toFixed(2)} atlas px) is wider than the ` +
+					`atlas distance range allows; drawn ${widest} px wide`);
+				style.outlineWidth = widest;
+			}
+			const offset = ext.shadow?.offset ?? [0, 0];
+			const uniforms = {
+				u_atlas: { value: texture }, u_style: { value: style }, u_fieldType: { value: FIELD_TYPES[font.type] ?? 2 },
+				u_distanceRange: { value: font.distanceRange ?? 4 },
+				u_shadowOffset: { value: new THREE.Vector2(offset[0] * size / (font.width ?? 1), offset[1] * size / (font.height ?? 1)) },
+			};
+			const material = new THREE.ShaderMaterial({
+				name: 'baker MSDF text', uniforms, vertexShader: TEXT_VERTEX,
+				fragmentShader: requireShader(this.shaders, 'text') + TEXT_FRAGMENT,
+				transparent: true, depthWrite: false, side: THREE.DoubleSide,
+				blending: THREE.CustomBlending, blendSrc: THREE.OneFactor, blendDst: THREE.OneMinusSrcAlphaFactor,
+			});
+			node.traverse((o) => {
+				if (!o.isMesh) return;
+				const fallback = o.material; // glTF's alpha-tested single-channel field
+				c.add('text', (on) => { o.material = on ? material : fallback; });
+			});
+		}
+		return null;
+	}
+}

@@ -1,0 +1,48 @@
+// BAKER_tonal_art_map: hatching with the baked tonal art map (packed layout).
+import * as THREE from 'three';
+import { requireShader, textureOf } from './common.js';
+import { surfacePlugin } from './surface.js';
+
+/**
+ * The TAM's packed textures as two textures whose mip chains are the TAM's own levels (Praun et al. 2001): level i
+ * of the extension is uploaded as mip level i, as baker_hatching.glsl expects.
+ */
+export async function tamTextures(parser, ext) {
+	const levels = ext.levels || [];
+	const loaded = await Promise.all(levels.map((l) => Promise.all((l.textures || []).map((t) => textureOf(parser, t)))));
+	return [0, 1].map((k) => {
+		const images = loaded.map((pair) => pair[k].image);
+		const texture = new THREE.Texture(images[0]);
+		texture.mipmaps = images;
+		texture.colorSpace = THREE.NoColorSpace;
+		texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+		texture.magFilter = THREE.LinearFilter;
+		texture.minFilter = THREE.LinearMipmapLinearFilter;
+		texture.generateMipmaps = false;
+		texture.flipY = false;
+		texture.needsUpdate = true;
+		return texture;
+	});
+}
+
+/** GLTFLoader plugin for BAKER_tonal_art_map (packed layout): hatching strokes, tone from the key light. */
+export const BakerTonalArtMapPlugin = surfacePlugin('tam', async function (ext) {
+	if ((ext.layout ?? 'packed') !== 'packed' || !ext.levels?.length) {
+		console.warn('@baker/three: BAKER_tonal_art_map: only the packed layout is drawn by this plugin');
+		return null;
+	}
+	const [t012, t345] = await tamTextures(this.parser, ext);
+	const tones = ext.tones;
+	return {
+		glsl: requireShader(this.shaders, 'hatching'),
+		uniforms: {
+			u_bakerTam012: { value: t012 }, u_bakerTam345: { value: t345 },
+			u_bakerTamScale: { value: ext.scale ?? ext.levels[0].size },
+			u_bakerTamFinestSize: { value: ext.levels[0].size },
+			u_bakerTamLevels: { value: ext.levels.length },
+			u_bakerTamTonesA: { value: new THREE.Vector3(tones[0], tones[1], tones[2]) },
+			u_bakerTamTonesB: { value: new THREE.Vector3(tones[3], tones[4], tones[5]) },
+		},
+		types: { u_bakerTam012: 'sampler2D', u_bakerTam345: 'sampler2D', u_bakerTamTonesA: 'vec3', u_bakerTamTonesB: 'vec3' },
+	};
+});
