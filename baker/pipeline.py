@@ -1,34 +1,35 @@
-"""Run bakes on an asset and write the result: the Python API behind ``baker bake``."""
+"""Run bakes on an asset in dependency order and write the result atomically: the engine behind ``baker bake``."""
 from __future__ import annotations
 
 from pathlib import Path
 
-from .asset import Asset
-from .errors import BakerError
-from .options import from_mapping
-from .progress import QUIET
-from .steps import BAKES
+from baker import registry
+from baker.errors import BakerError
+from baker.geometry.asset import Asset
+from baker.options import from_mapping
+from baker.progress import QUIET
 
 OUTPUT_SUFFIXES = {".glb", ".gltf", ".usd", ".usda", ".usdc", ".usdz"}
 
 
 def resolve_options(name: str, value):
-    step = BAKES[name]
+    """Options of bake ``name`` from None (defaults), an options instance, or a mapping of option values."""
+    options = registry.bakes()[name].options
     if value is None:
-        return step.options()
-    if isinstance(value, step.options):
+        return options()
+    if isinstance(value, options):
         return value
-    return from_mapping(step.options, dict(value))
+    return from_mapping(options, dict(value))
 
 
 def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None) -> Asset:
+    """Load (or take) an asset and run ``bakes`` on it; each technique runs after those it ``requires``."""
+    order = registry.bake_order(bakes)
     asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset)
     options = options or {}
-    unknown = [b for b in bakes if b not in BAKES]
-    if unknown:
-        raise BakerError(None, f"unknown bake(s) {', '.join(unknown)} (known: {', '.join(BAKES)})")
-    for name in bakes:
-        BAKES[name].run(asset, resolve_options(name, options.get(name)), seed=seed, progress=progress or QUIET)
+    techniques = registry.bakes()
+    for name in order:
+        techniques[name].bake(asset, resolve_options(name, options.get(name)), seed=seed, progress=progress or QUIET)
     return asset
 
 
@@ -40,6 +41,6 @@ def save(asset: Asset, path) -> list[Path]:
         raise BakerError(path, f"unsupported output type '{suffix}' (use one of {', '.join(sorted(OUTPUT_SUFFIXES))})")
     if suffix in (".glb", ".gltf"):
         return asset.doc.save(path)
-    from .io.usd import write_usd
+    from baker.gltf.usd import write_usd
 
-    return write_usd(asset.doc, path)
+    return write_usd(asset.doc, path, registry.usd_primitive_hooks())

@@ -12,7 +12,7 @@ Three layers, each skipped when the one before found errors it cannot read past:
 2. every ``BAKER_*`` extension, wherever it appears, against its JSON schema ``schemas/<EXT>/schema/
    <kind>.<EXT>.schema.json`` (found by that name pattern; ``kind`` is the glTF object type, e.g. ``material``,
    ``mesh.primitive``, ``node``, ``glTF`` for the root), then the extension's semantic rules (``check`` in its module)
-   (data read through :class:`~baker.io.gltf.GltfDocument`).
+   (data read through :class:`~baker.gltf.document.GltfDocument`).
 3. Khronos glTF-Validator (npm ``gltf-validator``, pinned by ``scripts/install-node-tools``), when ``node`` and the
    package are present: its messages are merged, except ``UNSUPPORTED_EXTENSION`` for extensions baker validates.
 """
@@ -20,29 +20,26 @@ from __future__ import annotations
 
 import base64
 import json
-import math
 import os
 import shutil
 import subprocess
 import sys
 import urllib.parse
-from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
-from . import __version__
-from .errors import BakerError
-from .io.gltf import COMPONENT_DTYPES, TYPE_SIZES, GltfDocument, _parse_glb
+from baker.version import __version__
+from baker import registry
+from baker.data import REPO_ROOT, SCHEMA_ROOT
+from baker.errors import BakerError
+from baker.gltf.document import COMPONENT_DTYPES, TYPE_SIZES, GltfDocument, parse_glb
+from baker.checks import ERROR, SEVERITY_NAMES, Issues, is_count, is_index, pointer
 
-REPO_ROOT = Path(__file__).resolve().parents[1]
-SCHEMA_ROOT = REPO_ROOT / "schemas"
 KHRONOS_SCRIPT = Path(__file__).resolve().parent / "js" / "khronos_validate.mjs"
 KHRONOS_TIMEOUT = 300.0  # seconds; the validator decodes every accessor and image
 
-ERROR, WARNING, INFO, HINT = 0, 1, 2, 3
-SEVERITY_NAMES = {ERROR: "error", WARNING: "warning", INFO: "info", HINT: "hint"}
 TRIANGLE_MODES = (4, 5, 6)
 # structural errors after which accessor data can still be read safely
 NON_BLOCKING = {"MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT"}
@@ -55,40 +52,8 @@ COLLECTION_KINDS = {
 }
 
 
-# ---------------------------------------------------------------------------------------------------- report
-def pointer(*parts) -> str:
-    """A JSON pointer (RFC 6901) from path parts."""
-    return "".join("/" + str(p).replace("~", "~0").replace("/", "~1") for p in parts)
 
 
-@dataclass
-class Issues:
-    messages: list = field(default_factory=list)
-
-    def add(self, code: str, message: str, severity: int, ptr: str | None = None, source: str = "baker") -> None:
-        msg = {"code": code, "message": message, "severity": severity}
-        if ptr is not None:
-            msg["pointer"] = ptr
-        msg["source"] = source
-        self.messages.append(msg)
-
-    def error(self, code, message, ptr=None):
-        self.add(code, message, ERROR, ptr)
-
-    def warning(self, code, message, ptr=None):
-        self.add(code, message, WARNING, ptr)
-
-    def info(self, code, message, ptr=None):
-        self.add(code, message, INFO, ptr)
-
-    @property
-    def num_errors(self) -> int:
-        return sum(m["severity"] == ERROR for m in self.messages)
-
-    def as_dict(self) -> dict:
-        counts = [sum(m["severity"] == s for m in self.messages) for s in (ERROR, WARNING, INFO, HINT)]
-        return {"numErrors": counts[0], "numWarnings": counts[1], "numInfos": counts[2], "numHints": counts[3],
-                "messages": self.messages, "truncated": False}
 
 
 # ---------------------------------------------------------------------------------------------------- schemas
@@ -156,8 +121,8 @@ def _walk_extensions(node, parts=()):
 def check_extensions(gltf: dict, issues: Issues) -> dict:
     """Schema-check every BAKER_* extension; return {name: [(object path parts, value)]} of the ones found (plus the
     other extensions an extension module checks)."""
-    registry = schema_registry()
-    known = {ext for ext, _ in registry}
+    schema_files = schema_registry()
+    known = {ext for ext, _ in schema_files}
     checked = set(semantic_checks())  # non-BAKER extensions baker writes (e.g. EXT_mesh_primitive_edge_visibility)
     found: dict[str, list] = {}
     for parts, name, value in _walk_extensions(gltf):
@@ -172,7 +137,7 @@ def check_extensions(gltf: dict, issues: Issues) -> dict:
             issues.warning("BAKER_UNKNOWN_EXTENSION", f"baker has no schema for extension '{name}'", ptr)
             continue
         kind = _object_kind(owner)
-        schema_path = registry.get((name, kind))
+        schema_path = schema_files.get((name, kind))
         if schema_path is None:
             kinds = sorted(k for e, k in registry if e == name)
             issues.error("BAKER_EXTENSION_UNEXPECTED_OBJECT",
@@ -207,13 +172,8 @@ def check_extensions(gltf: dict, issues: Issues) -> dict:
     return found
 
 
-# ---------------------------------------------------------------------------------------------------- structure
-def _is_index(value, collection) -> bool:
-    return isinstance(value, int) and not isinstance(value, bool) and 0 <= value < len(collection)
 
 
-def _is_count(value, minimum=0) -> bool:
-    return isinstance(value, int) and not isinstance(value, bool) and value >= minimum
 
 
 def _buffer_sizes(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issues) -> list:
@@ -226,7 +186,7 @@ def _buffer_sizes(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issues)
             sizes.append(0)
             continue
         declared = buf.get("byteLength")
-        if not _is_count(declared, 1):
+        if not is_count(declared, 1):
             issues.error("BUFFER_BYTE_LENGTH", f"byteLength must be an integer >= 1, got {declared!r}", ptr)
         uri = buf.get("uri")
         if uri is None:
@@ -253,10 +213,10 @@ def _buffer_sizes(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issues)
                 available = 0
             else:
                 available = target.stat().st_size
-        if _is_count(declared) and available < declared:
+        if is_count(declared) and available < declared:
             issues.error("BUFFER_BYTE_LENGTH_MISMATCH",
                          f"byteLength is {declared} but only {available} bytes are available", ptr)
-        sizes.append(min(available, declared) if _is_count(declared) else available)
+        sizes.append(min(available, declared) if is_count(declared) else available)
     return sizes
 
 
@@ -273,15 +233,15 @@ def check_structure(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issue
             issues.error("TYPE_MISMATCH", "bufferView must be an object", ptr)
             continue
         b, offset, length = view.get("buffer"), view.get("byteOffset", 0), view.get("byteLength")
-        if not _is_index(b, buffers):
+        if not is_index(b, buffers):
             issues.error("UNRESOLVED_REFERENCE", f"buffer {b!r} does not exist", ptr + "/buffer")
             continue
-        if not _is_count(offset) or not _is_count(length, 1):
+        if not is_count(offset) or not is_count(length, 1):
             issues.error("BUFFER_VIEW_RANGE", f"byteOffset {offset!r} / byteLength {length!r} must be integers "
                          "(>= 0 and >= 1)", ptr)
             continue
         stride = view.get("byteStride")
-        if stride is not None and not (_is_count(stride, 4) and stride <= 252 and stride % 4 == 0):
+        if stride is not None and not (is_count(stride, 4) and stride <= 252 and stride % 4 == 0):
             issues.error("BUFFER_VIEW_INVALID_BYTE_STRIDE", f"byteStride {stride!r} must be a multiple of 4 in "
                          "4..252", ptr + "/byteStride")
         if sizes[b] is not None and offset + length > sizes[b]:
@@ -306,7 +266,7 @@ def check_structure(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issue
         if atype not in TYPE_SIZES:
             issues.error("VALUE_NOT_IN_LIST", f"type {atype!r} is not one of {', '.join(TYPE_SIZES)}", ptr + "/type")
             ok = False
-        if not _is_count(count, 1):
+        if not is_count(count, 1):
             issues.error("VALUE_NOT_IN_RANGE", f"count must be an integer >= 1, got {count!r}", ptr + "/count")
             ok = False
         if not ok:
@@ -315,16 +275,16 @@ def check_structure(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issue
         if "bufferView" in acc:
             v = acc["bufferView"]
             offset = acc.get("byteOffset", 0)
-            if not _is_index(v, views) or not isinstance(views[v], dict):
+            if not is_index(v, views) or not isinstance(views[v], dict):
                 issues.error("UNRESOLVED_REFERENCE", f"bufferView {v!r} does not exist", ptr + "/bufferView")
-            elif not _is_count(offset):
+            elif not is_count(offset):
                 issues.error("VALUE_NOT_IN_RANGE", f"byteOffset must be an integer >= 0, got {offset!r}",
                              ptr + "/byteOffset")
             else:
                 _, length, stride = view_range(v)
-                stride = stride if _is_count(stride, 1) else elem
+                stride = stride if is_count(stride, 1) else elem
                 end = offset + stride * (count - 1) + elem
-                if _is_count(length) and end > length:
+                if is_count(length) and end > length:
                     issues.error("ACCESSOR_OUT_OF_BOUNDS", f"{count} x {atype} {np.dtype(COMPONENT_DTYPES[ctype])} "
                                  f"(stride {stride}) from byteOffset {offset} need {end} bytes; bufferView {v} has "
                                  f"{length}", ptr)
@@ -340,7 +300,7 @@ def _check_sparse(sparse, acc, views, ptr, issues, view_range) -> None:
         issues.error("TYPE_MISMATCH", "sparse must be an object", ptr)
         return
     n = sparse.get("count")
-    if not _is_count(n, 1) or n > acc["count"]:
+    if not is_count(n, 1) or n > acc["count"]:
         issues.error("VALUE_NOT_IN_RANGE", f"sparse count {n!r} must be in 1..{acc['count']}", ptr + "/count")
         return
     for key, size in (("indices", None), ("values", np.dtype(COMPONENT_DTYPES[acc["componentType"]]).itemsize
@@ -357,9 +317,9 @@ def _check_sparse(sparse, acc, views, ptr, issues, view_range) -> None:
                 continue
             size = np.dtype(COMPONENT_DTYPES[part["componentType"]]).itemsize
         v, offset = part.get("bufferView"), part.get("byteOffset", 0)
-        if not _is_index(v, views) or not isinstance(views[v], dict):
+        if not is_index(v, views) or not isinstance(views[v], dict):
             issues.error("UNRESOLVED_REFERENCE", f"bufferView {v!r} does not exist", sub + "/bufferView")
-        elif _is_count(offset) and offset + size * n > view_range(v)[1]:
+        elif is_count(offset) and offset + size * n > view_range(v)[1]:
             issues.error("ACCESSOR_OUT_OF_BOUNDS", f"sparse {key} need {offset + size * n} bytes; bufferView {v} "
                          f"has {view_range(v)[1]}", sub)
 
@@ -379,7 +339,7 @@ def _texture_infos(material: dict, parts: tuple):
 def _check_references(gltf: dict, issues: Issues) -> None:
     def ref(value, collection_name, ptr):
         collection = gltf.get(collection_name) or []
-        if not _is_index(value, collection):
+        if not is_index(value, collection):
             issues.error("UNRESOLVED_REFERENCE", f"{collection_name[:-1]} {value!r} does not exist", ptr)
             return False
         return True
@@ -446,7 +406,7 @@ def _check_references(gltf: dict, issues: Issues) -> None:
         for parts, info in _texture_infos(material, ("materials", m)):
             ref(info.get("index"), "textures", pointer(*parts, "index"))
             tc = info.get("texCoord", 0)
-            if not _is_count(tc):
+            if not is_count(tc):
                 issues.error("VALUE_NOT_IN_RANGE", f"texCoord must be an integer >= 0, got {tc!r}",
                              pointer(*parts, "texCoord"))
 
@@ -466,73 +426,22 @@ def check_indices(doc: GltfDocument, issues: Issues) -> None:
                              f"(largest {int(indices.max())})", pointer("meshes", m, "primitives", p, "indices"))
 
 
-# ---------------------------------------------------------------------------------------------------- semantics
-def _primitives_using(gltf: dict, material: int):
-    """(mesh, primitive, primitive dict) of every triangle primitive drawn with ``material``, without the fin
-    primitives baker derives from a mesh (they carry no baked surface data)."""
-    from .asset import _derived_fins
-
-    for m, mesh in enumerate(gltf.get("meshes") or []):
-        for p, prim in enumerate(mesh.get("primitives") or []):
-            if prim.get("material") == material and prim.get("mode", 4) in TRIANGLE_MODES \
-                    and not _derived_fins(prim):
-                yield m, p, prim
 
 
-def _number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def check_vertex_attribute(doc: GltfDocument, mesh: int, primitive: int, name: str, issues: Issues, *,
-                           code: str, types: tuple = ("SCALAR",), component_type: int = 5126) -> np.ndarray | None:
-    """Shared rules for a baked per-vertex attribute: present, FLOAT of an allowed type, one value per vertex,
-    finite. Returns the values (float64, non-finite ones included and reported) when the accessor can be read,
-    else None (errors reported)."""
-    gltf = doc.json
-    accessors = gltf.get("accessors") or []
-    prim = gltf["meshes"][mesh]["primitives"][primitive]
-    attrs = prim.get("attributes") or {}
-    prim_ptr = pointer("meshes", mesh, "primitives", primitive, "attributes")
-    if name not in attrs:
-        issues.error(f"{code}_ATTRIBUTE_MISSING", f"the extension names attribute '{name}' but this primitive has none",
-                     prim_ptr)
-        return None
-    a = attrs[name]
-    if not _is_index(a, accessors):
-        return None  # reported as UNRESOLVED_REFERENCE
-    acc = accessors[a]
-    acc_ptr = pointer("accessors", a)
-    if acc.get("componentType") != component_type or acc.get("type") not in types or acc.get("normalized"):
-        issues.error(f"{code}_ACCESSOR_FORMAT", f"'{name}' must be componentType {component_type} "
-                     f"{' or '.join(types)}, not {acc.get('componentType')} {acc.get('type')}", acc_ptr)
-        return None
-    positions = attrs.get("POSITION")
-    if _is_index(positions, accessors) and acc.get("count") != accessors[positions].get("count"):
-        issues.error(f"{code}_ACCESSOR_COUNT", f"'{name}' has {acc.get('count')} values but POSITION has "
-                     f"{accessors[positions].get('count')} vertices", prim_ptr + "/" + name)
-        return None
-    values = doc.accessor(a).astype(np.float64)
-    finite = np.isfinite(values)
-    if not finite.all():
-        issues.error(f"{code}_VALUE_NOT_FINITE", f"{int((~finite).sum())} of {values.size} values are NaN or "
-                     "infinite", acc_ptr)
-    return values
 
 
 # one entry per extension with rules a schema cannot express: (document, [(object path, value)], issues) -> None
 def _also_checked() -> dict:
     """Non-BAKER extensions an extension module validates itself: name -> (name, accessor-valued properties)."""
-    from .extensions import EXTENSIONS
-
-    return {ext: (ext, tuple(fields)) for module in EXTENSIONS.values()
+    return {ext: (ext, tuple(fields)) for module in registry.extensions().values()
             for ext, fields in getattr(module, "ALSO_CHECKS", {}).items()}
 
 
 def semantic_checks() -> dict:
     """Extension name -> check function, from the extension modules (each may define ``check``)."""
-    from .extensions import EXTENSIONS
-
-    return {name: module.check for name, module in EXTENSIONS.items() if hasattr(module, "check")}
+    return registry.semantic_checks()
 
 
 # ---------------------------------------------------------------------------------------------------- Khronos
@@ -568,7 +477,7 @@ def extension_references(gltf: dict, found: dict) -> set:
     extensions baker checks refer to. Khronos' validator does not know these extensions and calls such objects
     unused. Texture references are ``{"index": n}`` objects; accessor references are the integer properties whose
     schema description starts with "Accessor" (the convention of every schema in ``schemas/``)."""
-    registry = schema_registry()
+    schema_files = schema_registry()
     pointers = set()
 
     def walk(value, schema):
@@ -589,7 +498,7 @@ def extension_references(gltf: dict, found: dict) -> set:
 
     for name, places in found.items():
         for parts, value in places:
-            path = registry.get((name, _object_kind(parts)))
+            path = schema_files.get((name, _object_kind(parts)))
             walk(value, json.loads(path.read_text()) if path else {})
     also = {ext: fields for ext, (_, fields) in _also_checked().items()}
     for _, name, value in _walk_extensions(gltf):
@@ -625,7 +534,7 @@ def _read(path: Path, issues: Issues) -> tuple[dict | None, bytes | None, str]:
     mime = "model/gltf-binary" if is_glb else "model/gltf+json"
     try:
         if is_glb:
-            gltf, glb_bin = _parse_glb(path, data)
+            gltf, glb_bin = parse_glb(path, data)
         else:
             gltf, glb_bin = json.loads(data.decode("utf-8")), None
     except BakerError as exc:

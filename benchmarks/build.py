@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
-from baker.build import build, load_recipe  # noqa: E402
+from baker.commands.build import build, load_recipe  # noqa: E402
 from test_build import SHARED, make_thirty  # noqa: E402
 
 

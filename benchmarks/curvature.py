@@ -24,9 +24,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from baker.asset import weld  # noqa: E402
-from baker.bakes.curvature import principal_curvatures  # noqa: E402
-from baker.bakes import skin_lut  # noqa: E402
+from baker.geometry.welding import weld  # noqa: E402
+from baker.techniques.curvature.kernel import principal_curvatures  # noqa: E402
+from baker.techniques.skin import kernel as skin_lut  # noqa: E402
 from common import best_of  # noqa: E402
 
 DEFAULT_MESH = ROOT.parent / "shared" / "assets" / "meshes" / "stanford-bunny.obj"

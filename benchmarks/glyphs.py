@@ -9,7 +9,7 @@ Rows (best of --repeat, wall clock):
   font reading excluded) with numba on 2 threads, and on 1 thread;
 - msdfgen: ``generateMSDF`` per glyph inside one node process (normalize, orientContours, edgeColoringSimple,
   generateMSDF with its default error correction), timed inside node: no process start or JSON parsing.
-Quality is scored by the same code for both (``baker.bakes.glyphs.quality``): each glyph's 8-bit field magnified 8x
+Quality is scored by the same code for both (``baker.techniques.glyphs.quality``): each glyph's 8-bit field magnified 8x
 with bilinear sampling and the median, thresholded at 0.5, vs a supersampled nonzero rasterization of the font's
 outline; "ties" are wrong pixels within one 8-bit step of the outline, which the rounding of 0.5 decides.
 
@@ -32,8 +32,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from baker.bakes.glyphs import GlyphOptions, bake_atlas, load_font  # noqa: E402
-from baker.bakes.glyphs.quality import glyph_errors  # noqa: E402
+from baker.techniques.glyphs.options import GlyphOptions
+from baker.techniques.glyphs.kernel import bake_atlas, load_font  # noqa: E402
+from baker.techniques.glyphs.quality import glyph_errors  # noqa: E402
 from common import best_of  # noqa: E402
 
 DEFAULT_FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")

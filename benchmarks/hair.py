@@ -26,9 +26,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from baker.asset import Asset  # noqa: E402
-from baker.bakes import hair  # noqa: E402
-from baker.hair_command import emitter_from_asset  # noqa: E402
+from baker.geometry.asset import Asset  # noqa: E402
+from baker.techniques.hair import kernel as hair  # noqa: E402
+from baker.techniques.hair.grow import emitter_from_asset  # noqa: E402
 from common import best_of  # noqa: E402
 
 DEFAULT_MESH = ROOT / "examples" / "spot" / "spot.obj"

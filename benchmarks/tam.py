@@ -31,7 +31,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from baker.bakes.tam import TamOptions, _stamp, generate_tam  # noqa: E402
+from baker.techniques.tam.options import TamOptions
+from baker.techniques.tam.kernel import _stamp, generate_tam  # noqa: E402
 from common import best_of  # noqa: E402
 
 

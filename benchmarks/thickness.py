@@ -3,7 +3,7 @@
     python benchmarks/thickness.py [--mesh PATH] [--rays 64] [--repeat 3] [--markdown]
 
 Rows (best of --repeat, wall clock):
-- baker: ``baker.bakes.thickness.local_thickness`` on every vertex (ray generation, Embree, reduction; 2 threads);
+- baker: ``baker.techniques.thickness.kernel.local_thickness`` on every vertex (ray generation, Embree, reduction; 2 threads);
 - pymeshlab: ``compute_scalar_by_shape_diameter_function_per_vertex`` with the same rays per vertex and a full
   hemisphere (cone_amplitude 180), which also casts rays along the inverted normal;
 - embreex bare, 1 and 2 threads: only ``EmbreeScene.run`` (DISTANCE query) on the exact rays baker casts,
@@ -24,8 +24,10 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from baker.asset import vertex_normals, weld  # noqa: E402
-from baker.bakes.thickness import RayScene, _make_rays, hemisphere_samples, local_thickness, morton_order  # noqa: E402
+from baker.geometry.normals import vertex_normals
+from baker.geometry.welding import weld  # noqa: E402
+from baker.geometry.raycast import RayScene
+from baker.techniques.thickness.kernel import _make_rays, hemisphere_samples, local_thickness, morton_order  # noqa: E402
 from common import best_of  # noqa: E402
 
 DEFAULT_MESH = ROOT.parent / "shared" / "assets" / "meshes" / "stanford-bunny.obj"

@@ -10,8 +10,8 @@ from pathlib import Path
 import baker
 from baker import validate
 from baker.pipeline import save
-from baker.preview import preview
-from baker.io.images import write_image
+from baker.preview.core import preview
+from baker.gltf.images import write_image
 
 here = Path(__file__).parent
 mesh = Path(sys.argv[1]) if len(sys.argv) > 1 else here / "spot" / "spot.obj"

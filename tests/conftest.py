@@ -38,13 +38,5 @@ def assert_khronos_clean(path) -> dict | None:
     return report
 
 
-@pytest.fixture(name="khronos_validate")
-def khronos_validate_fixture():
-    """The ``khronos_validate`` helper, for tests that prefer fixtures to imports."""
-    return khronos_validate
 
 
-@pytest.fixture(name="assert_khronos_clean")
-def assert_khronos_clean_fixture():
-    """The ``assert_khronos_clean`` helper, for tests that prefer fixtures to imports."""
-    return assert_khronos_clean

@@ -6,7 +6,9 @@ from pathlib import Path
 import baker
 from baker import validate
 from baker.pipeline import save
-from baker.steps import BAKES
+from baker.registry import bakes
+
+BAKES = bakes()
 from conftest import assert_khronos_clean
 
 SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"

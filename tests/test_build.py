@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 import trimesh
 
-from baker.build import LOCK_NAME, build, check, load_recipe
+from baker.commands.build import LOCK_NAME, build, check, load_recipe
 from baker.cli import main
 from baker.errors import BakerError
 from conftest import assert_khronos_clean

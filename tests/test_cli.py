@@ -11,7 +11,7 @@ import pytest
 import trimesh
 
 from baker.cli import main
-from baker.io.gltf import GltfDocument
+from baker.gltf.document import GltfDocument
 from conftest import assert_khronos_clean
 
 FAST = ["--thickness-rays", "4", "--thickness-texture-size", "32", "-q"]
@@ -127,10 +127,10 @@ def test_quiet_and_non_tty_print_no_progress(tmp_path, sphere_glb):
 def test_readme_documents_every_option_and_command():
     import dataclasses
 
-    from baker.steps import BAKES
+    from baker.registry import bakes
 
     readme = (Path(__file__).parents[1] / "README.md").read_text()
-    for name, step in BAKES.items():
+    for name, step in bakes().items():
         assert f"`{name}`" in readme
         for f in dataclasses.fields(step.options):
             assert f"`{f.name.replace('_', '-')}`" in readme, f"README lacks option {name}.{f.name}"
@@ -139,7 +139,7 @@ def test_readme_documents_every_option_and_command():
 
 
 def test_compressed_geometry_is_refused(tmp_path, sphere_glb):
-    from baker.io.gltf import GltfDocument as Doc
+    from baker.gltf.document import GltfDocument as Doc
 
     doc = Doc.load(sphere_glb)
     doc.use_extension("KHR_draco_mesh_compression", required=True)

@@ -13,9 +13,9 @@ import trimesh
 
 import baker
 from baker import validate
-from baker.asset import weld
-from baker.bakes.curvature import principal_curvatures, vertex_adjacency
-from baker.io.gltf import GltfDocument
+from baker.geometry.welding import weld
+from baker.techniques.curvature.kernel import principal_curvatures, vertex_adjacency
+from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 from conftest import assert_khronos_clean
 
@@ -216,7 +216,7 @@ def test_curvature_texture(tmp_path):
     assert_khronos_clean(out)
     doc = GltfDocument.load(out)
     ext = doc.json["materials"][0]["extensions"]["BAKER_curvature"]
-    from baker.io.images import decode_image
+    from baker.gltf.images import decode_image
 
     image = doc.json["textures"][ext["curvatureTexture"]["index"]]["source"]
     pixels = decode_image(doc.image_bytes(image), ".png")[..., 0].astype(np.float64) / 65535.0

@@ -10,10 +10,10 @@ import pytest
 import trimesh
 
 import baker
-from baker.bakes import edges as E
+from baker.geometry import edges as E
 from baker.cli import main as cli_main
-from baker.extensions import edges as X
-from baker.io.gltf import GltfDocument
+from baker.techniques.edges import extension as X
+from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 from baker.validate import validate_file
 from conftest import assert_khronos_clean
@@ -360,7 +360,7 @@ def test_hidden_lines_of_a_cube_split_where_visibility_changes(tmp_path):
     assert {p[0] for p in visible} == {"contour visible", "crease visible"}
     assert hidden and all(p[0] == "crease hidden" for p in hidden)
     # brute-force truth: project the 12 cube edges; the 3 edges at the corner facing away are hidden
-    from baker.bakes.lines import Camera
+    from baker.techniques.edges.line_drawing import Camera
 
     cam = Camera(np.array([2.5, 1.9, 3.1]), np.zeros(3), np.array([0.0, 1.0, 0.0]), 400, 400, math.radians(40))
     corners = np.array([[x, y, z] for x in (-.5, .5) for y in (-.5, .5) for z in (-.5, .5)])
@@ -384,7 +384,7 @@ def test_lines_rejects_bad_input(tmp_path, capsys):
 
 # ---------------------------------------------------------------------------------------------------------- misc
 def test_weld_matches_the_asset_weld_and_is_deterministic(tmp_path):
-    from baker.asset import weld
+    from baker.geometry.welding import weld
 
     mesh = split_cube()
     rng = np.random.default_rng(0)

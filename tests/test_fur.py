@@ -6,8 +6,9 @@ import math
 import numpy as np
 
 import baker
-from baker.bakes.fur import FurOptions, bake_fur_textures, make_volume, shell_heights
-from baker.io.gltf import GltfDocument
+from baker.techniques.fur.options import FurOptions
+from baker.techniques.fur.kernel import bake_fur_textures, make_volume, shell_heights
+from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 from baker.validate import validate_file
 from conftest import assert_khronos_clean

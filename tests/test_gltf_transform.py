@@ -22,7 +22,7 @@ import pytest
 import baker
 from baker import validate
 from baker.cli import main as baker_main
-from baker.io.gltf import GltfDocument
+from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 from conftest import assert_khronos_clean
 

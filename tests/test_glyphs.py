@@ -10,16 +10,16 @@ import numpy as np
 import pytest
 from scipy import ndimage
 
-from baker.bakes.glyphs import GlyphOptions, bake_atlas, load_font, parse_charset
-from baker.bakes.glyphs.atlas import pack
-from baker.bakes.glyphs.coloring import edge_colors
-from baker.bakes.glyphs.outline import Font, FontMetrics, Glyph
-from baker.bakes.glyphs.quality import (atlas_errors, flatten, magnified_inside, nonzero_raster,
-                                        reference_coverage)
-from baker.bakes.glyphs.sdf import true_distance_field
-from baker.bakes.glyphs.shape import from_contours, prepare
+from baker.techniques.glyphs.options import GlyphOptions
+from baker.techniques.glyphs.kernel import bake_atlas, load_font, parse_charset
+from baker.techniques.glyphs.atlas import pack
+from baker.techniques.glyphs.coloring import edge_colors
+from baker.techniques.glyphs.outline import Font, FontMetrics, Glyph
+from baker.techniques.glyphs.quality import atlas_errors, flatten, magnified_inside, nonzero_raster, reference_coverage
+from baker.techniques.glyphs.sdf import true_distance_field
+from baker.techniques.glyphs.shape import from_contours, prepare
 from baker.cli import main
-from baker.io.images import read_image
+from baker.gltf.images import read_image
 from baker.validate import validate_file
 from conftest import assert_khronos_clean
 
@@ -238,7 +238,7 @@ def test_edge_coloring_corners_share_one_channel(dejavu, strategy):
 
 
 def _directions(points, degree, t):
-    from baker.bakes.glyphs.segments import direction_at
+    from baker.techniques.glyphs.segments import direction_at
 
     d = np.array([direction_at(p, int(k), t) for p, k in zip(points, degree)])
     return d / np.linalg.norm(d, axis=1, keepdims=True)
@@ -417,7 +417,7 @@ def test_text_label_validates(tmp_path):
 @needs_font
 def test_text_layout_round_trip(tmp_path):
     """The quads in the file are where advances and kerning put them, and sample the right atlas boxes."""
-    from baker.io.gltf import GltfDocument
+    from baker.gltf.document import GltfDocument
 
     out = tmp_path / "av.glb"
     assert main(["text", "AV", "--font", str(FONT), "-o", str(out), "--em-size", "2", "-q"]) == 0
@@ -441,7 +441,7 @@ def test_text_layout_round_trip(tmp_path):
 def test_validator_catches_broken_atlas(tmp_path):
     if not FONT.is_file():
         pytest.skip("font missing")
-    from baker.io.gltf import GltfDocument
+    from baker.gltf.document import GltfDocument
 
     out = tmp_path / "label.glb"
     assert main(["text", "ok", "--font", str(FONT), "-o", str(out), "-q"]) == 0

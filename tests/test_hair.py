@@ -9,14 +9,16 @@ import numpy as np
 import pytest
 import trimesh
 
-import baker.bakes.hair as hair
-from baker.asset import Asset, vertex_normals
-from baker.bakes.hair import Emitter, HairOptions, generate_hair, segment_lengths
+import baker.techniques.hair.kernel as hair
+from baker.geometry.asset import Asset
+from baker.geometry.normals import vertex_normals
+from baker.techniques.hair.kernel import Emitter, generate_hair, segment_lengths
+from baker.techniques.hair.options import HairOptions
 from baker.cli import main as cli_main
-from baker.extensions.hair import read_strands
-from baker.extensions.hair_tfx import decode_tfx, encode_tfx, read_tfx, resample_strands, tfx_vertex_count
-from baker.hair_command import emitter_from_asset, make_hair, write_output
-from baker.io.gltf import GltfDocument
+from baker.techniques.hair.extension import read_strands
+from baker.techniques.hair.tfx import decode_tfx, encode_tfx, read_tfx, resample_strands, tfx_vertex_count
+from baker.techniques.hair.grow import emitter_from_asset, make_hair, write_output
+from baker.gltf.document import GltfDocument
 from baker.validate import validate_file
 from conftest import assert_khronos_clean
 

@@ -9,9 +9,9 @@ from scipy import ndimage
 
 import baker
 from baker.cli import main
-from baker.io.images import read_image
+from baker.gltf.images import read_image
 from baker.pipeline import save
-from baker.preview import BACKGROUND, preview
+from baker.preview.core import BACKGROUND, preview
 from conftest import assert_khronos_clean
 
 SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"

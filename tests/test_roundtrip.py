@@ -11,7 +11,7 @@ import pytest
 import trimesh
 
 import baker
-from baker.io.gltf import GltfDocument
+from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 from conftest import assert_khronos_clean
 
@@ -143,7 +143,7 @@ def test_vertex_only_bake_keeps_primitive_accessors(tmp_path):
 
 def test_existing_images_are_kept_and_embedded(tmp_path):
     # a textured glTF with an external PNG: baking to GLB embeds it byte-identically
-    from baker.io.images import encode_image
+    from baker.gltf.images import encode_image
 
     src = tmp_path / "tex.gltf"
     rich_gltf(src, embedded=False)

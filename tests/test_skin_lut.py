@@ -13,10 +13,10 @@ import trimesh
 
 import baker
 from baker import validate
-from baker.bakes import skin_lut as S
+from baker.techniques.skin import kernel as S
 from baker.errors import BakerError
-from baker.io.gltf import GltfDocument
-from baker.io.images import decode_image, encode_image, read_image
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import decode_image, encode_image, read_image
 from baker.pipeline import save
 from conftest import assert_khronos_clean
 

@@ -20,12 +20,14 @@ import pytest
 import trimesh
 
 import baker
-from baker.bakes.tam import TamOptions, generate_tam, rasterize_stroke, tone_targets
-from baker.bakes.toon import ToonOptions, band_value, toon_ramp, xtoon_map
+from baker.techniques.tam.options import TamOptions
+from baker.techniques.tam.kernel import generate_tam, rasterize_stroke, tone_targets
+from baker.techniques.toon.options import ToonOptions
+from baker.techniques.toon.kernel import band_value, toon_ramp, xtoon_map
 from baker.cli import main as cli
-from baker.io.gltf import GltfDocument
-from baker.io.images import decode_image, read_image
-from baker.io.ktx2 import IDENTIFIER, decode_ktx2, encode_ktx2
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import decode_image, read_image
+from baker.gltf.ktx2 import IDENTIFIER, decode_ktx2, encode_ktx2
 from baker.pipeline import save
 from baker.validate import validate_file
 from conftest import assert_khronos_clean

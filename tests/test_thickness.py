@@ -8,9 +8,10 @@ import pytest
 import trimesh
 
 import baker
-from baker.bakes.thickness import RayScene, _make_rays, hemisphere_samples, local_thickness
-from baker.io.gltf import GltfDocument
-from baker.io.images import decode_image
+from baker.geometry.raycast import RayScene
+from baker.techniques.thickness.kernel import _make_rays, hemisphere_samples, local_thickness
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import decode_image
 from baker.pipeline import save
 from conftest import assert_khronos_clean
 

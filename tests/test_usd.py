@@ -13,10 +13,10 @@ trimesh = pytest.importorskip("trimesh")
 from pxr import Gf, Sdf, Usd, UsdGeom, UsdShade, Vt  # noqa: E402
 
 import baker  # noqa: E402
-from baker.asset import Asset  # noqa: E402
+from baker.geometry.asset import Asset  # noqa: E402
 from baker.errors import BakerError  # noqa: E402
-from baker.io.gltf import GltfDocument  # noqa: E402
-from baker.io.usd import node_matrix, write_usd  # noqa: E402
+from baker.gltf.document import GltfDocument  # noqa: E402
+from baker.gltf.usd import node_matrix, write_usd  # noqa: E402
 from baker.pipeline import save  # noqa: E402
 
 RADIUS = 2.0
@@ -276,7 +276,7 @@ def test_usd_input_skips_hidden_and_reads_instances(tmp_path):
         mesh.CreateFaceVertexIndicesAttr([0, 1, 2])
     stage.GetRootLayer().Save()
 
-    from baker.io.usd import read_usd
+    from baker.gltf.usd import read_usd
 
     scene = read_usd(path)
     assert sorted(scene.geometry) == ["/Instances/A/Cube", "/Instances/B/Cube", "/World/Cube"]

@@ -14,7 +14,7 @@ import baker
 import baker.pipeline
 from baker import validate
 from baker.cli import main as cli
-from baker.io.gltf import GltfDocument
+from baker.gltf.document import GltfDocument
 from conftest import assert_khronos_clean, khronos_validate
 
 EXT = "/materials/0/extensions/BAKER_thickness"

@@ -20,8 +20,8 @@ import pytest
 from scipy import ndimage
 
 import baker
-from baker import preview as pv
-from baker.io.images import read_image
+from baker.preview import core as pv
+from baker.gltf.images import read_image
 from baker.cli import main as baker_main
 from baker.pipeline import save
 from conftest import assert_khronos_clean

@@ -19,7 +19,7 @@ import trimesh
 from scipy.spatial import ConvexHull
 
 import baker
-from baker.io.gltf import GltfDocument
+from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 
 from . import twins_edges as twins

@@ -186,10 +186,10 @@ def test_shading_matches_twin(gl_context, inputs, mode, name):
 @pytest.fixture(scope="module")
 def baked_strands(tmp_path_factory):
     """Children baked on Spot by ``baker hair`` and read back from the written .glb."""
-    from baker.bakes.hair import HairOptions
-    from baker.extensions.hair import read_strands
-    from baker.hair_command import make_hair, write_output
-    from baker.io.gltf import GltfDocument
+    from baker.techniques.hair.options import HairOptions
+    from baker.techniques.hair.extension import read_strands
+    from baker.techniques.hair.grow import make_hair, write_output
+    from baker.gltf.document import GltfDocument
 
     out = tmp_path_factory.mktemp("hairgl") / "hair.glb"
     opts = HairOptions(guides=30, children=4, segments=8, length=0.3)

@@ -18,8 +18,8 @@ import pytest
 import trimesh
 
 import baker
-from baker.io.gltf import GltfDocument
-from baker.io.images import decode_image
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import decode_image
 from baker.pipeline import save
 
 from . import twins_hatching as twins
@@ -355,7 +355,8 @@ def test_volume_matches_twin(gl_context):
     """Webb's volume TAM through a sampler2DArray with spatial-only mips, against the twin on random inputs."""
     import moderngl
 
-    from baker.bakes.tam import TamOptions, generate_tam
+    from baker.techniques.tam.options import TamOptions
+    from baker.techniques.tam.kernel import generate_tam
 
     ctx = gl_context
     tones, levels = 8, 3
@@ -397,8 +398,8 @@ def test_volume_matches_twin(gl_context):
 def test_toon_functions_match_twins(gl_context):
     import moderngl
 
-    from baker.bakes.toon import ToonOptions
-    from baker.extensions.toon import toon_pixels
+    from baker.techniques.toon.options import ToonOptions
+    from baker.techniques.toon.extension import toon_pixels
 
     ctx = gl_context
     n = 40

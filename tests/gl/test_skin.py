@@ -17,8 +17,8 @@ import pytest
 import trimesh
 
 import baker
-from baker.io.gltf import GltfDocument
-from baker.io.images import decode_image
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import decode_image
 from baker.pipeline import save
 
 from . import twins_skin as twins

@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from baker.cli import main as baker_main
-from baker.io.gltf import GltfDocument
-from baker.io.images import decode_image
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import decode_image
 
 from . import twins_text as twins
 

@@ -16,8 +16,8 @@ import pytest
 import trimesh
 
 import baker
-from baker.io.gltf import GltfDocument
-from baker.io.images import decode_image
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import decode_image
 from baker.pipeline import save
 
 from . import twins
@@ -333,7 +333,7 @@ def test_pass1_inputs(renders, baked_sphere):
     thickness = renders["normal_thickness"][..., 3][covered]
     low, high = baked_sphere["thickness_range"]
     assert thickness.min() >= low - 1e-5 and thickness.max() <= high + 1e-5
-    # cosine-weighted mean chord of a unit sphere is 4/3 (see baker.bakes.thickness)
+    # cosine-weighted mean chord of a unit sphere is 4/3 (see baker.techniques.thickness.kernel)
     assert abs(np.median(thickness) - 4.0 / 3.0) < 0.05
 
 

@@ -1,0 +1,92 @@
+"""``baker inspect``: a table of what is in an asset (meshes, counts, materials, extensions, baked data)."""
+from __future__ import annotations
+
+import json
+
+
+def describe(path) -> dict:
+    import numpy as np
+
+    from baker.geometry.asset import Asset
+
+    asset = Asset.load(path)
+    doc = asset.doc
+    meshes = []
+    for m, mesh in enumerate(asset.meshes()):
+        for p, prim in enumerate(mesh.get("primitives", [])):
+            attrs = prim.get("attributes", {})
+            row = {
+                "mesh": m,
+                "name": mesh.get("name", ""),
+                "primitive": p,
+                "mode": prim.get("mode", 4),
+                "vertices": doc.json["accessors"][attrs["POSITION"]]["count"] if "POSITION" in attrs else 0,
+                "triangles": len(asset.primitive(m, p).faces) if p in asset.triangle_primitives(m) else 0,
+                "material": prim.get("material"),
+                "attributes": sorted(attrs),
+                "baked": {},
+            }
+            for key in sorted(attrs):
+                if key.startswith("_"):
+                    values = doc.accessor(attrs[key]).astype(np.float64)
+                    row["baked"][key] = {"min": float(values.min()), "mean": float(values.mean()),
+                                         "max": float(values.max())} if values.size else {}
+            meshes.append(row)
+    materials = [{"material": i, "name": mat.get("name", ""), "extensions": sorted(mat.get("extensions", {}))}
+                 for i, mat in enumerate(doc.json.get("materials", []))]
+    return {
+        "file": str(path),
+        "generator": doc.json.get("asset", {}).get("generator", ""),
+        "nodes": len(doc.json.get("nodes", [])),
+        "meshes": meshes,
+        "materials": materials,
+        "textures": len(doc.json.get("textures", [])),
+        "images": len(doc.json.get("images", [])),
+        "animations": len(doc.json.get("animations", [])),
+        "skins": len(doc.json.get("skins", [])),
+        "extensionsUsed": doc.json.get("extensionsUsed", []),
+        "extensionsRequired": doc.json.get("extensionsRequired", []),
+    }
+
+
+def _table(headers: list[str], rows: list[list]) -> str:
+    cells = [[str(c) for c in r] for r in rows]
+    widths = [max(len(h), *(len(r[i]) for r in cells)) if cells else len(h) for i, h in enumerate(headers)]
+    line = lambda r: "  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip()
+    return "\n".join([line(headers), line(["-" * w for w in widths])] + [line(r) for r in cells])
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("inspect", help="print a table of what is in an asset")
+    p.add_argument("file")
+    p.add_argument("--format", choices=("text", "json"), default="text")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    return main(args.file, fmt=args.format)
+
+
+def main(path, fmt: str = "text") -> int:
+    info = describe(path)
+    if fmt == "json":
+        print(json.dumps(info, indent=2))
+        return 0
+    print(f"{info['file']}  ({info['generator']})")
+    print(f"nodes {info['nodes']}  textures {info['textures']}  images {info['images']}  "
+          f"animations {info['animations']}  skins {info['skins']}")
+    print(f"extensionsUsed: {', '.join(info['extensionsUsed']) or '-'}")
+    print()
+    rows = [[r["mesh"], r["name"], r["primitive"], r["vertices"], r["triangles"], r["material"],
+             " ".join(a for a in r["attributes"] if not a.startswith("_"))] for r in info["meshes"]]
+    print(_table(["mesh", "name", "prim", "vertices", "triangles", "material", "attributes"], rows))
+    baked = [[r["mesh"], r["primitive"], k, f"{v.get('min', 0):.6g}", f"{v.get('mean', 0):.6g}", f"{v.get('max', 0):.6g}"]
+             for r in info["meshes"] for k, v in r["baked"].items()]
+    if baked:
+        print()
+        print(_table(["mesh", "prim", "baked attribute", "min", "mean", "max"], baked))
+    if info["materials"]:
+        print()
+        print(_table(["material", "name", "extensions"],
+                     [[m["material"], m["name"], ", ".join(m["extensions"]) or "-"] for m in info["materials"]]))
+    return 0

@@ -1,0 +1,195 @@
+"""Load any supported input into an :class:`Asset`: a lossless glTF document plus geometry accessors.
+
+glTF/GLB are read as they are (see :mod:`baker.gltf.document`). OBJ, PLY and STL are read with trimesh and USD with
+usd-core, then converted to a glTF document, so every bake and writer deals with one representation.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from baker.errors import BakerError
+from baker.gltf.document import GltfDocument
+from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, faces_from_indices, is_derived_fins, to_float
+
+GLTF_SUFFIXES = {".gltf", ".glb"}
+TRIMESH_SUFFIXES = {".obj", ".ply", ".stl"}
+USD_SUFFIXES = {".usd", ".usda", ".usdc", ".usdz"}
+INPUT_SUFFIXES = GLTF_SUFFIXES | TRIMESH_SUFFIXES | USD_SUFFIXES
+
+
+
+@dataclass
+class PrimitiveGeometry:
+    """One triangle primitive in mesh space. ``faces`` index ``positions`` (the primitive's own vertices)."""
+
+    mesh: int
+    primitive: int
+    positions: np.ndarray  # (n, 3) float64
+    faces: np.ndarray  # (m, 3) int64
+    normals: np.ndarray | None  # (n, 3) float64, unit, or None when the primitive has none
+    texcoords: dict  # set index -> (n, 2) float64 (normalized integers converted to [0, 1])
+    material: int | None
+
+
+@dataclass
+class Asset:
+    doc: GltfDocument
+    source: Path
+
+    @classmethod
+    def load(cls, path) -> "Asset":
+        path = Path(path)
+        suffix = path.suffix.lower()
+        if not path.exists():
+            raise BakerError(path, "file not found")
+        if suffix not in INPUT_SUFFIXES:
+            raise BakerError(path, f"unsupported input type '{suffix}' (use one of {', '.join(sorted(INPUT_SUFFIXES))})")
+        if suffix in GLTF_SUFFIXES:
+            doc = GltfDocument.load(path)
+        elif suffix in USD_SUFFIXES:
+            from baker.gltf.usd import read_usd
+
+            doc = _doc_from_trimesh_scene(path, read_usd(path))
+        else:
+            doc = _doc_from_trimesh_scene(path, _load_trimesh(path))
+        asset = cls(doc=doc, source=path)
+        asset.check_supported()
+        asset.check_has_triangles()
+        return asset
+
+    # compressed geometry keeps its vertices inside the extension: reading the accessors would give zeros
+    UNSUPPORTED = {"KHR_draco_mesh_compression": "Draco-compressed", "EXT_meshopt_compression": "meshopt-compressed"}
+
+    def check_supported(self) -> None:
+        for name, what in self.UNSUPPORTED.items():
+            if name in self.doc.json.get("extensionsUsed", []):
+                raise BakerError(self.source, f"{what} geometry ({name}) is not supported: decompress it first "
+                                              "(e.g. gltf-transform copy --decompress) and bake the result")
+
+    # ------------------------------------------------------------------ geometry
+    def meshes(self) -> list:
+        return self.doc.json.get("meshes", [])
+
+    def check_has_triangles(self) -> None:
+        found = False
+        for m, mesh in enumerate(self.meshes()):
+            for p, prim in enumerate(mesh.get("primitives", [])):
+                if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN):
+                    if len(self.primitive(m, p).faces):
+                        found = True
+        if not self.meshes():
+            raise BakerError(self.source, "no meshes in the asset")
+        if not found:
+            raise BakerError(self.source, "no triangle faces (points or lines only, or empty meshes)")
+
+    def triangle_primitives(self, mesh: int) -> list[int]:
+        """Triangle primitives of ``mesh``, without baker's own derived geometry (edge fins)."""
+        prims = self.meshes()[mesh].get("primitives", [])
+        return [p for p, prim in enumerate(prims)
+                if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)
+                and not is_derived_fins(prim)]
+
+    def primitive(self, mesh: int, primitive: int) -> PrimitiveGeometry:
+        prim = self.meshes()[mesh]["primitives"][primitive]
+        attrs = prim.get("attributes", {})
+        if "POSITION" not in attrs:
+            raise BakerError(self.source, f"mesh {mesh} primitive {primitive} has no POSITION attribute")
+        # to_float honours normalized integers (KHR_mesh_quantization stores positions and normals that way)
+        positions = to_float(self.doc, attrs["POSITION"])
+        n = len(positions)
+        if "indices" in prim:
+            indices = self.doc.accessor(prim["indices"]).astype(np.int64)
+        else:
+            indices = np.arange(n, dtype=np.int64)
+        if len(indices) and (indices.max() >= n or indices.min() < 0):
+            raise BakerError(self.source, f"mesh {mesh} primitive {primitive} has indices out of range (>= {n} vertices)")
+        faces = faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
+        normals = None
+        if "NORMAL" in attrs:
+            normals = to_float(self.doc, attrs["NORMAL"])
+            normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-20)
+        texcoords = {}
+        for key, acc in attrs.items():
+            if key.startswith("TEXCOORD_"):
+                texcoords[int(key[9:])] = to_float(self.doc, acc)
+        return PrimitiveGeometry(mesh, primitive, positions, faces, normals, texcoords, prim.get("material"))
+
+    def mesh_triangles(self, mesh: int) -> tuple[np.ndarray, np.ndarray]:
+        """All triangles of ``mesh`` (every triangle primitive) as (vertices, faces) in mesh space."""
+        verts, faces, base = [], [], 0
+        for p in self.triangle_primitives(mesh):
+            g = self.primitive(mesh, p)
+            verts.append(g.positions)
+            faces.append(g.faces + base)
+            base += len(g.positions)
+        if not verts:
+            return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
+        return np.concatenate(verts), np.concatenate(faces)
+
+
+
+
+
+
+
+
+def _load_trimesh(path: Path):
+    import trimesh
+
+    try:
+        # process=False keeps the file's vertices (no merging); OBJ vertices are split where UVs differ
+        loaded = trimesh.load(str(path), process=False)
+    except Exception as exc:  # trimesh raises many types for malformed files
+        raise BakerError(path, f"cannot read mesh: {exc}") from None
+    if path.suffix.lower() == ".obj" and b"mtllib" not in path.read_bytes():
+        # without a .mtl trimesh invents a material with a 2x2 grey image; keep the glTF default material instead
+        geoms = [loaded] if isinstance(loaded, trimesh.Trimesh) else list(getattr(loaded, "geometry", {}).values())
+        for g in geoms:
+            if getattr(g.visual, "kind", None) == "texture":
+                g.visual.material = trimesh.visual.material.PBRMaterial()
+    return loaded
+
+
+def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
+    """Convert what trimesh (or our USD reader) loaded into a glTF document."""
+    import trimesh
+
+    if isinstance(loaded, trimesh.Trimesh):
+        scene = trimesh.Scene(loaded)
+    elif isinstance(loaded, trimesh.Scene):
+        scene = loaded
+    else:
+        raise BakerError(path, "no triangle faces (the file holds points or lines only)")
+    meshes = [g for g in scene.geometry.values() if isinstance(g, trimesh.Trimesh)]
+    if not meshes or sum(len(g.faces) for g in meshes) == 0:
+        raise BakerError(path, "no triangle faces")
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        glb = Path(d) / "converted.glb"
+        # trimesh writes vertex normals only when it has them; keep what the file had
+        glb.write_bytes(trimesh.exchange.gltf.export_glb(scene, include_normals=True))
+        doc = GltfDocument.load(glb)
+    doc.path = path
+    # trimesh leaves bufferView.target unset; say which views are vertex data and which are indices
+    for mesh in doc.json.get("meshes", []):
+        for prim in mesh.get("primitives", []):
+            for acc in prim.get("attributes", {}).values():
+                _set_view_target(doc, acc, 34962)
+            if "indices" in prim:
+                _set_view_target(doc, prim["indices"], 34963)
+    doc.json["asset"]["generator"] = "baker (converted from " + path.suffix.lower().lstrip(".") + ")"
+    return doc
+
+
+def _set_view_target(doc: GltfDocument, accessor: int, target: int) -> None:
+    view = doc.json["accessors"][accessor].get("bufferView")
+    if view is not None:
+        doc.json["bufferViews"][view].setdefault("target", target)
+
+
+
+

@@ -1,0 +1,36 @@
+"""First-hit ray queries over a triangle mesh: Embree called directly, or embreex when its library is missing."""
+from __future__ import annotations
+
+import numpy as np
+
+from baker.geometry import embree
+
+
+class RayScene:
+    """A triangle mesh ready for rays: Embree called directly (:mod:`baker.geometry.embree`) or, when its library
+    cannot be loaded, embreex's batch API. ``distances`` returns first-hit distances (>= 1e37 on a miss)."""
+
+    MISS = 1e37
+
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray, backend: str = "auto"):
+        if backend not in ("auto", "direct", "embreex"):
+            raise ValueError(f"unknown ray backend {backend!r}")
+        self.direct = None
+        if backend in ("auto", "direct") and embree.AVAILABLE:
+            self.direct = embree.DirectScene(vertices, faces)
+        elif backend == "direct":
+            raise RuntimeError("the Embree library is not available")
+        else:
+            from embreex import rtcore_scene
+            from embreex.mesh_construction import TriangleMesh
+
+            self._scene = rtcore_scene.EmbreeScene()
+            TriangleMesh(self._scene, np.ascontiguousarray(vertices, np.float32),
+                         np.ascontiguousarray(faces, np.int32))
+
+    def distances(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
+        if self.direct is not None:
+            return self.direct.distances(origins, directions)
+        # the DISTANCE query returns tfar alone: no u/v/Ng/primID arrays to allocate per ray
+        return self._scene.run(np.ascontiguousarray(origins, np.float32),
+                               np.ascontiguousarray(directions, np.float32), query="DISTANCE")

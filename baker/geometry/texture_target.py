@@ -1,0 +1,130 @@
+"""Choose, per material, the UV set and texels a texture bake writes into.
+
+A texture bake writes one image per material (a glTF textureInfo belongs to a material). All triangle primitives
+using the material share it: their TEXCOORD_0 is used when present, inside [0, 1] and free of overlaps; otherwise
+xatlas unwraps all of them into one atlas, each primitive is re-indexed (vertices split along the new seams, every
+attribute and morph target copied along) and the new layout becomes a new TEXCOORD set.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from baker.geometry.asset import Asset, PrimitiveGeometry
+from baker.geometry.normals import vertex_normals
+from baker.geometry.welding import weld
+from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER
+from baker.geometry.texture_space import TexelSamples, rasterize_uv, unwrap, uv_layout_usable
+
+
+@dataclass
+class PrimitiveTexels:
+    geometry: PrimitiveGeometry
+    normals: np.ndarray  # (n, 3) per-vertex normals used for sampling (the primitive's, or welded smooth ones)
+    texels: TexelSamples
+
+
+@dataclass
+class MaterialTarget:
+    material: int
+    texcoord: int
+    size: int
+    primitives: list  # of PrimitiveTexels
+    unwrapped: bool
+
+    @property
+    def mask(self) -> np.ndarray:
+        m = np.zeros((self.size, self.size), bool)
+        for p in self.primitives:
+            m[p.texels.rows, p.texels.cols] = True
+        return m
+
+
+def material_groups(asset: Asset) -> dict[int, list[tuple[int, int]]]:
+    """Triangle primitives by material index; primitives without one get a new default material (same look)."""
+    doc = asset.doc
+    groups: dict[int, list] = {}
+    default = None
+    for m in range(len(asset.meshes())):
+        for p in asset.triangle_primitives(m):
+            prim = asset.meshes()[m]["primitives"][p]
+            if "material" not in prim:
+                if default is None:
+                    mats = doc.json.setdefault("materials", [])
+                    mats.append({"name": "baker_default"})  # all-default material == glTF's implicit default
+                    default = len(mats) - 1
+                prim["material"] = default
+            groups.setdefault(prim["material"], []).append((m, p))
+    return dict(sorted(groups.items()))
+
+
+def smooth_normals(geometry: PrimitiveGeometry) -> np.ndarray:
+    """The primitive's own normals, or area-weighted normals over position-welded vertices (no seams)."""
+    if geometry.normals is not None:
+        return geometry.normals
+    welded, inverse = weld(geometry.positions)
+    return vertex_normals(welded, inverse[geometry.faces])[inverse]
+
+
+def material_targets(asset: Asset, size: int, seed: int = 0) -> list[MaterialTarget]:
+    targets = []
+    for material, members in material_groups(asset).items():
+        geoms = [asset.primitive(m, p) for m, p in members]
+        geoms = [g for g in geoms if len(g.faces)]
+        if not geoms:
+            continue
+        if _existing_uv_usable(geoms, size):
+            texcoord, unwrapped = 0, False
+        else:
+            texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
+            layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=size, seed=seed)
+            for (m, p), (vmap, faces, uv) in zip(members, layouts):
+                reindex_primitive(asset, m, p, vmap, faces, uv, texcoord)
+            geoms = [asset.primitive(m, p) for m, p in members]
+            unwrapped = True
+        prims = [PrimitiveTexels(g, smooth_normals(g), rasterize_uv(g.texcoords[texcoord], g.faces, size, size))
+                 for g in geoms]
+        targets.append(MaterialTarget(material, texcoord, size, prims, unwrapped))
+    return targets
+
+
+def _existing_uv_usable(geoms: list[PrimitiveGeometry], size: int) -> bool:
+    if not all(0 in g.texcoords for g in geoms):
+        return False
+    uvs, faces, base = [], [], 0
+    for g in geoms:
+        uvs.append(g.texcoords[0])
+        faces.append(g.faces + base)
+        base += len(g.texcoords[0])
+    return uv_layout_usable(np.concatenate(uvs), np.concatenate(faces), size=min(size, 1024))
+
+
+def reindex_primitive(asset: Asset, mesh: int, primitive: int, vmap: np.ndarray, faces: np.ndarray,
+                       uv: np.ndarray, texcoord: int) -> None:
+    """Split the primitive's vertices as xatlas did and add the new UVs as TEXCOORD_<texcoord>."""
+    doc = asset.doc
+    prim = asset.meshes()[mesh]["primitives"][primitive]
+
+    def copy_attributes(attributes: dict) -> dict:
+        out = {}
+        for key, acc in attributes.items():
+            info = doc.json["accessors"][acc]
+            data = doc.accessor(acc)[vmap]
+            out[key] = doc.add_accessor(data, normalized=bool(info.get("normalized")),
+                                        min_max=key == "POSITION" or "min" in info)
+        return out
+
+    prim["attributes"] = copy_attributes(prim["attributes"])
+    if "targets" in prim:
+        prim["targets"] = [copy_attributes(t) for t in prim["targets"]]
+    new_uv = doc.add_accessor(uv.astype(np.float32))
+    # TEXCOORD sets must be contiguous: a primitive with fewer sets than its material's others gets the new
+    # layout in the missing slots too
+    for k in range(texcoord + 1):
+        prim["attributes"].setdefault(f"TEXCOORD_{k}", new_uv)
+    prim["attributes"][f"TEXCOORD_{texcoord}"] = new_uv
+    index_type = np.uint16 if len(vmap) < 65535 else np.uint32
+    prim["indices"] = doc.add_accessor(faces.reshape(-1).astype(index_type), target=TARGET_ELEMENT_ARRAY_BUFFER)
+    if prim.get("mode", 4) != 4:
+        prim["mode"] = 4  # strips and fans came back from xatlas as a triangle list

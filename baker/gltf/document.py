@@ -1,0 +1,445 @@
+"""A lossless glTF 2.0 document: the JSON as parsed, plus the binary data it points to.
+
+baker keeps the source JSON as a plain ``dict`` so that every node, material, animation, skin, extension and extra
+it does not touch is written back unchanged (pygltflib and trimesh rebuild the document from their own classes,
+which reorders or drops what they do not model). Binary data is merged into a single buffer at load time: the
+accessor data stays byte-identical, only ``bufferView.buffer``/``byteOffset`` change, which is what a GLB needs
+anyway and makes appending new accessors trivial.
+"""
+from __future__ import annotations
+
+import base64
+import copy
+import json
+import mimetypes
+import struct
+import urllib.parse
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from baker.errors import BakerError
+from baker.gltf.atomic import atomic_path
+
+GLB_MAGIC = 0x46546C67  # b"glTF"
+CHUNK_JSON = 0x4E4F534A
+CHUNK_BIN = 0x004E4942
+
+COMPONENT_DTYPES = {
+    5120: np.int8,
+    5121: np.uint8,
+    5122: np.int16,
+    5123: np.uint16,
+    5125: np.uint32,
+    5126: np.float32,
+}
+DTYPE_COMPONENTS = {np.dtype(v): k for k, v in COMPONENT_DTYPES.items()}
+TYPE_SIZES = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9, "MAT4": 16}
+SIZE_TYPES = {1: "SCALAR", 2: "VEC2", 3: "VEC3", 4: "VEC4"}
+
+TARGET_ARRAY_BUFFER = 34962
+TARGET_ELEMENT_ARRAY_BUFFER = 34963
+
+
+def _align(n: int, a: int = 4) -> int:
+    return (n + a - 1) // a * a
+
+
+def _decode_data_uri(uri: str) -> tuple[bytes, str | None]:
+    header, _, payload = uri.partition(",")
+    mime = header[5:].split(";")[0] or None
+    if ";base64" in header:
+        return base64.b64decode(payload), mime
+    return urllib.parse.unquote_to_bytes(payload), mime
+
+
+@dataclass
+class GltfDocument:
+    """A glTF document held losslessly.
+
+    Attributes
+    ----------
+    json : dict
+        The glTF JSON, exactly as read (plus what baker adds).
+    bin : bytearray
+        The single merged binary buffer (``buffers[0]``), or empty when the asset has no binary data.
+    path : Path or None
+        Where it was read from (for error messages and external resources).
+    image_files : dict[int, bytes]
+        Bytes of images referenced by an external ``uri``, read at load time so outputs can embed or copy them.
+    """
+
+    json: dict = field(default_factory=lambda: {"asset": {"version": "2.0", "generator": "baker"}})
+    bin: bytearray = field(default_factory=bytearray)
+    path: Path | None = None
+    image_files: dict = field(default_factory=dict)
+    # images baker adds: index -> (bytes, mimeType, file stem); written as bufferViews (GLB) or files (.gltf)
+    new_images: dict = field(default_factory=dict)
+
+    # ------------------------------------------------------------------ reading
+    @classmethod
+    def load(cls, path) -> "GltfDocument":
+        path = Path(path)
+        if not path.is_file():
+            raise BakerError(path, "file not found")
+        data = path.read_bytes()
+        if path.suffix.lower() == ".glb" or data[:4] == b"glTF":
+            gltf, bin_chunk = parse_glb(path, data)
+        else:
+            try:
+                gltf = json.loads(data.decode("utf-8"))
+            except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+                raise BakerError(path, f"broken JSON: {exc}") from None
+            bin_chunk = None
+        if not isinstance(gltf, dict) or "asset" not in gltf:
+            raise BakerError(path, "not a glTF document (no 'asset' object)")
+        version = str(gltf.get("asset", {}).get("version", ""))
+        if not version.startswith("2."):
+            raise BakerError(path, f"unsupported glTF version {version!r} (baker reads glTF 2.x)")
+        doc = cls(json=gltf, path=path)
+        doc._merge_buffers(bin_chunk)
+        doc._read_external_images()
+        return doc
+
+    def _resolve_uri(self, uri: str) -> bytes:
+        if uri.startswith("data:"):
+            return _decode_data_uri(uri)[0]
+        base = self.path.parent if self.path else Path(".")
+        target = base / urllib.parse.unquote(uri)
+        if not target.is_file():
+            raise BakerError(self.path, f"referenced file '{uri}' not found")
+        return target.read_bytes()
+
+    def _merge_buffers(self, bin_chunk: bytes | None) -> None:
+        buffers = self.json.get("buffers", [])
+        merged = bytearray()
+        offsets = []
+        for i, buf in enumerate(buffers):
+            if "uri" in buf:
+                data = self._resolve_uri(buf["uri"])
+            elif i == 0 and bin_chunk is not None:
+                data = bin_chunk
+            else:
+                # e.g. an EXT_meshopt_compression fallback buffer: no data, only a size
+                data = b"\0" * int(buf.get("byteLength", 0))
+            length = int(buf.get("byteLength", len(data)))
+            if len(data) < length:
+                raise BakerError(self.path, f"buffer {i} is truncated ({len(data)} of {length} bytes)")
+            merged.extend(b"\0" * (_align(len(merged), 16) - len(merged)))
+            offsets.append(len(merged))
+            merged.extend(data[:length])
+        for view in self.json.get("bufferViews", []):
+            b = view.get("buffer", 0)
+            if not (0 <= b < len(offsets)):
+                raise BakerError(self.path, f"bufferView refers to missing buffer {b}")
+            view["buffer"] = 0
+            view["byteOffset"] = view.get("byteOffset", 0) + offsets[b]
+            meshopt = view.get("extensions", {}).get("EXT_meshopt_compression")
+            if isinstance(meshopt, dict) and "buffer" in meshopt:
+                meshopt["byteOffset"] = meshopt.get("byteOffset", 0) + offsets[meshopt["buffer"]]
+                meshopt["buffer"] = 0
+        # keep the first buffer's own keys (name, extras, extensions); its uri is set on save
+        if buffers:
+            first = {k: v for k, v in buffers[0].items() if k not in ("uri", "byteLength")}
+            self.json["buffers"] = [first]
+        self.bin = merged
+
+    def _read_external_images(self) -> None:
+        for i, image in enumerate(self.json.get("images", [])):
+            uri = image.get("uri")
+            if uri is not None and not uri.startswith("data:"):
+                self.image_files[i] = self._resolve_uri(uri)
+
+    # ------------------------------------------------------------------ accessors
+    def accessor(self, index: int) -> np.ndarray:
+        """Read accessor ``index`` as an array of shape (count, n) (or (count,) for SCALAR), sparse applied.
+
+        Normalized integer data is returned as stored (not converted to float).
+        """
+        acc = self.json["accessors"][index]
+        dtype = np.dtype(COMPONENT_DTYPES[acc["componentType"]])
+        ncomp = TYPE_SIZES[acc["type"]]
+        count = acc["count"]
+        if "bufferView" in acc:
+            view = self.json["bufferViews"][acc["bufferView"]]
+            start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
+            elem = dtype.itemsize * ncomp
+            stride = view.get("byteStride", 0) or elem
+            end = start + stride * (count - 1) + elem if count else start
+            if end > view.get("byteOffset", 0) + view["byteLength"] or end > len(self.bin):
+                raise BakerError(self.path, f"accessor {index} reads past the end of its bufferView")
+            raw = np.frombuffer(self.bin, dtype=np.uint8, count=end - start, offset=start)
+            if stride == elem:
+                out = raw.view(dtype).reshape(count, ncomp).copy()
+            else:
+                rows = np.lib.stride_tricks.as_strided(raw, shape=(count, elem), strides=(stride, 1))
+                out = np.ascontiguousarray(rows).view(dtype).reshape(count, ncomp)
+        else:
+            out = np.zeros((count, ncomp), dtype=dtype)
+        sparse = acc.get("sparse")
+        if sparse:
+            n = sparse["count"]
+            idx_info, val_info = sparse["indices"], sparse["values"]
+            iview = self.json["bufferViews"][idx_info["bufferView"]]
+            idx = np.frombuffer(self.bin, dtype=COMPONENT_DTYPES[idx_info["componentType"]], count=n,
+                                offset=iview.get("byteOffset", 0) + idx_info.get("byteOffset", 0))
+            vview = self.json["bufferViews"][val_info["bufferView"]]
+            vals = np.frombuffer(self.bin, dtype=dtype, count=n * ncomp,
+                                 offset=vview.get("byteOffset", 0) + val_info.get("byteOffset", 0))
+            out[idx.astype(np.int64)] = vals.reshape(n, ncomp)
+        return out[:, 0] if acc["type"] == "SCALAR" else out
+
+    def add_buffer_view(self, data: bytes, target: int | None = None, byte_stride: int | None = None) -> int:
+        """Append ``data`` to the binary buffer (4-byte aligned) and return the new bufferView index."""
+        self.bin.extend(b"\0" * (_align(len(self.bin)) - len(self.bin)))
+        view = {"buffer": 0, "byteOffset": len(self.bin), "byteLength": len(data)}
+        if byte_stride:
+            view["byteStride"] = byte_stride
+        if target:
+            view["target"] = target
+        self.bin.extend(data)
+        if not self.json.get("buffers"):
+            self.json["buffers"] = [{}]
+        views = self.json.setdefault("bufferViews", [])
+        views.append(view)
+        return len(views) - 1
+
+    def add_accessor(self, array: np.ndarray, *, target: int | None = TARGET_ARRAY_BUFFER,
+                     normalized: bool = False, min_max: bool = False, name: str | None = None) -> int:
+        """Append ``array`` ((count,) or (count, n)) as a new tightly packed accessor; return its index."""
+        array = np.ascontiguousarray(array)
+        if array.dtype == np.float64:
+            array = array.astype(np.float32)
+        if array.dtype not in DTYPE_COMPONENTS:
+            raise TypeError(f"no glTF component type for {array.dtype}")
+        ncomp = 1 if array.ndim == 1 else array.shape[1]
+        data = array.astype(array.dtype.newbyteorder("<"), copy=False).tobytes()
+        # vertex attributes must have a byteStride multiple of 4: pad small elements (e.g. 3 x uint8)
+        stride = None
+        if target == TARGET_ARRAY_BUFFER and (array.dtype.itemsize * ncomp) % 4:
+            elem = array.dtype.itemsize * ncomp
+            stride = _align(elem)
+            padded = np.zeros((len(array), stride), np.uint8)
+            padded[:, :elem] = np.frombuffer(data, np.uint8).reshape(len(array), elem)
+            data = padded.tobytes()
+        acc = {
+            "bufferView": self.add_buffer_view(data, target=target, byte_stride=stride),
+            "componentType": DTYPE_COMPONENTS[array.dtype],
+            "count": int(len(array)),
+            "type": SIZE_TYPES[ncomp] if array.ndim > 1 else "SCALAR",
+        }
+        if normalized:
+            acc["normalized"] = True
+        if min_max and len(array):
+            flat = array.reshape(len(array), -1)
+            cast = float if array.dtype.kind == "f" else int
+            acc["min"] = [cast(v) for v in flat.min(axis=0)]
+            acc["max"] = [cast(v) for v in flat.max(axis=0)]
+        if name:
+            acc["name"] = name
+        accessors = self.json.setdefault("accessors", [])
+        accessors.append(acc)
+        return len(accessors) - 1
+
+    # ------------------------------------------------------------------ images
+    def add_image(self, data: bytes, mime_type: str, name: str) -> int:
+        """Add an image; it becomes a bufferView in a GLB or a file ``<out-stem>_<name>.<ext>`` beside a .gltf."""
+        images = self.json.setdefault("images", [])
+        images.append({"name": name, "mimeType": mime_type})
+        index = len(images) - 1
+        self.new_images[index] = (data, mime_type, name)
+        return index
+
+    def add_texture(self, image: int, sampler: dict | None = None, name: str | None = None) -> int:
+        tex = {"source": image}
+        if sampler is not None:
+            samplers = self.json.setdefault("samplers", [])
+            if sampler in samplers:
+                tex["sampler"] = samplers.index(sampler)
+            else:
+                samplers.append(dict(sampler))
+                tex["sampler"] = len(samplers) - 1
+        if name:
+            tex["name"] = name
+        textures = self.json.setdefault("textures", [])
+        textures.append(tex)
+        return len(textures) - 1
+
+    def image_bytes(self, index: int) -> bytes:
+        """The encoded bytes of image ``index`` wherever they live (bufferView, data URI, file, or new)."""
+        if index in self.new_images:
+            return self.new_images[index][0]
+        image = self.json["images"][index]
+        if "bufferView" in image:
+            view = self.json["bufferViews"][image["bufferView"]]
+            off = view.get("byteOffset", 0)
+            return bytes(self.bin[off: off + view["byteLength"]])
+        uri = image.get("uri", "")
+        if uri.startswith("data:"):
+            return _decode_data_uri(uri)[0]
+        return self.image_files[index]
+
+    # ------------------------------------------------------------------ extensions
+    def use_extension(self, name: str, required: bool = False) -> None:
+        used = self.json.setdefault("extensionsUsed", [])
+        if name not in used:
+            used.append(name)
+        if required:
+            req = self.json.setdefault("extensionsRequired", [])
+            if name not in req:
+                req.append(name)
+
+    # ------------------------------------------------------------------ writing
+    def save(self, path) -> list[Path]:
+        """Write ``.glb`` or ``.gltf`` (+ ``.bin`` + images) atomically, chosen by the file extension.
+
+        Returns every file written (the main file last)."""
+        path = Path(path)
+        suffix = path.suffix.lower()
+        if suffix not in (".glb", ".gltf"):
+            raise BakerError(path, "output must end in .glb or .gltf")
+        gltf = copy.deepcopy(self.json)
+        binary = bytearray(self.bin)
+        side_files: dict[str, bytes] = {}
+
+        def append_view(data: bytes) -> int:
+            binary.extend(b"\0" * (_align(len(binary)) - len(binary)))
+            gltf.setdefault("bufferViews", []).append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(data)})
+            binary.extend(data)
+            return len(gltf["bufferViews"]) - 1
+
+        for i, image in enumerate(gltf.get("images", [])):
+            if i in self.new_images:
+                data, mime, name = self.new_images[i]
+                if suffix == ".glb":
+                    image["bufferView"] = append_view(data)
+                else:
+                    ext = mimetypes.guess_extension(mime) or ".bin"
+                    uri = f"{path.stem}_{name}{ext}"
+                    image["uri"] = uri
+                    side_files[uri] = data
+            elif "uri" in image and suffix == ".glb":
+                data = self.image_bytes(i)
+                mime = image.get("mimeType") or sniff_mime(data)
+                del image["uri"]
+                image["bufferView"] = append_view(data)
+                image["mimeType"] = mime
+            elif "uri" in image and not image["uri"].startswith("data:"):
+                uri = image["uri"]
+                rel = Path(urllib.parse.unquote(uri))
+                if rel.is_absolute() or ".." in rel.parts:
+                    rel = Path(f"{path.stem}_image{i}{Path(uri).suffix}")
+                    image["uri"] = urllib.parse.quote(rel.as_posix())
+                side_files[rel.as_posix()] = self.image_files[i]
+
+        if binary:
+            if not gltf.get("buffers"):
+                gltf["buffers"] = [{}]
+            gltf["buffers"][0]["byteLength"] = len(binary)
+            if suffix == ".gltf":
+                gltf["buffers"][0]["uri"] = f"{path.stem}.bin"
+                side_files[f"{path.stem}.bin"] = bytes(binary)
+        elif "buffers" in gltf and not gltf["buffers"]:
+            del gltf["buffers"]
+
+        if suffix == ".glb":
+            text = json.dumps(gltf, separators=(",", ":"), ensure_ascii=False).encode("utf-8")
+            text += b" " * (_align(len(text)) - len(text))
+            chunks = struct.pack("<II", len(text), CHUNK_JSON) + text
+            if binary:
+                pad = bytes(binary) + b"\0" * (_align(len(binary)) - len(binary))
+                chunks += struct.pack("<II", len(pad), CHUNK_BIN) + pad
+            blob = struct.pack("<III", GLB_MAGIC, 2, 12 + len(chunks)) + chunks
+        else:
+            blob = (json.dumps(gltf, indent=2, ensure_ascii=False) + "\n").encode("utf-8")
+
+        # side files first, the main file last: a reader never sees a .gltf whose .bin is missing
+        for rel, data in sorted(side_files.items()):
+            with atomic_path(path.parent / rel) as tmp:
+                tmp.write_bytes(data)
+        with atomic_path(path) as tmp:
+            tmp.write_bytes(blob)
+        return [path.parent / rel for rel in sorted(side_files)] + [path]
+
+
+
+def node_matrix(node: dict) -> np.ndarray:
+    """The local 4x4 matrix (column-vector convention, ``p' = M @ p``) of a glTF node: ``matrix`` or T * R * S."""
+    if "matrix" in node:
+        return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T  # glTF stores columns
+    x, y, z, w = node.get("rotation", [0.0, 0.0, 0.0, 1.0])
+    rotation = np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+    out = np.eye(4)
+    out[:3, :3] = rotation * np.array(node.get("scale", [1.0, 1.0, 1.0]), dtype=np.float64)[None, :]
+    out[:3, 3] = node.get("translation", [0.0, 0.0, 0.0])
+    return out
+
+
+def world_nodes(gltf: dict) -> list[tuple[int, np.ndarray]]:
+    """(node index, world matrix) of every node of the default scene, depth first (every root node when the
+    document has no scene)."""
+    nodes = gltf.get("nodes") or []
+    scenes = gltf.get("scenes") or []
+    if scenes:
+        roots = scenes[gltf.get("scene", 0)].get("nodes", [])
+    else:
+        children = {c for n in nodes for c in n.get("children", [])}
+        roots = [i for i in range(len(nodes)) if i not in children]
+    out, stack = [], [(r, np.eye(4)) for r in reversed(roots)]
+    while stack:
+        i, parent = stack.pop()
+        world = parent @ node_matrix(nodes[i])
+        out.append((i, world))
+        stack.extend((c, world) for c in reversed(nodes[i].get("children", [])))
+    return out
+
+
+def sniff_mime(data: bytes) -> str:
+    if data[:8] == b"\x89PNG\r\n\x1a\n":
+        return "image/png"
+    if data[:3] == b"\xff\xd8\xff":
+        return "image/jpeg"
+    if data[:4] == b"RIFF" and data[8:12] == b"WEBP":
+        return "image/webp"
+    if data[4:12] == b"ftypavif":
+        return "image/avif"
+    if data[:12] == b"\xabKTX 20\xbb\r\n\x1a\n":
+        return "image/ktx2"
+    return "application/octet-stream"
+
+
+def parse_glb(path: Path, data: bytes) -> tuple[dict, bytes | None]:
+    if len(data) < 20:
+        raise BakerError(path, f"truncated GLB ({len(data)} bytes)")
+    magic, version, length = struct.unpack_from("<III", data, 0)
+    if magic != GLB_MAGIC:
+        raise BakerError(path, "not a GLB file (bad magic)")
+    if version != 2:
+        raise BakerError(path, f"unsupported GLB container version {version}")
+    if length > len(data):
+        raise BakerError(path, f"truncated GLB: header says {length} bytes, file has {len(data)}")
+    offset = 12
+    gltf = None
+    bin_chunk = None
+    while offset + 8 <= length:
+        chunk_len, chunk_type = struct.unpack_from("<II", data, offset)
+        offset += 8
+        if offset + chunk_len > length:
+            raise BakerError(path, "truncated GLB: a chunk runs past the end of the file")
+        chunk = data[offset: offset + chunk_len]
+        if chunk_type == CHUNK_JSON and gltf is None:
+            try:
+                gltf = json.loads(chunk.decode("utf-8"))
+            except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+                raise BakerError(path, f"broken JSON chunk: {exc}") from None
+        elif chunk_type == CHUNK_BIN and bin_chunk is None:
+            bin_chunk = chunk
+        offset += _align(chunk_len)
+    if gltf is None:
+        raise BakerError(path, "GLB has no JSON chunk")
+    return gltf, bin_chunk

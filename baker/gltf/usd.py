@@ -1,0 +1,677 @@
+"""USD stages in and out: ``read_usd`` (any ``UsdGeom.Mesh`` -> a trimesh scene) and ``write_usd`` (glTF -> USD).
+
+Reading
+-------
+Every ``UsdGeom.Mesh`` that would be drawn in a final render is read: instance proxies are included, meshes that
+are invisible or whose purpose is ``guide`` or ``proxy`` are skipped (``render`` and ``default`` are kept, so a
+proxy/render pair is not read twice). Values are read at the earliest authored time (the default value when the
+attribute has no time samples). Polygons are triangulated as fans, ``holeIndices`` and faces with fewer than three
+corners are dropped, subdivision is not applied (the control cage is read as is). The world transform is baked
+into the points (and normals), so every mesh comes back in stage space; a left-handed mesh, or one under a
+mirroring transform, has its winding flipped so front faces stay counter-clockwise. The stage's ``upAxis`` and
+``metersPerUnit`` are left as they are: a Z-up stage stays Z-up (glTF viewers will show it lying down).
+
+UVs come from ``primvars:st`` (else ``uv``, ``st0``, ``UVMap``, else the first ``texCoord2f`` primvar), normals
+from ``primvars:normals`` or ``normals``. Vertex/varying data stays per point; face-varying, uniform (per face)
+or constant data splits points per face corner, and identical corners are merged again, so the result has one UV
+and one normal per vertex. USD's ``t`` axis points up the image and glTF's ``v`` down: ``v = 1 - t`` (trimesh
+uses USD's convention and applies the flip when :mod:`baker.geometry.asset` converts the scene to glTF). A mesh without
+normals gets them as a USD renderer would draw it: flat per face when ``subdivisionScheme`` is ``none``, smooth
+(area-weighted per point) otherwise. USD materials are not read (meshes get glTF's default material).
+
+Writing
+-------
+The default glTF scene becomes ``/Root`` (``defaultPrim``, kind ``component``, ``upAxis = "Y"``,
+``metersPerUnit = 1``), each node a ``UsdGeom.Xform`` with its local matrix as one ``xformOp:transform``, and each
+triangle primitive of a node's mesh a ``UsdGeom.Mesh`` child with ``subdivisionScheme = "none"`` (a mesh used by
+several nodes is written under each). Not carried over: points/lines primitives, skins, morph targets, animations,
+cameras, lights, ``KHR_texture_transform``. Per primitive:
+
+- ``points``, ``faceVertexCounts`` (all 3), ``faceVertexIndices``, ``extent``;
+- ``normals`` (vertex interpolation) from ``NORMAL``;
+- ``primvars:st`` from ``TEXCOORD_0``, ``primvars:st<n>`` from ``TEXCOORD_<n>`` (``texCoord2f``, vertex
+  interpolation, ``t = 1 - v``);
+- ``primvars:displayColor`` / ``primvars:displayOpacity`` from ``COLOR_0``;
+- every custom attribute ``_NAME`` as ``primvars:baker:name`` (float, float2, float3 or float4 array, vertex
+  interpolation; integer data is converted to float, normalized integers to [0, 1]).
+
+Each glTF material a written primitive uses becomes a ``UsdShade.Material`` under ``/Root/Materials`` with a
+``UsdPreviewSurface`` (``diffuseColor``, ``opacity``, ``metallic``, ``roughness``, ``emissiveColor``; the base
+color texture through ``UsdUVTexture`` and a ``UsdPrimvarReader_float2`` per UV set). Images are written beside the
+stage in ``<stem>_textures/`` (``.usda``/``.usdc``/``.usd``) or inside the package (``.usdz``).
+
+Baked data on materials:
+
+- ``KHR_materials_volume.thicknessTexture``: a ``UsdUVTexture`` shader ``ThicknessTexture`` (raw color space) whose
+  ``outputs:g`` feeds the material output ``outputs:baker:thickness`` (float); the material input
+  ``inputs:baker:thicknessFactor`` (float) holds ``thicknessFactor`` (texel value 1.0 = that many units).
+- Every ``BAKER_<name>`` material extension is written as typed **custom attributes** on the Material prim, named
+  ``baker:<name>:<key>`` (e.g. ``baker:thickness:rays`` int, ``baker:thickness:subsurfaceColor`` float3,
+  ``baker:thickness:distribution`` string). Attributes rather than ``customData`` so they are typed, can be
+  time-sampled or overridden from a stronger layer like any other property, and show up in every USD tool.
+
+Output bytes depend only on the document: no timestamps, no absolute paths, ordered iteration everywhere.
+"""
+from __future__ import annotations
+
+import mimetypes
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from baker.errors import BakerError
+from baker.gltf.atomic import atomic_path, write_bytes_atomic
+from baker.gltf.document import node_matrix
+
+UV_NAMES = ("st", "uv", "st0", "UVMap")
+WRAP_MODES = {10497: "repeat", 33071: "clamp", 33648: "mirror"}
+IMAGE_EXTENSIONS = {"image/png": ".png", "image/jpeg": ".jpg", "image/webp": ".webp", "image/ktx2": ".ktx2",
+                    "image/avif": ".avif"}
+
+
+# ====================================================================== reading
+def read_usd(path) -> "trimesh.Scene":
+    """Read every renderable ``UsdGeom.Mesh`` of a stage into a ``trimesh.Scene`` in world space.
+
+    One ``trimesh.Trimesh`` per mesh prim, named by its prim path (geometry and node). A stage without meshes
+    gives an empty scene. Raises :class:`BakerError` when the stage cannot be opened.
+    """
+    import trimesh
+    from pxr import Usd, UsdGeom
+
+    path = Path(path)
+    try:
+        stage = Usd.Stage.Open(str(path))
+    except Exception as exc:  # pxr raises Tf.ErrorException with a multi-line message
+        raise BakerError(path, f"cannot open USD stage: {_one_line(exc)}") from None
+    if stage is None:
+        raise BakerError(path, "cannot open USD stage")
+
+    time = Usd.TimeCode.EarliestTime()
+    xform_cache = UsdGeom.XformCache(time)
+    scene = trimesh.Scene()
+    predicate = Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)
+    for prim in stage.Traverse(predicate):
+        if not prim.IsA(UsdGeom.Mesh):
+            continue
+        imageable = UsdGeom.Imageable(prim)
+        if imageable.ComputeVisibility(time) == UsdGeom.Tokens.invisible:
+            continue
+        if imageable.ComputePurpose() in (UsdGeom.Tokens.guide, UsdGeom.Tokens.proxy):
+            continue
+        matrix = np.array(xform_cache.GetLocalToWorldTransform(prim), dtype=np.float64)
+        mesh = _read_mesh(UsdGeom.Mesh(prim), matrix, time, path)
+        if mesh is not None:
+            name = str(prim.GetPath())
+            scene.add_geometry(mesh, geom_name=name, node_name=name)
+    return scene
+
+
+def _one_line(exc: Exception) -> str:
+    """The commentary of the first Tf error (where parsing failed), without pxr's C++ source locations."""
+    messages = [str(getattr(a, "commentary", "")).strip() for a in exc.args]
+    text = next((m for m in messages if m), str(exc))
+    return " ".join(text.split())[:300]
+
+
+def _read_mesh(mesh, matrix: np.ndarray, time, path: Path):
+    """One mesh prim -> ``trimesh.Trimesh`` (world space) or None when it has no faces; broken topology raises."""
+    import trimesh
+    from pxr import UsdGeom
+
+    points = _array(mesh.GetPointsAttr().Get(time), np.float64, 3)
+    counts = _array(mesh.GetFaceVertexCountsAttr().Get(time), np.int64)
+    indices = _array(mesh.GetFaceVertexIndicesAttr().Get(time), np.int64)
+    if len(points) == 0 or len(counts) == 0:
+        return None
+    where = mesh.GetPath()
+    if counts.min() < 0 or counts.sum() != len(indices):
+        raise BakerError(path, f"mesh {where}: faceVertexCounts add up to {counts.sum()}, "
+                               f"but there are {len(indices)} faceVertexIndices")
+    if len(indices) and (indices.min() < 0 or indices.max() >= len(points)):
+        raise BakerError(path, f"mesh {where}: faceVertexIndices out of range (>= {len(points)} points)")
+    holes = _array(mesh.GetHoleIndicesAttr().Get(time), np.int64)
+
+    # fan triangulation, all faces at once: triangle k of face f is (s, s + k, s + k + 1), s = first corner of f
+    starts = np.cumsum(counts) - counts
+    keep = counts >= 3
+    if len(holes):
+        keep[holes[(holes >= 0) & (holes < len(counts))]] = False
+    tris_per_face = np.where(keep, counts - 2, 0)
+    face_of_tri = np.repeat(np.arange(len(counts)), tris_per_face)
+    k = np.arange(len(face_of_tri)) - np.repeat(np.cumsum(tris_per_face) - tris_per_face, tris_per_face) + 1
+    s = starts[face_of_tri]
+    corner_tris = np.stack([s, s + k, s + k + 1], axis=1)  # indices into the face-corner arrays
+    if len(corner_tris) == 0:
+        return None
+
+    mirrored = np.linalg.det(matrix[:3, :3]) < 0
+    left = mesh.GetOrientationAttr().Get(time) == UsdGeom.Tokens.leftHanded
+    if mirrored != left:
+        corner_tris = corner_tris[:, [0, 2, 1]]
+
+    points = points @ matrix[:3, :3] + matrix[3, :3]  # to world space; USD matrices act on row vectors
+    face_of_corner = np.repeat(np.arange(len(counts)), counts)
+    uv = _corner_values(_find_uv_primvar(mesh), time, indices, face_of_corner, 2, len(points))
+    normals = _read_normals(mesh, time, indices, face_of_corner, len(points))
+    if normals is None:
+        normals = _default_normals(points, indices, corner_tris, face_of_tri, face_of_corner, len(counts),
+                                   mesh.GetSubdivisionSchemeAttr().Get(time) == UsdGeom.Tokens.none)
+    else:
+        values, is_corner, per_point = normals
+        inverse_transpose = np.linalg.inv(matrix[:3, :3]).T  # normals of row-vector points: n' = n A^-T
+        normals = (values @ inverse_transpose, is_corner, None if per_point is None else per_point @ inverse_transpose)
+
+    # split points per corner where any attribute is per corner, then merge identical corners again
+    per_corner = [a for a in (uv, normals) if a is not None and a[1]]
+    if per_corner:
+        key = np.concatenate([indices[:, None].astype(np.float64)] + [a[0] for a in per_corner], axis=1)
+        _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+        inverse = inverse.reshape(-1)
+        order = np.argsort(first, kind="stable")  # number vertices by first use: deterministic, file order
+        rank = np.empty_like(order)
+        rank[order] = np.arange(len(order))
+        vertex_corner = first[order]  # one representative corner per output vertex
+        faces = rank[inverse][corner_tris]
+        vertex_point = indices[vertex_corner]
+    else:
+        vertex_corner = None
+        faces = indices[corner_tris]
+        vertex_point = np.arange(len(points))
+
+    def per_vertex(item):
+        if item is None:
+            return None
+        values, is_corner, per_point = item
+        return values[vertex_corner] if is_corner else per_point[vertex_point]
+
+    vertices = points[vertex_point]
+    n = per_vertex(normals)
+    kwargs = {"vertex_normals": n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-20)}
+    t = per_vertex(uv)
+    if t is not None:
+        # trimesh keeps UVs v-up like USD and flips them into glTF's v-down when it writes the glTF document
+        kwargs["visual"] = trimesh.visual.TextureVisuals(uv=t)
+    return trimesh.Trimesh(vertices=vertices, faces=faces, process=False, **kwargs)
+
+
+def _default_normals(points, indices, corner_tris, face_of_tri, face_of_corner, n_faces, flat: bool):
+    """Normals as a USD renderer draws a mesh without any: flat per face when ``subdivisionScheme`` is ``none``,
+    else smooth (area-weighted over the faces around each point), as the limit surface of a subdivided cage is.
+    """
+    tri = points[indices[corner_tris]]
+    tri_normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])  # length = 2 x area: area weighting
+    face_normals = np.zeros((n_faces, 3))
+    np.add.at(face_normals, face_of_tri, tri_normals)
+    if flat:
+        face_normals /= np.maximum(np.linalg.norm(face_normals, axis=1, keepdims=True), 1e-300)
+        return face_normals[face_of_corner], True, None
+    per_point = np.zeros_like(points)
+    np.add.at(per_point, indices, face_normals[face_of_corner])
+    return per_point[indices], False, per_point
+
+
+def _array(value, dtype, width: int | None = None) -> np.ndarray:
+    if value is None:
+        return np.zeros((0, width) if width else 0, dtype)
+    out = np.asarray(value, dtype=dtype)
+    return out.reshape(-1, width) if width else out.reshape(-1)
+
+
+def _find_uv_primvar(mesh):
+    from pxr import Sdf, UsdGeom
+
+    two = (Sdf.ValueTypeNames.Float2.type, Sdf.ValueTypeNames.Double2.type)
+    primvars = [p for p in UsdGeom.PrimvarsAPI(mesh.GetPrim()).GetPrimvarsWithValues()
+                if p.GetTypeName().isArray and p.GetTypeName().scalarType.type in two]
+    by_name = {str(p.GetPrimvarName()): p for p in primvars}
+    for name in UV_NAMES:
+        if name in by_name:
+            return by_name[name]
+    for p in sorted(primvars, key=lambda p: str(p.GetPrimvarName())):
+        if p.GetTypeName().role == Sdf.ValueTypeNames.TexCoord2f.role:
+            return p
+    return None
+
+
+def _read_normals(mesh, time, indices, face_of_corner, n_points):
+    from pxr import UsdGeom
+
+    primvar = UsdGeom.PrimvarsAPI(mesh.GetPrim()).GetPrimvar("normals")
+    if primvar and primvar.HasValue():
+        return _corner_values(primvar, time, indices, face_of_corner, 3, n_points)
+    attr = mesh.GetNormalsAttr()
+    if attr.HasValue():
+        return _interpolate(_array(attr.Get(time), np.float64, 3), mesh.GetNormalsInterpolation(), indices,
+                            face_of_corner, n_points)
+    return None
+
+
+def _corner_values(primvar, time, indices, face_of_corner, width, n_points):
+    """(values, per_corner, per_point): per-corner values, or per-point values when ``per_corner`` is False."""
+    if primvar is None:
+        return None
+    value = primvar.ComputeFlattened(time)  # resolves indexed primvars
+    if value is None:
+        return None
+    return _interpolate(_array(value, np.float64, width), primvar.GetInterpolation(), indices, face_of_corner,
+                        n_points)
+
+
+def _interpolate(values, interpolation, indices, face_of_corner, n_points):
+    """Spread values of any interpolation over face corners; data of the wrong length is ignored (None)."""
+    from pxr import UsdGeom
+
+    if interpolation in (UsdGeom.Tokens.vertex, UsdGeom.Tokens.varying):
+        if len(values) < n_points:
+            return None
+        return values[indices], False, values
+    if interpolation == UsdGeom.Tokens.faceVarying:
+        return (values, True, None) if len(values) == len(indices) else None
+    if interpolation == UsdGeom.Tokens.uniform:
+        return (values[face_of_corner], True, None) if len(values) > face_of_corner.max(initial=-1) else None
+    if interpolation == UsdGeom.Tokens.constant and len(values):
+        return np.repeat(values[:1], len(indices), axis=0), True, None
+    return None
+
+
+# ====================================================================== writing
+def write_usd(doc, path, primitive_hooks=None) -> list[Path]:
+    """Write ``doc`` (a :class:`~baker.gltf.document.GltfDocument`) as ``.usda``, ``.usdc``, ``.usd`` or ``.usdz``.
+
+    The file is written atomically; textures go to ``<stem>_textures/`` beside it, or into the ``.usdz`` package.
+    Returns every file written (the stage last). ``primitive_hooks`` maps an extension name to a function
+    ``(stage, prim_path, parent_path, doc, mesh, primitive)`` that adds that extension's USD beside each mesh
+    primitive carrying it (see :func:`baker.registry.usd_primitive_hooks`).
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".usd", ".usda", ".usdc", ".usdz"):
+        raise BakerError(path, "output must end in .usd, .usda, .usdc or .usdz")
+    if suffix == ".usdz":
+        _write_usdz(doc, path, primitive_hooks)
+        return [path]
+    folder = f"{path.stem}_textures"
+    layer, images = build_layer(doc, folder, primitive_hooks)
+    # textures first, the stage last: a reader never sees a stage whose textures are missing
+    written = []
+    for name, data in images:
+        write_bytes_atomic(path.parent / folder / name, data)
+        written.append(path.parent / folder / name)
+    with atomic_path(path) as tmp:
+        export_layer(layer, tmp, path)
+    return written + [path]
+
+
+def _write_usdz(doc, path: Path, primitive_hooks=None) -> None:
+    from pxr import Sdf, UsdUtils
+
+    layer, images = build_layer(doc, "textures", primitive_hooks)
+    with tempfile.TemporaryDirectory(prefix=".baker-usdz-") as work:
+        work = Path(work)
+        root = work / f"{path.stem}.usdc"
+        for name, data in images:
+            (work / "textures").mkdir(exist_ok=True)
+            (work / "textures" / name).write_bytes(data)
+        export_layer(layer, root, path)
+        package = work / "package.usdz"
+        if not UsdUtils.CreateNewUsdzPackage(Sdf.AssetPath(str(root)), str(package)):
+            raise BakerError(path, "cannot write the USDZ package")
+        with atomic_path(path) as tmp:
+            _copy_zip_without_timestamps(package, tmp)
+
+
+def _copy_zip_without_timestamps(source: Path, target: Path) -> None:
+    """Copy a zip entry by entry with every modification time set to 1980-01-01 (the zip epoch).
+
+    The USDZ writer stamps entries with the current time; everything else (order, names, the extra fields that
+    pad each file to the 64-byte alignment USDZ requires, stored = uncompressed data) is kept, so the layout and
+    offsets are unchanged.
+    """
+    import zipfile
+
+    with zipfile.ZipFile(source) as zin, zipfile.ZipFile(target, "w") as zout:
+        for info in zin.infolist():
+            clean = zipfile.ZipInfo(info.filename, date_time=(1980, 1, 1, 0, 0, 0))
+            clean.compress_type = info.compress_type
+            clean.extra = info.extra
+            clean.create_system = info.create_system
+            clean.create_version = info.create_version
+            clean.extract_version = info.extract_version
+            clean.external_attr = info.external_attr
+            clean.internal_attr = info.internal_attr
+            zout.writestr(clean, zin.read(info.filename))
+            if zout.getinfo(info.filename).header_offset != info.header_offset:
+                raise RuntimeError("USDZ entry moved while removing timestamps; alignment would break")
+
+
+def export_layer(layer, target: Path, path: Path) -> None:
+    if not layer.Export(str(target)):
+        raise BakerError(path, "cannot write the USD layer")
+
+
+class _Names:
+    """Valid, unique prim names among siblings, assigned in a fixed order."""
+
+    def __init__(self):
+        self.used: dict[str, set] = {}
+
+    def make(self, parent: str, name: str | None, fallback: str) -> str:
+        from pxr import Tf
+
+        base = Tf.MakeValidIdentifier(name) if name else fallback
+        taken = self.used.setdefault(parent, set())
+        candidate, k = base, 1
+        while candidate in taken:
+            candidate = f"{base}_{k}"
+            k += 1
+        taken.add(candidate)
+        return candidate
+
+
+def build_layer(doc, texture_folder: str, primitive_hooks=None):
+    """Author the stage in memory; returns (root layer, [(texture file name, bytes)]) in a fixed order."""
+    from pxr import Gf, Kind, Usd, UsdGeom
+
+    stage = Usd.Stage.CreateInMemory("baker.usda")
+    UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.y)
+    UsdGeom.SetStageMetersPerUnit(stage, 1.0)
+    root = UsdGeom.Xform.Define(stage, "/Root").GetPrim()
+    stage.SetDefaultPrim(root)
+    Usd.ModelAPI(root).SetKind(Kind.Tokens.component)  # one asset: what USDZ viewers and assemblies expect
+
+    writer = _Writer(doc, stage, texture_folder, primitive_hooks or {})
+    writer.names.make("/Root", "Materials", "Materials")  # reserved: a node named "Materials" becomes Materials_1
+    gltf = doc.json
+    nodes = gltf.get("nodes", [])
+    scenes = gltf.get("scenes", [])
+    if scenes:
+        roots = scenes[gltf.get("scene", 0) if gltf.get("scene", 0) < len(scenes) else 0].get("nodes", [])
+    else:
+        children = {c for n in nodes for c in n.get("children", [])}
+        roots = [i for i in range(len(nodes)) if i not in children]
+
+    def visit(index: int, parent: str, depth: int) -> None:
+        if depth > len(nodes):  # a cycle in the node graph: invalid glTF, do not recurse forever
+            raise BakerError(doc.path, f"node {index} is its own ancestor")
+        node = nodes[index]
+        name = writer.names.make(parent, node.get("name"), f"node{index}")
+        prim_path = f"{parent}/{name}"
+        xform = UsdGeom.Xform.Define(stage, prim_path)
+        matrix = node_matrix(node)
+        if not np.array_equal(matrix, np.eye(4)):
+            xform.AddTransformOp().Set(Gf.Matrix4d(matrix.T.tolist()))  # column vectors -> USD row vectors
+        if "mesh" in node:
+            writer.mesh(node["mesh"], prim_path)
+        for child in node.get("children", []):
+            visit(child, prim_path, depth + 1)
+
+    for index in roots:
+        visit(index, "/Root", 0)
+    return stage.GetRootLayer(), writer.image_files
+
+
+class _Writer:
+    def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict):
+        self.doc = doc
+        self.primitive_hooks = primitive_hooks
+        self.stage = stage
+        self.texture_folder = texture_folder
+        self.names = _Names()
+        self.materials: dict[int, object] = {}  # glTF material -> UsdShade.Material
+        self.image_paths: dict[int, str] = {}  # glTF image -> asset path
+        self.image_files: list = []
+
+    # ------------------------------------------------------------------ geometry
+    def mesh(self, mesh_index: int, parent: str) -> None:
+        from pxr import Sdf, UsdGeom, UsdShade, Vt
+
+        from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, is_derived_fins, faces_from_indices, to_float
+
+        doc = self.doc
+        mesh = doc.json["meshes"][mesh_index]
+        prims = [(p, prim) for p, prim in enumerate(mesh.get("primitives", []))
+                 if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)
+                 and "POSITION" in prim.get("attributes", {})
+                 and not is_derived_fins(prim)]  # fins are glTF runtime geometry
+        base = mesh.get("name") or f"mesh{mesh_index}"
+        for p, prim in prims:
+            attrs = prim["attributes"]
+            positions = doc.accessor(attrs["POSITION"]).astype(np.float32)
+            n = len(positions)
+            indices = doc.accessor(prim["indices"]).astype(np.int64) if "indices" in prim else np.arange(n)
+            if len(indices) and (indices.min() < 0 or indices.max() >= n):
+                raise BakerError(doc.path, f"mesh {mesh_index} primitive {p} has indices out of range")
+            faces = faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
+            name = self.names.make(parent, base if len(prims) == 1 else f"{base}_{p}", f"mesh{mesh_index}")
+            usd_mesh = UsdGeom.Mesh.Define(self.stage, f"{parent}/{name}")
+            usd_mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)  # glTF triangles are the final surface
+            usd_mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(positions))
+            usd_mesh.CreateFaceVertexCountsAttr(Vt.IntArray.FromNumpy(np.full(len(faces), 3, np.int32)))
+            usd_mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(faces.reshape(-1).astype(np.int32)))
+            lo, hi = (positions.min(0), positions.max(0)) if n else (np.zeros(3, np.float32),) * 2
+            usd_mesh.CreateExtentAttr(Vt.Vec3fArray.FromNumpy(np.stack([lo, hi]).astype(np.float32)))
+            primvars = UsdGeom.PrimvarsAPI(usd_mesh.GetPrim())
+            for key in sorted(attrs, key=_attribute_order):
+                acc = attrs[key]
+                if key == "NORMAL":
+                    usd_mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(doc.accessor(acc).astype(np.float32)))
+                    usd_mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
+                elif key.startswith("TEXCOORD_"):
+                    uv = to_float(doc, acc)
+                    st = np.column_stack([uv[:, 0], 1.0 - uv[:, 1]]).astype(np.float32)
+                    pv = primvars.CreatePrimvar(_st_name(int(key[9:])), Sdf.ValueTypeNames.TexCoord2fArray,
+                                                UsdGeom.Tokens.vertex)
+                    pv.Set(Vt.Vec2fArray.FromNumpy(st))
+                elif key == "COLOR_0":
+                    color = to_float(doc, acc).astype(np.float32)
+                    usd_mesh.CreateDisplayColorPrimvar(UsdGeom.Tokens.vertex).Set(
+                        Vt.Vec3fArray.FromNumpy(np.ascontiguousarray(color[:, :3])))
+                    if color.shape[1] == 4:
+                        usd_mesh.CreateDisplayOpacityPrimvar(UsdGeom.Tokens.vertex).Set(
+                            Vt.FloatArray.FromNumpy(np.ascontiguousarray(color[:, 3])))
+                elif key.startswith("_"):
+                    self._custom_primvar(primvars, key, acc)
+            if "material" in prim:
+                material = self.material(prim["material"])
+                UsdShade.MaterialBindingAPI.Apply(usd_mesh.GetPrim()).Bind(material)
+            # extensions add their own USD beside the mesh (e.g. BAKER_edges' crease curves)
+            for ext_name, hook in self.primitive_hooks.items():
+                if ext_name in (prim.get("extensions") or {}):
+                    hook(self.stage, self.names.make(parent, f"{name}_{ext_name[6:]}", "extra"), parent, doc,
+                         mesh_index, p)
+
+    def _custom_primvar(self, primvars, key: str, acc: int) -> None:
+        from pxr import Sdf, Tf, UsdGeom, Vt
+
+        from baker.gltf.accessors import to_float
+
+        kind = self.doc.json["accessors"][acc]["type"]
+        types = {"SCALAR": (Sdf.ValueTypeNames.FloatArray, Vt.FloatArray),
+                 "VEC2": (Sdf.ValueTypeNames.Float2Array, Vt.Vec2fArray),
+                 "VEC3": (Sdf.ValueTypeNames.Float3Array, Vt.Vec3fArray),
+                 "VEC4": (Sdf.ValueTypeNames.Float4Array, Vt.Vec4fArray)}
+        if kind not in types:
+            return  # matrices: no vertex primvar type fits
+        value_type, array_type = types[kind]
+        data = np.ascontiguousarray(to_float(self.doc, acc).astype(np.float32))
+        name = "baker:" + Tf.MakeValidIdentifier(key.lstrip("_").lower())
+        primvars.CreatePrimvar(name, value_type, UsdGeom.Tokens.vertex).Set(array_type.FromNumpy(data))
+
+    # ------------------------------------------------------------------ materials
+    def material(self, index: int):
+        if index in self.materials:
+            return self.materials[index]
+        from pxr import Gf, Sdf, UsdShade
+
+        gltf = self.doc.json["materials"][index]
+        self.stage.DefinePrim("/Root/Materials", "Scope")
+        name = self.names.make("/Root/Materials", gltf.get("name"), f"material{index}")
+        mat_path = f"/Root/Materials/{name}"
+        material = UsdShade.Material.Define(self.stage, mat_path)
+        self.materials[index] = material
+        readers: dict[int, object] = {}
+
+        surface = UsdShade.Shader.Define(self.stage, f"{mat_path}/PreviewSurface")
+        surface.CreateIdAttr("UsdPreviewSurface")
+        pbr = gltf.get("pbrMetallicRoughness", {})
+        color = [float(c) for c in pbr.get("baseColorFactor", [1.0, 1.0, 1.0, 1.0])]
+        surface.CreateInput("diffuseColor", Sdf.ValueTypeNames.Color3f).Set(Gf.Vec3f(*color[:3]))
+        surface.CreateInput("opacity", Sdf.ValueTypeNames.Float).Set(color[3])
+        surface.CreateInput("metallic", Sdf.ValueTypeNames.Float).Set(float(pbr.get("metallicFactor", 1.0)))
+        surface.CreateInput("roughness", Sdf.ValueTypeNames.Float).Set(float(pbr.get("roughnessFactor", 1.0)))
+        emissive = gltf.get("emissiveFactor")
+        if emissive:
+            surface.CreateInput("emissiveColor", Sdf.ValueTypeNames.Color3f).Set(Gf.Vec3f(*map(float, emissive)))
+        if gltf.get("alphaMode") == "MASK":
+            surface.CreateInput("opacityThreshold", Sdf.ValueTypeNames.Float).Set(float(gltf.get("alphaCutoff", 0.5)))
+        material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
+
+        base_texture = pbr.get("baseColorTexture")
+        if base_texture is not None:
+            tex = self._texture(mat_path, "BaseColorTexture", base_texture, "sRGB", readers)
+            if tex is not None:
+                tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(*color))
+                tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
+                surface.GetInput("diffuseColor").ConnectToSource(tex.ConnectableAPI(), "rgb")
+
+        volume = gltf.get("extensions", {}).get("KHR_materials_volume", {})
+        if "thicknessTexture" in volume:
+            tex = self._texture(mat_path, "ThicknessTexture", volume["thicknessTexture"], "raw", readers)
+            if tex is not None:
+                out = tex.CreateOutput("g", Sdf.ValueTypeNames.Float)
+                material.CreateOutput("baker:thickness", Sdf.ValueTypeNames.Float).ConnectToSource(out)
+        if volume:
+            material.CreateInput("baker:thicknessFactor", Sdf.ValueTypeNames.Float).Set(
+                float(volume.get("thicknessFactor", 0.0)))
+
+        prim = material.GetPrim()
+        for ext_name, params in gltf.get("extensions", {}).items():
+            if ext_name.startswith("BAKER_") and isinstance(params, dict):
+                namespace = "baker:" + _valid_name(ext_name[6:])
+                custom_attributes(prim, namespace, params)
+                # every texture the extension references: a UsdUVTexture feeding the material output
+                # outputs:baker:<ext>:<json path> (float4 rgba), e.g. outputs:baker:skin_lut:lutTexture
+                for path, info in _texture_infos(params):
+                    shader = "Baker_" + _valid_name("_".join([ext_name[6:], *map(str, path)]))
+                    tex = self._texture(mat_path, shader, info, "raw", readers)
+                    if tex is not None:
+                        out = tex.CreateOutput("rgba", Sdf.ValueTypeNames.Float4)
+                        name = ":".join([namespace, *(f"_{k}" if isinstance(k, int) else _valid_name(k) for k in path)])
+                        material.CreateOutput(name, Sdf.ValueTypeNames.Float4).ConnectToSource(out)
+        return material
+
+    def _texture(self, mat_path: str, shader_name: str, info: dict, color_space: str, readers: dict):
+        from pxr import Sdf, UsdShade
+
+        textures = self.doc.json.get("textures", [])
+        if not isinstance(info, dict) or info.get("index", -1) >= len(textures):
+            return None
+        texture = textures[info["index"]]
+        source = texture.get("source")
+        if source is None:
+            return None
+        asset = self._image(source)
+        tex = UsdShade.Shader.Define(self.stage, f"{mat_path}/{shader_name}")
+        tex.CreateIdAttr("UsdUVTexture")
+        tex.CreateInput("file", Sdf.ValueTypeNames.Asset).Set(Sdf.AssetPath(asset))
+        tex.CreateInput("sourceColorSpace", Sdf.ValueTypeNames.Token).Set(color_space)
+        sampler = self.doc.json.get("samplers", [])[texture["sampler"]] if "sampler" in texture else {}
+        tex.CreateInput("wrapS", Sdf.ValueTypeNames.Token).Set(WRAP_MODES.get(sampler.get("wrapS", 10497), "repeat"))
+        tex.CreateInput("wrapT", Sdf.ValueTypeNames.Token).Set(WRAP_MODES.get(sampler.get("wrapT", 10497), "repeat"))
+        tex.CreateInput("st", Sdf.ValueTypeNames.Float2).ConnectToSource(
+            self._reader(mat_path, int(info.get("texCoord", 0)), readers))
+        return tex
+
+    def _reader(self, mat_path: str, texcoord: int, readers: dict):
+        from pxr import Sdf, UsdShade
+
+        if texcoord not in readers:
+            varname = _st_name(texcoord)
+            reader = UsdShade.Shader.Define(self.stage, f"{mat_path}/PrimvarReader_{varname}")
+            reader.CreateIdAttr("UsdPrimvarReader_float2")
+            reader.CreateInput("varname", Sdf.ValueTypeNames.String).Set(varname)
+            readers[texcoord] = reader.CreateOutput("result", Sdf.ValueTypeNames.Float2)
+        return readers[texcoord]
+
+    def _image(self, index: int) -> str:
+        if index in self.image_paths:
+            return self.image_paths[index]
+        from pxr import Tf
+
+        data = self.doc.image_bytes(index)
+        image = self.doc.json["images"][index]
+        from baker.gltf.document import sniff_mime
+
+        mime = image.get("mimeType") or sniff_mime(data)
+        ext = IMAGE_EXTENSIONS.get(mime) or mimetypes.guess_extension(mime) or ".bin"
+        stem = Tf.MakeValidIdentifier(Path(image.get("name") or image.get("uri", "") or f"image{index}").stem
+                                      or f"image{index}")
+        taken = {name for name, _ in self.image_files}
+        name, k = f"{stem}{ext}", 1
+        while name in taken:
+            name, k = f"{stem}_{k}{ext}", k + 1
+        self.image_files.append((name, data))
+        self.image_paths[index] = f"./{self.texture_folder}/{name}"
+        return self.image_paths[index]
+
+
+def _valid_name(name: str) -> str:
+    from pxr import Tf
+
+    return Tf.MakeValidIdentifier(name)
+
+
+def custom_attributes(prim, namespace: str, params: dict) -> None:
+    """Write a JSON object as typed custom attributes ``<namespace>:<key>`` (nested objects nest namespaces)."""
+    from pxr import Gf, Sdf, Vt
+
+    for key, value in params.items():
+        name = f"{namespace}:{_valid_name(str(key))}"
+        if isinstance(value, dict):
+            custom_attributes(prim, name, value)
+            continue
+        if isinstance(value, bool):
+            type_name, value = Sdf.ValueTypeNames.Bool, value
+        elif isinstance(value, int):
+            type_name = Sdf.ValueTypeNames.Int if -2**31 <= value < 2**31 else Sdf.ValueTypeNames.Int64
+        elif isinstance(value, float):
+            type_name = Sdf.ValueTypeNames.Float
+        elif isinstance(value, str):
+            type_name = Sdf.ValueTypeNames.String
+        elif isinstance(value, list) and value and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                       for v in value):
+            value = [float(v) for v in value]
+            vectors = {2: (Sdf.ValueTypeNames.Float2, Gf.Vec2f), 3: (Sdf.ValueTypeNames.Float3, Gf.Vec3f),
+                       4: (Sdf.ValueTypeNames.Float4, Gf.Vec4f)}
+            type_name, make = vectors.get(len(value), (Sdf.ValueTypeNames.FloatArray, Vt.FloatArray))
+            value = make(*value) if len(value) in vectors else make(value)
+        elif isinstance(value, list) and value and all(isinstance(v, str) for v in value):
+            type_name, value = Sdf.ValueTypeNames.StringArray, Vt.StringArray(value)
+        else:
+            continue  # null, empty or mixed lists: nothing typed to write
+        prim.CreateAttribute(name, type_name, custom=True).Set(value)
+
+
+def _texture_infos(node, path=()):
+    """(JSON path, textureInfo) of every ``{"index": n, ...}`` texture reference nested in an extension object."""
+    if isinstance(node, dict):
+        if isinstance(node.get("index"), int) and not isinstance(node.get("index"), bool) and set(node) <= {
+                "index", "texCoord", "scale", "strength", "extensions", "extras"}:
+            yield path, node
+            return
+        for key, value in node.items():
+            if key not in ("extensions", "extras"):
+                yield from _texture_infos(value, path + (key,))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            yield from _texture_infos(value, path + (i,))
+
+
+def _st_name(texcoord: int) -> str:
+    return "st" if texcoord == 0 else f"st{texcoord}"
+
+
+def _attribute_order(key: str):
+    return (key.startswith("_"), key)

@@ -1,0 +1,84 @@
+"""Finds every technique: each package under ``baker/techniques/`` and each ``baker.techniques`` entry point
+(techniques installed by other packages). No list of techniques is kept anywhere else."""
+from __future__ import annotations
+
+import importlib
+import pkgutil
+from functools import lru_cache
+from importlib.metadata import entry_points
+
+from baker.errors import BakerError
+from baker.technique import Technique
+
+ENTRY_POINT_GROUP = "baker.techniques"
+
+
+@lru_cache(maxsize=None)
+def techniques() -> dict[str, Technique]:
+    """Every technique by name, in name order (a stable order for help texts and reports)."""
+    import baker.techniques as package
+
+    found = {}
+    for info in pkgutil.iter_modules(package.__path__):
+        if info.ispkg:
+            _add(found, importlib.import_module(f"{package.__name__}.{info.name}").TECHNIQUE)
+    for point in entry_points(group=ENTRY_POINT_GROUP):
+        _add(found, point.load())
+    return {name: found[name] for name in sorted(found)}
+
+
+def _add(found: dict, technique: Technique) -> None:
+    if technique.name in found:
+        raise RuntimeError(f"two techniques are named {technique.name!r}")
+    found[technique.name] = technique
+
+
+def bakes() -> dict[str, Technique]:
+    """The techniques that bake into an asset (``baker bake --bakes NAME``)."""
+    return {name: t for name, t in techniques().items() if t.run is not None}
+
+
+def bake_order(names) -> list[str]:
+    """``names`` with every technique after those it ``requires`` (when both are asked for), ties in name order:
+    a deterministic order whatever order the user listed them in."""
+    known = bakes()
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        raise BakerError(None, f"unknown bake(s) {', '.join(unknown)} (known: {', '.join(known)})")
+    wanted = sorted(set(names))
+    done, order = set(), []
+    while len(order) < len(wanted):
+        ready = [n for n in wanted if n not in done and all(r in done or r not in wanted for r in known[n].requires)]
+        if not ready:
+            raise RuntimeError(f"techniques {', '.join(n for n in wanted if n not in done)} require each other")
+        order.append(ready[0])
+        done.add(ready[0])
+    return order
+
+
+@lru_cache(maxsize=None)
+def extensions() -> dict:
+    """Every extension object by its glTF name (imports the extension modules)."""
+    return {ext.NAME: ext for t in techniques().values() for ext in t.extension_objects()}
+
+
+def usd_primitive_hooks() -> dict:
+    """Extension name -> ``to_usd_primitive`` for the extensions that add USD beside a mesh primitive."""
+    return {name: ext.to_usd_primitive for name, ext in extensions().items() if hasattr(ext, "to_usd_primitive")}
+
+
+def semantic_checks() -> dict:
+    """Extension name -> its ``check(doc, places, issues)`` for ``baker validate``."""
+    return {name: ext.check for name, ext in extensions().items() if hasattr(ext, "check")}
+
+
+def command_modules() -> list:
+    """The light modules that add a standalone command each (``add_parser(subparsers)``)."""
+    return [importlib.import_module(reference) for t in techniques().values() for reference in t.commands]
+
+
+def panels() -> list:
+    """Every technique's preview panels, in technique order."""
+    from baker.technique import load
+
+    return [panel for t in techniques().values() if t.panels for panel in load(t.panels)]

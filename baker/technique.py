@@ -1,0 +1,49 @@
+"""What a technique declares about itself: the one object each ``baker/techniques/<name>/__init__.py`` exports.
+
+Everything heavy (kernels, numba, the extension writers, the preview panels) is named by a ``"module:attribute"``
+reference and imported only when used, so discovering every technique (``baker --help``) costs a few small imports.
+"""
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+
+
+def load(reference: str):
+    """The object a ``"package.module:attribute"`` (or ``"package.module"``) reference names, imported now."""
+    module_name, _, attribute = reference.partition(":")
+    module = importlib.import_module(module_name)
+    return getattr(module, attribute) if attribute else module
+
+
+def lazy(reference: str):
+    """A function that imports ``reference`` on its first call and forwards the call to it (argparse ``func``)."""
+    def call(*args, **kwargs):
+        return load(reference)(*args, **kwargs)
+
+    call.__qualname__ = call.__name__ = reference
+    return call
+
+
+@dataclass(frozen=True)
+class Technique:
+    """One technique of baker: a bake (``options`` + ``run``), extensions, preview panels and commands.
+
+    ``requires`` names the techniques whose output this one reads when both are baked in one run; the pipeline runs
+    those first, so the order of ``--bakes`` never changes the result.
+    """
+
+    name: str  # as the CLI spells it (``--bakes NAME``, ``--NAME-option``)
+    summary: str  # one line for ``--help``
+    options: type | None = None  # frozen dataclass of the bake's options (light: no numpy at import)
+    run: str | None = None  # "module:function" (asset, options, seed, progress) -> None; None: not a bake
+    extensions: tuple[str, ...] = ()  # references to extension objects: NAME, check, read, to_usd_primitive, ...
+    panels: str | None = None  # "module:attribute" -> list of preview panels
+    commands: tuple[str, ...] = ()  # light modules with ``add_parser(subparsers)`` (standalone commands)
+    requires: tuple[str, ...] = ()
+
+    def bake(self, asset, options, seed: int = 0, progress=None) -> None:
+        load(self.run)(asset, options, seed=seed, progress=progress)
+
+    def extension_objects(self) -> list:
+        return [load(reference) for reference in self.extensions]

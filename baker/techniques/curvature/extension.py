@@ -1,0 +1,151 @@
+"""``BAKER_curvature``: per-vertex curvature attributes (and an optional texture) -> glTF, and their checks.
+
+Where the data goes (see ``schemas/BAKER_curvature/README.md``):
+- primitive attributes ``_CURVATURE`` (FLOAT SCALAR, mean curvature H), ``_PRINCIPAL_CURVATURES`` (FLOAT VEC2,
+  k1 >= k2) and ``_PRINCIPAL_DIRECTION`` (FLOAT VEC3, unit tangent of k1), all in 1 / mesh units, convex positive;
+- optionally ``BAKER_curvature.curvatureTexture``: H per texel, remapped from ``textureRange`` to [0, 1];
+- ``BAKER_curvature`` on the material: how it was baked and which attributes hold what.
+USD gets ``primvars:baker:curvature``, ``primvars:baker:principal_curvatures``, ``primvars:baker:principal_direction``
+through the generic custom-attribute path of :mod:`baker.gltf.usd`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import encode_image
+
+NAME = "BAKER_curvature"
+ATTRIBUTE = "_CURVATURE"
+PRINCIPAL = "_PRINCIPAL_CURVATURES"
+DIRECTION = "_PRINCIPAL_DIRECTION"
+
+
+def write_vertex_curvature(doc: GltfDocument, mesh: int, primitive: int, mean: np.ndarray,
+                           principal: np.ndarray | None = None, direction: np.ndarray | None = None) -> dict:
+    """Add the curvature attributes to one primitive; returns {attribute name: accessor index}."""
+    attrs = doc.json["meshes"][mesh]["primitives"][primitive]["attributes"]
+    written = {ATTRIBUTE: doc.add_accessor(mean.astype(np.float32), min_max=True)}
+    if principal is not None:
+        written[PRINCIPAL] = doc.add_accessor(principal.astype(np.float32), min_max=True)
+    if direction is not None:
+        written[DIRECTION] = doc.add_accessor(direction.astype(np.float32))
+    attrs.update(written)
+    return written
+
+
+def encode_curvature_texture(curvature: np.ndarray, bits: int) -> tuple[bytes, list]:
+    """(H, W) mean curvature -> grayscale PNG remapped so [lo, hi] -> [0, 1]; returns (png, [lo, hi])."""
+    lo = float(curvature.min()) if curvature.size else 0.0
+    hi = float(curvature.max()) if curvature.size else 0.0
+    if hi <= lo:
+        hi = lo + 1.0
+    scale = (1 << bits) - 1
+    q = np.clip(np.rint((curvature - lo) / (hi - lo) * scale), 0, scale)
+    return encode_image(q.astype(np.uint16 if bits == 16 else np.uint8), ".png"), [lo, hi]
+
+
+def add_curvature_texture(doc: GltfDocument, material: int, png: bytes) -> int:
+    image = doc.add_image(png, "image/png", f"curvature_m{material}")
+    return doc.add_texture(image, sampler={"magFilter": 9729, "minFilter": 9987},
+                           name=f"baker curvature (material {material})")
+
+
+def write_material_parameters(doc: GltfDocument, material: int, *, options, value_range: list,
+                              mean_curvature: float, per_vertex: bool, directions: bool,
+                              texture: int | None = None, texcoord: int = 0, texture_range: list | None = None) -> dict:
+    ext = {
+        "method": options.fit,
+        "smoothingPasses": int(options.smoothing),
+        "range": [float(value_range[0]), float(value_range[1])],
+        "meanCurvature": float(mean_curvature),
+    }
+    if options.radius:
+        ext["radius"] = float(options.radius)
+    else:
+        ext["rings"] = int(options.rings)
+    if per_vertex:
+        ext["attribute"] = ATTRIBUTE
+        if directions:
+            ext["principalCurvaturesAttribute"] = PRINCIPAL
+            ext["principalDirectionAttribute"] = DIRECTION
+    if texture is not None:
+        info = {"index": int(texture)}
+        if texcoord:
+            info["texCoord"] = int(texcoord)
+        ext["curvatureTexture"] = info
+        ext["textureRange"] = [float(texture_range[0]), float(texture_range[1])]
+    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
+    doc.use_extension(NAME)
+    return ext
+
+
+def check(doc: GltfDocument, places: list, issues) -> None:
+    """Semantic rules of BAKER_curvature: named attributes exist with the right types, agree with each other
+    (H = (k1 + k2) / 2, k1 >= k2, unit directions) and with ``range``; the texture's UV set exists."""
+    from baker.checks import is_index, is_number, primitives_using, check_vertex_attribute, pointer
+
+    gltf = doc.json
+    for parts, ext in places:
+        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
+            continue
+        material = parts[1]
+        ext_ptr = pointer("materials", material, "extensions", NAME)
+        users = list(primitives_using(gltf, material))
+        if not users:
+            issues.info("BAKER_CURVATURE_UNUSED", "no triangle primitive uses this material", ext_ptr)
+        value_range = ext.get("range")
+        ranged = isinstance(value_range, list) and len(value_range) == 2 and all(map(is_number, value_range))
+        if ranged and value_range[0] > value_range[1]:
+            issues.error("BAKER_CURVATURE_RANGE", f"range {value_range} is reversed", ext_ptr + "/range")
+            ranged = False
+        for m, p, prim in users:
+            mean = principal = None
+            name = ext.get("attribute")
+            if isinstance(name, str):
+                mean = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_CURVATURE")
+                if mean is not None and ranged and len(mean):
+                    span = max(abs(value_range[0]), abs(value_range[1]), 1e-30)
+                    finite = mean[np.isfinite(mean)]
+                    if len(finite) and (finite.min() < value_range[0] - 1e-4 * span
+                                        or finite.max() > value_range[1] + 1e-4 * span):
+                        issues.warning("BAKER_CURVATURE_OUTSIDE_RANGE", f"values span [{finite.min():g}, "
+                                       f"{finite.max():g}], outside range {value_range}",
+                                       pointer("accessors", prim["attributes"][name]))
+            name = ext.get("principalCurvaturesAttribute")
+            if isinstance(name, str):
+                principal = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_CURVATURE", types=("VEC2",))
+                if principal is not None:
+                    acc_ptr = pointer("accessors", prim["attributes"][name])
+                    k1, k2 = principal[:, 0], principal[:, 1]
+                    scale = max(float(np.nanmax(np.abs(principal))) if principal.size else 0.0, 1e-30)
+                    bad = int((k1 < k2 - 1e-5 * scale).sum())
+                    if bad:
+                        issues.error("BAKER_CURVATURE_ORDER", f"{bad} vertices have k1 < k2", acc_ptr)
+                    if mean is not None and len(mean) == len(k1):
+                        off = np.abs(mean - 0.5 * (k1 + k2)) > 1e-4 * scale
+                        if off.any():
+                            issues.error("BAKER_CURVATURE_MEAN_MISMATCH", f"{int(off.sum())} vertices have H != "
+                                         "(k1 + k2) / 2", acc_ptr)
+            name = ext.get("principalDirectionAttribute")
+            if isinstance(name, str):
+                direction = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_CURVATURE", types=("VEC3",))
+                if direction is not None:
+                    length = np.linalg.norm(direction, axis=1)
+                    bad = ~((np.abs(length - 1.0) < 1e-3) | (length < 1e-6))
+                    if bad.any():
+                        issues.error("BAKER_CURVATURE_DIRECTION_NOT_UNIT", f"{int(bad.sum())} directions are neither "
+                                     "unit length nor zero", pointer("accessors", prim["attributes"][name]))
+        info = ext.get("curvatureTexture")
+        if isinstance(info, dict) and is_index(info.get("index"), gltf.get("textures") or []):
+            texcoord = info.get("texCoord", 0)
+            for m, p, prim in users:
+                if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
+                    issues.error("BAKER_CURVATURE_TEXCOORD_MISSING", f"the curvature texture reads "
+                                 f"TEXCOORD_{texcoord} but this primitive has none",
+                                 pointer("meshes", m, "primitives", p, "attributes"))
+            texture_range = ext.get("textureRange")
+            if not (isinstance(texture_range, list) and len(texture_range) == 2
+                    and all(map(is_number, texture_range)) and texture_range[0] < texture_range[1]):
+                issues.error("BAKER_CURVATURE_TEXTURE_RANGE", "curvatureTexture needs textureRange [lo, hi] with "
+                             "lo < hi", ext_ptr)

@@ -1,0 +1,79 @@
+"""Wire the curvature kernel to an Asset: weld, fit, scatter back to the primitives, hand results to the writer."""
+from __future__ import annotations
+
+import numpy as np
+
+from baker.geometry.asset import Asset
+from baker.geometry.welding import weld
+from baker.techniques.curvature.options import CurvatureOptions
+from baker.techniques.curvature.kernel import principal_curvatures
+from baker.techniques.curvature import extension as ext
+from baker.progress import QUIET, Progress
+from baker.geometry.texture_space import dilate, interpolate
+from baker.geometry.texture_target import material_groups, material_targets
+
+
+def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progress = QUIET) -> None:
+    doc = asset.doc
+    groups = material_groups(asset)
+    material_of = {mp: mat for mat, members in groups.items() for mp in members}
+    stats = {mat: [np.inf, -np.inf, 0.0, 0] for mat in groups}  # min, max, sum, count of H
+    welded_results = {}  # mesh -> (welded positions, H per welded vertex)
+
+    for m in range(len(asset.meshes())):
+        prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
+        geoms = [asset.primitive(m, p) for p in prims]
+        geoms_with_faces = [g for g in geoms if len(g.faces)]
+        if not geoms_with_faces:
+            continue
+        positions = np.concatenate([g.positions for g in geoms])
+        # weld across UV/normal seams and primitives: one estimate per position, so split copies agree
+        welded, inverse = weld(positions)
+        offsets = np.cumsum([0] + [len(g.positions) for g in geoms])
+        faces = np.concatenate([inverse[g.faces + offsets[i]] for i, g in enumerate(geoms)])
+        faces = faces[(faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])]
+        with progress.task(f"curvature mesh {m}", 1) as advance:
+            result = principal_curvatures(welded, faces, rings=options.rings, radius=options.radius,
+                                          smoothing=options.smoothing, fit=options.fit)
+            advance(1)
+        welded_results[m] = (welded, result.mean)
+        principal = np.stack([result.k1, result.k2], axis=1)
+        for i, (p, g) in enumerate(zip(prims, geoms)):
+            idx = inverse[offsets[i]: offsets[i + 1]]
+            mean = result.mean[idx]
+            if options.per_vertex:
+                ext.write_vertex_curvature(doc, m, p, mean, principal[idx] if options.directions else None,
+                                           result.direction1[idx] if options.directions else None)
+            s = stats[material_of[(m, p)]]
+            if len(mean):
+                s[0], s[1] = min(s[0], float(mean.min())), max(s[1], float(mean.max()))
+                s[2] += float(mean.sum())
+                s[3] += len(mean)
+
+    textures = {}
+    if options.per_texel:
+        from scipy.spatial import cKDTree
+
+        trees = {m: cKDTree(w) for m, (w, _) in welded_results.items()}
+        for target in material_targets(asset, options.texture_size, seed):
+            image = np.zeros((target.size, target.size), np.float64)
+            for pt in target.primitives:
+                g, t = pt.geometry, pt.texels
+                if g.mesh not in trees:
+                    continue
+                # the layout may have split vertices (xatlas): find each one's welded source by position
+                _, nearest = trees[g.mesh].query(g.positions)
+                values = welded_results[g.mesh][1][nearest]
+                image[t.rows, t.cols] = interpolate(values, g.faces, t.triangle, t.bary)
+            png, texture_range = ext.encode_curvature_texture(dilate(image, target.mask), options.texture_bits)
+            textures[target.material] = (ext.add_curvature_texture(doc, target.material, png), target.texcoord,
+                                         texture_range)
+
+    for material, (lo, hi, total, count) in stats.items():
+        if not count:
+            continue
+        texture, texcoord, texture_range = textures.get(material, (None, 0, None))
+        ext.write_material_parameters(doc, material, options=options, value_range=[lo, hi],
+                                      mean_curvature=total / count, per_vertex=options.per_vertex,
+                                      directions=options.directions, texture=texture, texcoord=texcoord,
+                                      texture_range=texture_range)

@@ -1,0 +1,139 @@
+"""``BAKER_fur``: shell and fin textures on the material, and fin primitives built on the edge adjacency.
+
+Where the data goes (see ``schemas/BAKER_fur/README.md``):
+- ``BAKER_fur`` on the material: shell count, spacing and length (mesh units), tiling (tiles per TEXCOORD_0 unit),
+  the shell textures (one RGBA PNG per shell: colour + coverage), the fin texture, the fin primitives;
+- one fin primitive per furred triangle primitive (same mesh): per mesh edge a degenerate quad (v0, v1, v1, v0), so
+  a plain viewer rasterizes nothing; each vertex carries the edge's corners ``_FIN_V0.._FIN_V3`` (v2, v3: the
+  vertices opposite the edge in its two faces, as in BAKER_edges), its corner number ``_FIN_CORNER`` (0, 1 on the
+  surface at v0, v1; 2, 3 at the fur tips above v1, v0), the extrusion normal ``_FUR_FIN_NORMAL`` and the fin texture
+  coordinate ``_FUR_FIN_UV``; ``BAKER_fur`` on it names its source primitive (``finsOf``).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
+from baker.gltf.images import encode_image
+
+NAME = "BAKER_fur"
+SAMPLER_REPEAT = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}
+SAMPLER_FIN = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 33071}
+
+
+def encode_rgba_png(pixels: np.ndarray) -> bytes:
+    """PNG of straight-alpha RGBA8 pixels, stored as given."""
+    return encode_image(np.ascontiguousarray(pixels, np.uint8), ".png")
+
+
+def write_fur_textures(doc: GltfDocument, shells: np.ndarray, fin: np.ndarray) -> tuple[list, int]:
+    """Add the shell textures and the fin texture; returns ([shell texture indices], fin texture index)."""
+    out = []
+    for i, shell in enumerate(shells):
+        image = doc.add_image(encode_rgba_png(shell), "image/png", f"fur_shell{i:02d}")
+        out.append(doc.add_texture(image, sampler=SAMPLER_REPEAT, name=f"baker fur shell {i}"))
+    image = doc.add_image(encode_rgba_png(fin), "image/png", "fur_fin")
+    return out, doc.add_texture(image, sampler=SAMPLER_FIN, name="baker fur fin")
+
+
+def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: np.ndarray, normals: np.ndarray,
+                        fin_u: np.ndarray) -> int:
+    """Append the fur fin primitive of ``primitive``.
+
+    corners: (E, 4, 3) v0, v1, v2, v3 of every edge; normals: (E, 2, 3) extrusion normals at v0, v1; fin_u: (E, 2)
+    fin texture u at v0, v1 (tile units)."""
+    prims = doc.json["meshes"][mesh]["primitives"]
+    n = len(corners)
+    corners = corners.astype(np.float32)
+    at = np.array([0, 1, 1, 0])  # corner k sits on edge vertex at[k]
+    rows = np.repeat(np.arange(n), 4)
+    position = corners[rows, np.tile(at, n)]
+    attributes = {"POSITION": doc.add_accessor(position, min_max=True)}
+    for j in range(4):
+        attributes[f"_FIN_V{j}"] = doc.add_accessor(np.repeat(corners[:, j], 4, axis=0))
+    attributes["_FIN_CORNER"] = doc.add_accessor(np.tile(np.arange(4, dtype=np.float32), n))
+    attributes["_FUR_FIN_NORMAL"] = doc.add_accessor(normals.astype(np.float32)[rows, np.tile(at, n)])
+    v = np.tile(np.array([0.0, 0.0, 1.0, 1.0], np.float32), n)  # 0 at the root, 1 at the tip
+    u = fin_u.astype(np.float32)[rows, np.tile(at, n)]
+    attributes["_FUR_FIN_UV"] = doc.add_accessor(np.stack([u, v], axis=1))
+    quad = np.array([0, 1, 2, 0, 2, 3], np.int64)
+    indices = (np.arange(n)[:, None] * 4 + quad[None, :]).reshape(-1)
+    fin = {
+        "attributes": attributes,
+        "indices": doc.add_accessor(indices.astype(np.uint16 if 4 * n <= 0xFFFF else np.uint32),
+                                    target=TARGET_ELEMENT_ARRAY_BUFFER),
+        "mode": 4,
+        "extensions": {NAME: {"finsOf": int(primitive)}},
+    }
+    # no material: the fur runtime takes BAKER_fur from the source primitive's material (through finsOf); binding it
+    # here would ask for TEXCOORD sets the fin lacks (invalid glTF when the material has textures)
+    prims.append(fin)
+    return len(prims) - 1
+
+
+def write_material(doc: GltfDocument, material: int, *, options, length: float, shell_textures: list,
+                   fin_texture: int, fins: list, coverage: np.ndarray, tile_size: float) -> dict:
+    ext = {
+        "shellCount": int(options.shells),
+        "length": float(length),
+        "shellSpacing": float(length / options.shells),
+        "tiling": float(options.tiling),
+        "tileSize": float(tile_size),
+        "shellTextures": [{"index": int(t)} for t in shell_textures],
+        "shellCoverage": [float(c) for c in coverage],
+        "finTexture": {"index": int(fin_texture)},
+        "fins": [{"mesh": int(m), "primitive": int(p)} for m, p in fins],
+    }
+    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
+    doc.use_extension(NAME)
+    return ext
+
+
+def check(doc: GltfDocument, places: list, issues) -> None:
+    """Semantic rules of BAKER_fur: one shell texture per shell, textures exist, fin primitives point back at a
+    triangle primitive of the same mesh that uses the material, and carry the fin attributes."""
+    from baker.checks import is_index, pointer
+
+    gltf = doc.json
+    textures = gltf.get("textures") or []
+    meshes = gltf.get("meshes") or []
+    for parts, ext in places:
+        if not isinstance(ext, dict):
+            continue
+        if len(parts) == 2 and parts[0] == "materials":
+            ptr = pointer("materials", parts[1], "extensions", NAME)
+            shells = ext.get("shellTextures") or []
+            if len(shells) != ext.get("shellCount"):
+                issues.error("BAKER_FUR_SHELL_COUNT", f"{len(shells)} shell textures for shellCount "
+                             f"{ext.get('shellCount')}", ptr + "/shellTextures")
+            for i, info in enumerate(shells + [ext.get("finTexture") or {}]):
+                if not is_index(info.get("index"), textures):
+                    issues.error("UNRESOLVED_REFERENCE", f"texture {info.get('index')!r} does not exist", ptr)
+            spacing, length, count = ext.get("shellSpacing"), ext.get("length"), ext.get("shellCount")
+            if all(isinstance(x, (int, float)) for x in (spacing, length, count)) and count and \
+                    abs(spacing * count - length) > 1e-6 * max(length, 1e-30):
+                issues.error("BAKER_FUR_SPACING", "shellSpacing x shellCount must equal length", ptr)
+            for j, ref in enumerate(ext.get("fins") or []):
+                m, p = ref.get("mesh"), ref.get("primitive")
+                if not is_index(m, meshes) or not is_index(p, meshes[m].get("primitives") or []):
+                    issues.error("UNRESOLVED_REFERENCE", f"fin primitive {m}/{p} does not exist", ptr + f"/fins/{j}")
+                    continue
+                fin = meshes[m]["primitives"][p]
+                if ((fin.get("extensions") or {}).get(NAME) or {}).get("finsOf") is None:
+                    issues.error("BAKER_FUR_FIN_NOT_MARKED", "the fin primitive has no BAKER_fur.finsOf",
+                                 pointer("meshes", m, "primitives", p))
+        elif len(parts) == 4 and parts[0] == "meshes" and parts[2] == "primitives":
+            m, p = parts[1], parts[3]
+            prims = meshes[m].get("primitives") or []
+            src = ext.get("finsOf")
+            ptr = pointer("meshes", m, "primitives", p, "extensions", NAME)
+            if not is_index(src, prims) or src == p:
+                issues.error("BAKER_FUR_FINS_OF", f"finsOf {src!r} is not another primitive of this mesh", ptr)
+                continue
+            attrs = prims[p].get("attributes") or {}
+            missing = [a for a in ("_FIN_V0", "_FIN_V1", "_FIN_V2", "_FIN_V3", "_FIN_CORNER", "_FUR_FIN_NORMAL",
+                                   "_FUR_FIN_UV") if a not in attrs]
+            if missing:
+                issues.error("BAKER_FUR_FIN_ATTRIBUTES", f"fin primitive lacks {', '.join(missing)}", ptr)
+            if "material" in prims[p] and prims[p]["material"] != prims[src].get("material"):
+                issues.warning("BAKER_FUR_FIN_MATERIAL", "the fin primitive's material differs from its source's", ptr)

@@ -1,0 +1,342 @@
+"""Fonts -> glyph outlines, metrics and kerning (fontTools).
+
+Reads TrueType/OpenType (``.ttf .otf``, quadratic or cubic outlines), collections (``.ttc``, by ``font_number``) and
+named instances of variable fonts (``instance``: the instance's subfamily name, e.g. "Bold Condensed", or axis
+values such as ``wght=700,wdth=75``). Outlines come out as :class:`~baker.techniques.glyphs.shape.Shape` in font units
+(y up); metrics as the font declares them (``hhea``, ``post``); kerning from GPOS pair adjustment (``kern``
+feature, formats 1 and 2, extension lookups included) or, when a font has no GPOS kerning, from the legacy ``kern``
+table (format 0).
+
+Charsets (see :func:`parse_charset`): ``ascii`` (0x20-0x7E, the default), ``latin1``, code-point ranges and single
+code points (``0x20-0x7E,0xA0-0xFF,U+20AC,65``), ``str:TEXT`` (the characters of TEXT) or ``file:PATH`` (the
+characters of a UTF-8 text file). Code points the font has no glyph for are reported in ``Font.missing``, never
+silently dropped.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from baker.errors import BakerError
+from baker.techniques.glyphs.shape import Shape, from_contours
+
+ASCII = tuple(range(0x20, 0x7F))
+LATIN1 = tuple(range(0x20, 0x7F)) + tuple(range(0xA0, 0x100))
+
+
+@dataclass(frozen=True)
+class FontMetrics:
+    """Font-wide metrics in font units (y up, baseline at 0)."""
+
+    units_per_em: int
+    ascender: float
+    descender: float  # negative below the baseline
+    line_height: float  # ascender - descender + line gap
+    underline_y: float  # centre of the underline stroke
+    underline_thickness: float
+
+
+@dataclass
+class Glyph:
+    """One character: its code point, glyph name and id, advance (font units) and outline."""
+
+    codepoint: int
+    name: str
+    index: int
+    advance: float
+    shape: Shape
+
+
+@dataclass
+class Font:
+    path: str
+    family: str
+    metrics: FontMetrics
+    glyphs: list  # [Glyph], in charset order
+    kerning: dict = field(default_factory=dict)  # (codepoint1, codepoint2) -> advance adjustment, font units
+    missing: list = field(default_factory=list)  # code points of the charset the font has no glyph for
+
+
+# ---------------------------------------------------------------------------------------------------- charsets
+def parse_charset(spec: str | None) -> list[int]:
+    """Code points from a charset spec (see the module docstring), in order, without duplicates."""
+    spec = "ascii" if spec is None else spec
+    if spec.startswith("str:"):
+        points = [ord(c) for c in spec[4:]]
+    elif spec.startswith("file:"):
+        path = Path(spec[5:])
+        try:
+            text = path.read_text("utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise BakerError(path, f"cannot read charset file: {exc}") from None
+        points = [ord(c) for c in text if ord(c) >= 0x20 and c not in "\u2028\u2029"]
+    else:
+        points = []
+        for item in (s.strip() for s in spec.split(",")):
+            if not item:
+                continue
+            low = item.lower()
+            if low == "ascii":
+                points.extend(ASCII)
+                continue
+            if low == "latin1":
+                points.extend(LATIN1)
+                continue
+            m = re.fullmatch(r"((?:0x|u\+)?[0-9a-f]+)(?:\s*-\s*((?:0x|u\+)?[0-9a-f]+))?", low)
+            if not m:
+                raise BakerError(None, f"bad charset item {item!r} (use ascii, latin1, 0x20-0x7E, U+00E9, 65, "
+                                       "str:TEXT or file:PATH)")
+            lo = _codepoint(m.group(1))
+            hi = _codepoint(m.group(2)) if m.group(2) else lo
+            if hi < lo or hi > 0x10FFFF:
+                raise BakerError(None, f"bad charset range {item!r}")
+            points.extend(range(lo, hi + 1))
+    seen, out = set(), []
+    for p in points:
+        if p not in seen:
+            seen.add(p)
+            out.append(p)
+    return out
+
+
+def _codepoint(text: str) -> int:
+    if text.startswith(("0x", "u+")):
+        return int(text[2:], 16)
+    return int(text, 10)
+
+
+# ---------------------------------------------------------------------------------------------------- loading
+def open_font(path, font_number: int = 0, instance: str | None = None):
+    """(TTFont, glyph set) for a font file, at the named instance of a variable font if asked."""
+    from fontTools.ttLib import TTFont, TTLibError
+
+    path = Path(path)
+    if not path.is_file():
+        raise BakerError(path, "font file not found")
+    try:
+        font = TTFont(str(path), fontNumber=font_number, lazy=True)
+        font["head"]
+    except (TTLibError, OSError, KeyError, AssertionError, Exception) as exc:  # fontTools raises many kinds
+        raise BakerError(path, f"not a readable TrueType/OpenType font: {exc}") from None
+    location = None
+    if instance:
+        location = _instance_location(font, instance, path)
+    glyph_set = font.getGlyphSet(location=location) if location else font.getGlyphSet()
+    return font, glyph_set
+
+
+def _instance_location(font, instance: str, path) -> dict:
+    if "fvar" not in font:
+        raise BakerError(path, f"instance {instance!r} asked for, but this is not a variable font")
+    fvar = font["fvar"]
+    if "=" in instance:
+        axes = {a.axisTag for a in fvar.axes}
+        loc = {}
+        for part in instance.split(","):
+            tag, _, value = part.partition("=")
+            tag = tag.strip()
+            if tag not in axes:
+                raise BakerError(path, f"unknown axis {tag!r} (axes: {', '.join(sorted(axes))})")
+            loc[tag] = float(value)
+        return loc
+    names = []
+    for inst in fvar.instances:
+        name = font["name"].getDebugName(inst.subfamilyNameID) or ""
+        names.append(name)
+        if name.lower() == instance.lower():
+            return dict(inst.coordinates)
+    raise BakerError(path, f"no named instance {instance!r} (instances: {', '.join(names)})")
+
+
+def font_metrics(font) -> FontMetrics:
+    upem = int(font["head"].unitsPerEm)
+    hhea = font["hhea"]
+    ascender, descender, gap = float(hhea.ascent), float(hhea.descent), float(hhea.lineGap)
+    if ascender == 0 and descender == 0 and "OS/2" in font:  # as FreeType: fall back to the typo metrics
+        os2 = font["OS/2"]
+        ascender, descender, gap = float(os2.sTypoAscender), float(os2.sTypoDescender), float(os2.sTypoLineGap)
+    post = font["post"] if "post" in font else None
+    thickness = float(post.underlineThickness) if post else upem / 20.0
+    # post.underlinePosition is the top of the stroke; report its centre (as FreeType does)
+    underline = float(post.underlinePosition) - thickness / 2.0 if post else -upem / 10.0
+    return FontMetrics(upem, ascender, descender, ascender - descender + gap, underline, thickness)
+
+
+class _OutlinePen:
+    """A fontTools segment pen collecting (degree, control points) per contour; components are decomposed."""
+
+    def __init__(self, glyph_set):
+        from fontTools.pens.basePen import BasePen
+
+        outer = self
+
+        class Pen(BasePen):
+            def _moveTo(self, pt):
+                outer._close()
+                outer.start = outer.current = pt
+
+            def _lineTo(self, pt):
+                outer._add(1, [outer.current, pt])
+
+            def _qCurveToOne(self, pt1, pt2):
+                outer._add(2, [outer.current, pt1, pt2])
+
+            def _curveToOne(self, pt1, pt2, pt3):
+                outer._add(3, [outer.current, pt1, pt2, pt3])
+
+            def _closePath(self):
+                outer._close()
+
+            def _endPath(self):
+                outer._close()  # open contours are closed: the fill rule closes them anyway
+
+        self.pen = Pen(glyph_set)
+        self.contours: list = []
+        self.segments: list = []
+        self.start = self.current = None
+
+    def _add(self, degree, points):
+        self.segments.append((degree, [tuple(map(float, p)) for p in points]))
+        self.current = points[-1]
+
+    def _close(self):
+        if self.segments:
+            if tuple(map(float, self.current)) != tuple(map(float, self.start)):
+                self._add(1, [self.current, self.start])
+            self.contours.append(self.segments)
+        self.segments = []
+        self.current = self.start
+
+
+def glyph_shape(glyph_set, name: str) -> Shape:
+    """The outline of glyph ``name`` in font units."""
+    pen = _OutlinePen(glyph_set)
+    glyph_set[name].draw(pen.pen)
+    pen._close()
+    return from_contours(pen.contours)
+
+
+def load_font(path, charset=None, *, font_number: int = 0, instance: str | None = None,
+              kerning: bool = True) -> Font:
+    """Read the glyphs of ``charset`` (a spec string or a list of code points) from a font file."""
+    codepoints = parse_charset(charset) if charset is None or isinstance(charset, str) else list(charset)
+    font, glyph_set = open_font(path, font_number, instance)
+    cmap = font.getBestCmap() or {}
+    glyph_ids = {name: i for i, name in enumerate(font.getGlyphOrder())}
+    glyphs, missing = [], []
+    for cp in codepoints:
+        name = cmap.get(cp)
+        if name is None or name not in glyph_set:
+            missing.append(cp)
+            continue
+        g = glyph_set[name]
+        glyphs.append(Glyph(cp, name, glyph_ids.get(name, 0), float(g.width), glyph_shape(glyph_set, name)))
+    family = font["name"].getDebugName(1) or Path(path).stem if "name" in font else Path(path).stem
+    result = Font(str(path), family, font_metrics(font), glyphs, missing=missing)
+    if kerning and glyphs:
+        result.kerning = kerning_pairs(font, [(g.codepoint, g.name) for g in glyphs])
+    return result
+
+
+# ---------------------------------------------------------------------------------------------------- kerning
+def kerning_pairs(font, chars: list) -> dict:
+    """{(codepoint1, codepoint2): x-advance adjustment in font units} between the given (codepoint, glyph name)s.
+
+    GPOS ``kern`` lookups apply in lookup order and add up; within a lookup the first subtable that applies to a
+    pair wins (OpenType). Without GPOS kerning, the legacy ``kern`` table is used.
+    """
+    names = [n for _, n in chars]
+    matrix = _gpos_kerning(font, names)
+    if matrix is None:
+        matrix = _legacy_kerning(font, names)
+    if matrix is None:
+        return {}
+    i, j = np.nonzero(matrix)
+    return {(chars[a][0], chars[b][0]): float(matrix[a, b]) for a, b in zip(i.tolist(), j.tolist())}
+
+
+def _gpos_kerning(font, names: list):
+    if "GPOS" not in font:
+        return None
+    table = font["GPOS"].table
+    if not table.FeatureList or not table.LookupList:
+        return None
+    lookups = sorted({i for rec in table.FeatureList.FeatureRecord if rec.FeatureTag == "kern"
+                      for i in rec.Feature.LookupListIndex})
+    if not lookups:
+        return None
+    n = len(names)
+    position = {}
+    for k, name in enumerate(names):
+        position.setdefault(name, []).append(k)
+    total = np.zeros((n, n))
+    for li in lookups:
+        lookup = table.LookupList.Lookup[li]
+        applied = np.zeros((n, n), bool)
+        value = np.zeros((n, n))
+        for st in lookup.SubTable:
+            if lookup.LookupType == 9:
+                if st.ExtensionLookupType != 2:
+                    continue
+                st = st.ExtSubTable
+            elif lookup.LookupType != 2:
+                continue
+            covered = st.Coverage.glyphs if st.Coverage else []
+            cover_index = {g: i for i, g in enumerate(covered)}
+            if st.Format == 1:
+                for name, firsts in position.items():
+                    ci = cover_index.get(name)
+                    if ci is None:
+                        continue
+                    for rec in st.PairSet[ci].PairValueRecord:
+                        seconds = position.get(rec.SecondGlyph)
+                        if not seconds:
+                            continue
+                        adv = float(getattr(rec.Value1, "XAdvance", 0) or 0) if rec.Value1 else 0.0
+                        for a in firsts:
+                            for b in seconds:
+                                if not applied[a, b]:
+                                    applied[a, b] = True
+                                    value[a, b] = adv
+            elif st.Format == 2:
+                first = np.array([name in cover_index for name in names])
+                if not first.any():
+                    continue
+                class1 = st.ClassDef1.classDefs if st.ClassDef1 else {}
+                class2 = st.ClassDef2.classDefs if st.ClassDef2 else {}
+                c1 = np.array([class1.get(name, 0) for name in names])
+                c2 = np.array([class2.get(name, 0) for name in names])
+                adv = np.array([[float(getattr(r.Value1, "XAdvance", 0) or 0) if r.Value1 else 0.0
+                                 for r in rec.Class2Record] for rec in st.Class1Record])
+                c1 = np.minimum(c1, len(adv) - 1)
+                c2 = np.minimum(c2, adv.shape[1] - 1)
+                here = first[:, None] & ~applied
+                value = np.where(here, adv[c1[:, None], c2[None, :]], value)
+                applied |= here
+        total += value
+    return total
+
+
+def _legacy_kerning(font, names: list):
+    if "kern" not in font:
+        return None
+    n = len(names)
+    total = np.zeros((n, n))
+    index = {}
+    for k, name in enumerate(names):
+        index.setdefault(name, []).append(k)
+    found = False
+    for sub in font["kern"].kernTables:
+        pairs = getattr(sub, "kernTable", None)
+        if getattr(sub, "format", 0) != 0 or not pairs:
+            continue
+        found = True
+        for (left, right), adv in pairs.items():
+            if left in index and right in index:
+                for a in index[left]:
+                    for b in index[right]:
+                        total[a, b] += adv
+    return total if found else None

@@ -1,0 +1,207 @@
+"""``BAKER_hair``: strand sets -> a LINES mesh with strand attributes and the ribbon/guide data a runtime needs.
+
+Where the data goes (see ``schemas/BAKER_hair/README.md``):
+- one ``LINES`` primitive per strand set (guides, children), vertices strand by strand from root to tip, strands
+  ordered nearest-the-emitter first (RTR4 14.7.1: a pre-sorted buffer limits alpha-blending errors); plain viewers
+  draw the lines;
+- vertex attributes ``_STRAND_TANGENT`` (FLOAT VEC3, unit) and ``_STRAND_PARAM`` (FLOAT SCALAR, 0 at the root,
+  1 at the tip);
+- ``BAKER_hair`` on the primitive: counts, widths, the per-strand width scale, the ribbon index buffer (6 indices
+  per segment over ``2 x vertex count`` ribbon vertices), and for children the guide ids + weights.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from baker.techniques.hair.kernel import HairResult, StrandSet, ribbon_indices, strand_tangents
+from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
+
+NAME = "BAKER_hair"
+TANGENT = "_STRAND_TANGENT"
+PARAM = "_STRAND_PARAM"
+MODE_LINES = 1
+
+
+def _add_node(doc: GltfDocument, mesh: int, emitter_mesh: int, name: str) -> int:
+    """A node drawing ``mesh``, child of the first node that draws ``emitter_mesh`` (so it shares its transform),
+    else a root of the default scene."""
+    gltf = doc.json
+    nodes = gltf.setdefault("nodes", [])
+    nodes.append({"name": name, "mesh": mesh})
+    node = len(nodes) - 1
+    for i, n in enumerate(nodes[:-1]):
+        if n.get("mesh") == emitter_mesh:
+            n.setdefault("children", []).append(node)
+            return node
+    scenes = gltf.setdefault("scenes", [{"nodes": []}])
+    scenes[gltf.get("scene", 0)].setdefault("nodes", []).append(node)
+    gltf.setdefault("scene", 0)
+    return node
+
+
+def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set: str, result: HairResult,
+                           material: int, guide_primitive: int | None = None) -> dict:
+    """The primitive dict (not yet attached to a mesh) for one strand set."""
+    s, v = strands.count, strands.vertices
+    positions = strands.positions.reshape(-1, 3).astype(np.float32)
+    tangents = strand_tangents(strands.positions).reshape(-1, 3).astype(np.float32)
+    param = np.tile(np.linspace(0.0, 1.0, v, dtype=np.float32), s)
+    seg = (np.arange(s)[:, None] * v + np.arange(v - 1)[None, :]).reshape(-1)
+    lines = np.stack([seg, seg + 1], axis=1).reshape(-1).astype(np.uint32)
+    prim = {
+        "attributes": {
+            "POSITION": doc.add_accessor(positions, min_max=True),
+            TANGENT: doc.add_accessor(tangents),
+            PARAM: doc.add_accessor(param),
+        },
+        "indices": doc.add_accessor(lines, target=TARGET_ELEMENT_ARRAY_BUFFER),
+        "mode": MODE_LINES,
+        "material": material,
+    }
+    ext = {
+        "strandSet": strand_set,
+        "strandCount": int(s),
+        "verticesPerStrand": int(v),
+        "length": float(result.length),
+        "rootWidth": float(result.root_width),
+        "tipWidth": float(result.tip_width),
+        "widthScale": doc.add_accessor(strands.width_scale.astype(np.float32), target=None),
+        "ribbonIndices": doc.add_accessor(ribbon_indices(s, v).astype(np.uint32), target=None),
+        "order": "nearestFirst",
+        "tangentAttribute": TANGENT,
+        "paramAttribute": PARAM,
+    }
+    if strands.guide_ids is not None:
+        ext["guides"] = {
+            "primitive": int(guide_primitive),
+            "ids": doc.add_accessor(strands.guide_ids.astype(np.uint32), target=None),
+            "weights": doc.add_accessor(strands.guide_weights.astype(np.float32), target=None),
+        }
+    prim["extensions"] = {NAME: ext}
+    return prim
+
+
+def write_hair(doc: GltfDocument, result: HairResult, emitter_mesh: int, color=(0.18, 0.11, 0.06)) -> int:
+    """Add the hair mesh (guides, then children when there are any) and its node; returns the mesh index."""
+    materials = doc.json.setdefault("materials", [])
+    materials.append({"name": "baker_hair", "pbrMetallicRoughness": {
+        "baseColorFactor": [float(c) for c in color] + [1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
+    material = len(materials) - 1
+    prims = [write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material)]
+    if result.children.count:
+        prims.append(write_strand_primitive(doc, result.children, strand_set="children", result=result,
+                                            material=material, guide_primitive=0))
+    meshes = doc.json.setdefault("meshes", [])
+    meshes.append({"name": "hair", "primitives": prims})
+    mesh = len(meshes) - 1
+    _add_node(doc, mesh, emitter_mesh, "hair")
+    doc.use_extension(NAME)
+    return mesh
+
+
+def read_strands(doc: GltfDocument, mesh: int, primitive: int) -> dict:
+    """The strand data of one BAKER_hair primitive as arrays (positions (s, v, 3), param, tangents, guides...)."""
+    prim = doc.json["meshes"][mesh]["primitives"][primitive]
+    ext = prim["extensions"][NAME]
+    s, v = ext["strandCount"], ext["verticesPerStrand"]
+    out = {
+        "positions": doc.accessor(prim["attributes"]["POSITION"]).reshape(s, v, 3),
+        "tangents": doc.accessor(prim["attributes"][ext.get("tangentAttribute", TANGENT)]).reshape(s, v, 3),
+        "param": doc.accessor(prim["attributes"][ext.get("paramAttribute", PARAM)]).reshape(s, v),
+        "width_scale": doc.accessor(ext["widthScale"]),
+        "ribbon": doc.accessor(ext["ribbonIndices"]),
+        "ext": ext,
+    }
+    if "guides" in ext:
+        out["guide_ids"] = doc.accessor(ext["guides"]["ids"])
+        out["guide_weights"] = doc.accessor(ext["guides"]["weights"])
+    return out
+
+
+def check(doc: GltfDocument, places: list, issues) -> None:
+    """Semantic rules of BAKER_hair (``baker validate``): counts agree with the accessors, strands run root to tip,
+    tangents are unit, the ribbon buffer addresses the ribbon vertices, guide references resolve and weights are a
+    partition of unity."""
+    from baker.checks import is_index, check_vertex_attribute, pointer
+
+    gltf = doc.json
+    accessors = gltf.get("accessors") or []
+    for parts, ext in places:
+        if len(parts) != 4 or parts[0] != "meshes" or parts[2] != "primitives" or not isinstance(ext, dict):
+            continue  # misplaced or malformed: reported by the schema pass
+        m, p = parts[1], parts[3]
+        prim = gltf["meshes"][m]["primitives"][p]
+        ptr = pointer("meshes", m, "primitives", p, "extensions", NAME)
+        s, v = ext.get("strandCount"), ext.get("verticesPerStrand")
+        if not (isinstance(s, int) and isinstance(v, int)) or s < 1 or v < 2:
+            continue
+        if prim.get("mode", 4) != MODE_LINES:
+            issues.error("BAKER_HAIR_MODE", f"a BAKER_hair primitive must be LINES (mode 1), not {prim.get('mode', 4)}",
+                         pointer("meshes", m, "primitives", p, "mode"))
+        attrs = prim.get("attributes") or {}
+        pos = attrs.get("POSITION")
+        if is_index(pos, accessors) and accessors[pos].get("count") != s * v:
+            issues.error("BAKER_HAIR_VERTEX_COUNT", f"POSITION has {accessors[pos].get('count')} vertices, expected "
+                         f"strandCount x verticesPerStrand = {s * v}", pointer("accessors", pos))
+            continue
+        if "indices" in prim and is_index(prim["indices"], accessors):
+            lines = doc.accessor(prim["indices"]).astype(np.int64)
+            if len(lines) != 2 * s * (v - 1):
+                issues.error("BAKER_HAIR_LINE_COUNT", f"{len(lines)} line indices, expected 2 x strandCount x "
+                             f"(verticesPerStrand - 1) = {2 * s * (v - 1)}", pointer("accessors", prim["indices"]))
+        tangent = check_vertex_attribute(doc, m, p, ext.get("tangentAttribute", TANGENT), issues,
+                                         code="BAKER_HAIR_TANGENT", types=("VEC3",))
+        if tangent is not None and len(tangent):
+            bad = np.abs(np.linalg.norm(tangent, axis=1) - 1.0) > 1e-3
+            if bad.any():
+                issues.error("BAKER_HAIR_TANGENT_NOT_UNIT", f"{int(bad.sum())} tangents are not unit length",
+                             pointer("accessors", attrs[ext.get("tangentAttribute", TANGENT)]))
+        param = check_vertex_attribute(doc, m, p, ext.get("paramAttribute", PARAM), issues, code="BAKER_HAIR_PARAM")
+        if param is not None and len(param) == s * v:
+            strands = param.reshape(s, v)
+            if (np.abs(strands[:, 0]) > 1e-6).any() or (np.abs(strands[:, -1] - 1.0) > 1e-6).any() \
+                    or (np.diff(strands, axis=1) <= 0).any():
+                issues.error("BAKER_HAIR_PARAM_ORDER", "every strand's parameter must rise from 0 at the root to 1 "
+                             "at the tip", pointer("accessors", attrs[ext.get("paramAttribute", PARAM)]))
+        for key, count, kind in (("widthScale", s, "SCALAR"), ("ribbonIndices", 6 * s * (v - 1), "SCALAR")):
+            a = ext.get(key)
+            if not is_index(a, accessors):
+                issues.error("UNRESOLVED_REFERENCE", f"accessor {a!r} does not exist", ptr + "/" + key)
+                continue
+            if accessors[a].get("count") != count or accessors[a].get("type") != kind:
+                issues.error("BAKER_HAIR_ACCESSOR_COUNT", f"'{key}' must be {count} {kind} values, not "
+                             f"{accessors[a].get('count')} {accessors[a].get('type')}", pointer("accessors", a))
+                continue
+            values = doc.accessor(a)
+            if key == "widthScale" and ((values <= 0) | (values > 1) | ~np.isfinite(values)).any():
+                issues.error("BAKER_HAIR_WIDTH_SCALE", "width scales must be in (0, 1]", pointer("accessors", a))
+            if key == "ribbonIndices" and len(values) and int(values.max()) >= 2 * s * v:
+                issues.error("BAKER_HAIR_RIBBON_INDEX_OOB", f"ribbon indices must be < 2 x vertex count = {2 * s * v}",
+                             pointer("accessors", a))
+        if (ext.get("tipWidth") or 0) > (ext.get("rootWidth") or 0) * 1.000001:
+            issues.warning("BAKER_HAIR_WIDTH_ORDER", "tipWidth is larger than rootWidth", ptr)
+        guides = ext.get("guides")
+        if isinstance(guides, dict):
+            gp = guides.get("primitive")
+            mesh_prims = gltf["meshes"][m]["primitives"]
+            gext = (mesh_prims[gp].get("extensions") or {}).get(NAME) if is_index(gp, mesh_prims) else None
+            if not isinstance(gext, dict) or gp == p:
+                issues.error("BAKER_HAIR_GUIDES_MISSING", f"guides.primitive {gp!r} is not another BAKER_hair "
+                             "primitive of this mesh", ptr + "/guides/primitive")
+                continue
+            n_guides = gext.get("strandCount", 0)
+            ids_a, w_a = guides.get("ids"), guides.get("weights")
+            if not (is_index(ids_a, accessors) and is_index(w_a, accessors)):
+                continue
+            ids, weights = doc.accessor(ids_a), doc.accessor(w_a)
+            if ids.shape != (s, 3) or weights.shape != (s, 3):
+                issues.error("BAKER_HAIR_GUIDE_ACCESSORS", "guides.ids and guides.weights must hold one VEC3 per "
+                             "strand", ptr + "/guides")
+                continue
+            if int(ids.max()) >= n_guides:
+                issues.error("BAKER_HAIR_GUIDE_ID_OOB", f"guide ids must be < the guide strand count {n_guides}",
+                             pointer("accessors", ids_a))
+            w = weights.astype(np.float64)
+            if (w < 0).any() or (np.abs(w.sum(axis=1) - 1.0) > 1e-4).any():
+                issues.error("BAKER_HAIR_GUIDE_WEIGHTS", "guide weights must be >= 0 and sum to 1 per strand",
+                             pointer("accessors", w_a))

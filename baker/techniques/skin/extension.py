@@ -1,0 +1,130 @@
+"""``BAKER_skin_lut``: Penner's pre-integrated skin LUTs on a material -> glTF JSON + images, and their checks.
+
+The material gets (see ``schemas/BAKER_skin_lut/README.md``): ``lutTexture`` (RGB, u = N.L * 0.5 + 0.5, v = curvature
+linear over ``curvatureRange`` in 1/``unit``, endpoint-aligned texels), optionally ``penumbraTexture``, the profile,
+``curvatureScale`` (1/mesh units -> 1/``unit``), where the curvature comes from (``curvatureAttribute``,
+``curvatureTexture``, else the runtime's derivative estimate) and the runtime's normal-blend and wrap parameters.
+The LUTs are stored as PNG (8- or 16-bit, ``encoding`` linear or sRGB) and sampled with clamp-to-edge, linear,
+no mipmaps.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from baker.techniques.skin.options import SkinOptions
+from baker.techniques.skin.kernel import SkinTables, quantize
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import encode_image
+
+NAME = "BAKER_skin_lut"
+CLAMP_LINEAR = {"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 33071}
+
+
+def encode_lut(values: np.ndarray, bits: int, encoding: str) -> bytes:
+    """(H, W, 3) linear [0, 1] -> RGB PNG, row 0 at the top (v = 0)."""
+    return encode_image(quantize(values, bits, encoding), ".png")
+
+
+def add_lut_texture(doc: GltfDocument, png: bytes, name: str) -> int:
+    image = doc.add_image(png, "image/png", name)
+    return doc.add_texture(image, sampler=CLAMP_LINEAR, name=f"baker {name.replace('_', ' ')}")
+
+
+def write_material_parameters(doc: GltfDocument, material: int, *, tables: SkinTables, options: SkinOptions,
+                              lut_texture: int, penumbra_texture: int | None, curvature_attribute: str | None,
+                              curvature_texture: dict | None, curvature_texture_range: list | None) -> dict:
+    profile = tables.profile.as_json()
+    ext = {
+        "lutTexture": {"index": int(lut_texture)},
+        "ndotlRange": [-1.0, 1.0],
+        "curvatureRange": [float(c) for c in tables.axes.curvature_range],
+        "unit": "mm",
+        "encoding": options.encoding,
+        "curvatureScale": 1.0 / float(options.unit_scale),
+        "profile": {k: profile[k] for k in ("name", "variances", "red", "green", "blue")},
+        "samples": int(options.samples),
+        "normalBlend": [float(x) for x in tables.normal_blend],
+        "wrap": float(options.wrap),
+        "scatterWidth": float(options.scatter_width),
+        "scatterColor": [float(c) for c in options.scatter_color],
+    }
+    if penumbra_texture is not None:
+        ext["penumbraTexture"] = {"index": int(penumbra_texture)}
+        ext["penumbraWidthRange"] = [float(x) for x in tables.penumbra_range]
+        ext["shadowSharpening"] = float(options.sharpening)
+    if curvature_attribute:
+        ext["curvatureAttribute"] = curvature_attribute
+    if curvature_texture:
+        ext["curvatureTexture"] = dict(curvature_texture)
+        ext["curvatureTextureRange"] = [float(x) for x in curvature_texture_range]
+    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
+    doc.use_extension(NAME)
+    return ext
+
+
+def _decode_texture(doc: GltfDocument, texture: int) -> np.ndarray | None:
+    from baker.gltf.images import decode_image
+
+    source = (doc.json.get("textures") or [])[texture].get("source")
+    images = doc.json.get("images") or []
+    if not isinstance(source, int) or not 0 <= source < len(images):
+        return None
+    try:
+        return decode_image(doc.image_bytes(source), ".png")
+    except Exception:  # a broken image is reported by Khronos' validator; here it only ends our checks
+        return None
+
+
+def check(doc: GltfDocument, places: list, issues) -> None:
+    """Semantic rules of BAKER_skin_lut: ranges ordered, textures resolve to RGB images whose rows do not decrease
+    along N.L (u) / the shadow value, and the curvature attribute or texture it names exists."""
+    from baker.checks import is_index, primitives_using, check_vertex_attribute, pointer
+
+    gltf = doc.json
+    textures = gltf.get("textures") or []
+    for parts, ext in places:
+        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
+            continue
+        material = parts[1]
+        ext_ptr = pointer("materials", material, "extensions", NAME)
+        users = list(primitives_using(gltf, material))
+        if not users:
+            issues.info("BAKER_SKIN_LUT_UNUSED", "no triangle primitive uses this material", ext_ptr)
+        for key in ("curvatureRange", "penumbraWidthRange", "curvatureTextureRange"):
+            rng = ext.get(key)
+            if isinstance(rng, list) and len(rng) == 2 and all(isinstance(x, (int, float)) for x in rng) \
+                    and not rng[0] < rng[1]:
+                issues.error("BAKER_SKIN_LUT_RANGE", f"{key} {rng} must be increasing", ext_ptr + "/" + key)
+        for key in ("lutTexture", "penumbraTexture"):
+            info = ext.get(key)
+            if not isinstance(info, dict) or not is_index(info.get("index"), textures):
+                continue  # schema or UNRESOLVED_REFERENCE
+            pixels = _decode_texture(doc, info["index"])
+            tex_ptr = ext_ptr + "/" + key
+            if pixels is None:
+                issues.warning("BAKER_SKIN_LUT_IMAGE_UNREADABLE", "the LUT image cannot be decoded as PNG", tex_ptr)
+                continue
+            if pixels.ndim != 3 or pixels.shape[2] < 3 or pixels.shape[0] < 2 or pixels.shape[1] < 2:
+                issues.error("BAKER_SKIN_LUT_IMAGE_FORMAT", f"a LUT must be an RGB image of at least 2 x 2, got "
+                             f"{pixels.shape}", tex_ptr)
+                continue
+            values = pixels[..., :3].astype(np.float64)
+            # rounding keeps a non-decreasing function non-decreasing; allow one code of slack for other encoders
+            tolerance = 1.0 if pixels.dtype.kind in "ui" else 1e-6
+            drops = np.diff(values, axis=1) < -tolerance
+            if drops.any():
+                issues.error("BAKER_SKIN_LUT_NOT_MONOTONIC", f"{int(drops.sum())} texel steps decrease along u "
+                             "(a LUT must not get darker as N.L or the shadow value grows)", tex_ptr)
+        name = ext.get("curvatureAttribute")
+        if isinstance(name, str):
+            for m, p, prim in users:
+                check_vertex_attribute(doc, m, p, name, issues, code="BAKER_SKIN_LUT")
+        info = ext.get("curvatureTexture")
+        if isinstance(info, dict) and is_index(info.get("index"), textures):
+            if "curvatureTextureRange" not in ext:
+                issues.error("BAKER_SKIN_LUT_TEXTURE_RANGE", "curvatureTexture needs curvatureTextureRange", ext_ptr)
+            texcoord = info.get("texCoord", 0)
+            for m, p, prim in users:
+                if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
+                    issues.error("BAKER_SKIN_LUT_TEXCOORD_MISSING", f"the curvature texture reads TEXCOORD_{texcoord}"
+                                 " but this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))

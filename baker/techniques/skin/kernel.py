@@ -1,0 +1,370 @@
+"""Pre-integrated skin: Penner's diffusion LUT, the shadow-penumbra LUT, and the blur kernels of texture-space
+and screen-space diffusion, all from one sum-of-Gaussians diffusion profile.
+
+- **Diffusion LUT** (Penner & Borshukov, "Pre-Integrated Skin Shading", GPU Pro 2, 2011; RTR4 section 14.6.3):
+  a ring of radius r lit from one side; the light reaching a point at angle theta from the light, after diffusing
+  along the ring with profile R, is
+
+      D(theta, r) = int saturate(cos(theta + x)) R(2 r sin(x / 2)) dx / int R(2 r sin(x / 2)) dx,   x in [-pi, pi]
+
+  per RGB channel. Axes: u = N.L * 0.5 + 0.5 (N.L = cos theta), v linear in the curvature 1/r.
+- **Penumbra LUT** (same source): a shadow edge whose filtered shadow value s ramps linearly across a penumbra of
+  width w; the light that diffuses across it, S(s, w) = int ramp(x(s) - y) R1(y) dy / int R1(y) dy, with R1 the
+  profile integrated along the edge (a 2D Gaussian of variance v integrates to a 1D one of the same variance) and the
+  ramp optionally sharpened (the filtered shadow is already blurred; sharpening gives the LUT a crisper edge to
+  re-blur). A clamped ramp convolved with a Gaussian has a closed form, so this LUT is exact.
+- **Jimenez separable SSS kernel** (Jimenez et al., "Separable Subsurface Scattering", CGF 2015): the taps and RGB
+  weights of the reference implementation's ``calculateKernel`` (strength and falloff per channel).
+- **d'Eon Gaussian weights** (d'Eon & Luebke, "Advanced Techniques for Realistic Real-Time Skin Rendering", GPU Gems
+  3, ch. 14): per Gaussian its variance, the incremental variance of the successive blur, RGB weights, and the
+  7-tap separable blur weights.
+
+Profiles are sums of normalized 2D Gaussians G(v, r) = exp(-r^2 / (2 v)) / (2 pi v); variances in mm^2, so radii
+and curvatures are in mm and 1/mm. The default is d'Eon & Luebke's three-layer skin fit.
+
+The Penner integral is evaluated per Gaussian on its own grid: the integration range shrinks to where that Gaussian
+is non-negligible (|2 r sin(x/2)| < 7 sigma), so a 0.08 mm Gaussian on a 10 cm ring (0.0008 rad wide) gets as many
+samples as a 2.7 mm one on a 1 mm ring. Composite trapezoid rule, ``samples`` nodes per Gaussian and LUT row; the
+integrand's kinks (where cos changes sign) keep the error O(h^2), well under 1e-4 at the default 256.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numba
+import numpy as np
+
+from baker.errors import BakerError
+from baker.techniques.skin.options import JIMENEZ_STRENGTH, JIMENEZ_FALLOFF, SkinOptions
+
+CHANNELS = ("red", "green", "blue")
+GAUSSIAN_CUTOFF = 7.0  # standard deviations beyond which a Gaussian is treated as zero (exp(-24.5) ~ 2e-11)
+
+
+@dataclass(frozen=True)
+class Profile:
+    """A diffusion profile: a sum of normalized 2D Gaussians with per-channel weights. Lengths in mm."""
+
+    name: str
+    variances: tuple  # (k,) mm^2
+    weights: tuple  # (3, k): red, green, blue weight of each Gaussian
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        return np.asarray(self.variances, np.float64), np.asarray(self.weights, np.float64).reshape(3, -1)
+
+    def value(self, radius) -> np.ndarray:
+        """R(radius) per channel: (..., 3), radius in mm, in 1/mm^2."""
+        v, w = self.arrays()
+        r = np.asarray(radius, np.float64)[..., None]
+        g = np.exp(-r * r / (2.0 * v)) / (2.0 * math.pi * v)
+        return g @ w.T
+
+    def rms_radius(self) -> np.ndarray:
+        """Per channel sqrt(sum w v / sum w): the standard deviation of the profile along a line, mm."""
+        v, w = self.arrays()
+        return np.sqrt((w * v).sum(axis=1) / np.maximum(w.sum(axis=1), 1e-300))
+
+    def as_json(self) -> dict:
+        v, w = self.arrays()
+        return {"name": self.name, "unit": "mm", "variances": [float(x) for x in v],
+                **{c: [float(x) for x in w[i]] for i, c in enumerate(CHANNELS)}}
+
+
+# d'Eon & Luebke, GPU Gems 3 ch. 14, table 14-1 (three-layer skin), variances in mm^2
+DEON_SKIN = Profile(
+    name="d'Eon & Luebke 2007 skin",
+    variances=(0.0064, 0.0484, 0.187, 0.567, 1.99, 7.41),
+    weights=((0.233, 0.100, 0.118, 0.113, 0.358, 0.078),
+             (0.455, 0.336, 0.198, 0.007, 0.004, 0.0),
+             (0.649, 0.344, 0.0, 0.007, 0.0, 0.0)),
+)
+
+
+def load_profile(path) -> Profile:
+    """Read a profile JSON: ``{"name": ..., "unit": "mm", "variances": [...], "red": [...], "green": [...],
+    "blue": [...]}`` (variances in unit^2; ``unit`` mm, cm or m, default mm). Raises BakerError on bad input."""
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text("utf-8"))
+    except FileNotFoundError:
+        raise BakerError(path, "profile file not found") from None
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise BakerError(path, f"broken profile JSON: {exc}") from None
+    if not isinstance(data, dict):
+        raise BakerError(path, "a profile is a JSON object with variances, red, green and blue")
+    to_mm = {"mm": 1.0, "cm": 10.0, "m": 1000.0}
+    unit = data.get("unit", "mm")
+    if unit not in to_mm:
+        raise BakerError(path, f"profile unit must be one of {', '.join(to_mm)}, got {unit!r}")
+    try:
+        variances = np.asarray(data["variances"], np.float64) * to_mm[unit] ** 2
+        weights = np.asarray([data[c] for c in CHANNELS], np.float64)
+    except KeyError as exc:
+        raise BakerError(path, f"profile lacks {exc.args[0]!r}") from None
+    except (TypeError, ValueError):
+        raise BakerError(path, "profile variances and weights must be lists of numbers") from None
+    if variances.ndim != 1 or not len(variances) or weights.shape != (3, len(variances)):
+        raise BakerError(path, "variances, red, green and blue must be lists of the same non-zero length")
+    if not np.isfinite(variances).all() or (variances <= 0).any():
+        raise BakerError(path, "every variance must be > 0")
+    if not np.isfinite(weights).all() or (weights < 0).any() or (weights.sum(axis=1) <= 0).any():
+        raise BakerError(path, "weights must be >= 0 with a positive sum per channel")
+    return Profile(str(data.get("name", path.stem)), tuple(map(float, variances)),
+                   tuple(tuple(map(float, row)) for row in weights))
+
+
+# ---------------------------------------------------------------------------------------------------- Penner LUT
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _penner_components(cos_theta, curvature, variances, samples, num, den):
+    """num[c, row, col] = int f(theta + x) G_c dx and den[c, row] = int G_c dx, G_c = G(v_c, 2 r sin(x / 2))."""
+    rows = curvature.shape[0]
+    cols = cos_theta.shape[0]
+    sin_theta = np.sqrt(np.maximum(0.0, 1.0 - cos_theta * cos_theta))
+    for row in numba.prange(rows):
+        k = curvature[row]
+        cx = np.empty(samples)
+        sx = np.empty(samples)
+        wx = np.empty(samples)
+        for c in range(variances.shape[0]):
+            v = variances[c]
+            sigma = math.sqrt(v)
+            if k <= 0.0:  # a flat surface: the kernel is a delta, D = saturate(N.L)
+                for j in range(cols):
+                    num[c, row, j] = max(cos_theta[j], 0.0)
+                den[c, row] = 1.0
+                continue
+            r = 1.0 / k
+            reach = GAUSSIAN_CUTOFF * sigma / (2.0 * r)
+            x_max = math.pi if reach >= 1.0 else 2.0 * math.asin(reach)
+            h = 2.0 * x_max / (samples - 1)
+            total = 0.0
+            for m in range(samples):
+                x = -x_max + m * h
+                d = 2.0 * r * math.sin(0.5 * x)
+                g = math.exp(-d * d / (2.0 * v)) / (2.0 * math.pi * v)
+                w = h * (0.5 if m == 0 or m == samples - 1 else 1.0) * g
+                cx[m] = math.cos(x)
+                sx[m] = math.sin(x)
+                wx[m] = w
+                total += w
+            den[c, row] = total
+            for j in range(cols):
+                ct, st = cos_theta[j], sin_theta[j]
+                acc = 0.0
+                for m in range(samples):
+                    f = ct * cx[m] - st * sx[m]  # cos(theta + x)
+                    if f > 0.0:
+                        acc += f * wx[m]
+                num[c, row, j] = acc
+
+
+def penner_integral(cos_theta, curvature, profile: Profile = DEON_SKIN, samples: int = 256) -> np.ndarray:
+    """Penner's pre-integrated diffuse D(theta, r) on the grid ``curvature`` x ``cos_theta``.
+
+    Parameters
+    ----------
+    cos_theta : (cols,) array
+        N.L values in [-1, 1].
+    curvature : (rows,) array
+        Curvatures 1/r in 1/mm (>= 0; 0 is flat).
+    profile : Profile
+        The diffusion profile (mm).
+    samples : int
+        Trapezoid nodes per Gaussian and row (>= 3).
+
+    Returns
+    -------
+    (rows, cols, 3) float64 in [0, 1], linear.
+    """
+    cos_theta = np.clip(np.ascontiguousarray(cos_theta, np.float64).reshape(-1), -1.0, 1.0)
+    curvature = np.ascontiguousarray(curvature, np.float64).reshape(-1)
+    variances, weights = profile.arrays()
+    num = np.empty((len(variances), len(curvature), len(cos_theta)))
+    den = np.empty((len(variances), len(curvature)))
+    _penner_components(cos_theta, curvature, np.ascontiguousarray(variances), int(max(3, samples)), num, den)
+    numerator = np.einsum("kc,crj->rjk", weights, num)
+    denominator = np.einsum("kc,cr->rk", weights, den)
+    return np.clip(numerator / denominator[:, None, :], 0.0, 1.0)
+
+
+@dataclass
+class LutAxes:
+    """Where texel (row, col) of a LUT sits. Endpoint-aligned: column 0 is exactly N.L = -1 and the last column
+    N.L = +1; row 0 is exactly ``curvature_range[0]`` and the last row ``curvature_range[1]`` (1/mm)."""
+
+    width: int
+    height: int
+    curvature_range: tuple  # (1/r_max, 1/r_min) in 1/mm
+
+    @property
+    def ndotl(self) -> np.ndarray:
+        return np.linspace(-1.0, 1.0, self.width)
+
+    @property
+    def curvature(self) -> np.ndarray:
+        return np.linspace(self.curvature_range[0], self.curvature_range[1], self.height)
+
+
+def diffusion_lut(width: int = 256, height: int = 256, min_radius: float = 1.0, max_radius: float = 100.0,
+                  profile: Profile = DEON_SKIN, samples: int = 256) -> tuple[np.ndarray, LutAxes]:
+    """Penner's 2D LUT: (height, width, 3) linear RGB, row 0 = the flattest curvature 1/max_radius (radii in mm)."""
+    axes = LutAxes(int(width), int(height), (1.0 / max_radius, 1.0 / min_radius))
+    return penner_integral(axes.ndotl, axes.curvature, profile, samples), axes
+
+
+# ---------------------------------------------------------------------------------------------------- penumbra LUT
+def _phi(t):
+    return np.exp(-0.5 * t * t) / math.sqrt(2.0 * math.pi)
+
+
+def _big_phi(t):
+    from scipy.special import ndtr
+
+    return ndtr(t)
+
+
+def _ramp_convolved(x, half: float, sigma: np.ndarray) -> np.ndarray:
+    """int saturate((x - y) / (2 half) + 0.5) N(y; 0, sigma^2) dy, closed form (integral of Phi)."""
+    def psi(t):
+        return t * _big_phi(t / sigma) + sigma * _phi(t / sigma)
+
+    return (psi(x + half) - psi(x - half)) / (2.0 * half)
+
+
+def penumbra_lut(size: int = 128, min_width: float = 1.0, max_width: float = 100.0, sharpening: float = 1.0,
+                 profile: Profile = DEON_SKIN) -> tuple[np.ndarray, tuple]:
+    """Penner's shadow-penumbra LUT: (size, size, 3) linear RGB.
+
+    Column i: the filtered shadow value s = i / (size - 1) (0 = shadowed, 1 = lit). Row j: 1 / w linear from
+    1 / max_width (row 0) to 1 / min_width (last row), w the penumbra width in mm. A point with shadow s lies at
+    x = (s - 0.5) w across the penumbra; the sharpened shadow ramps over w / sharpening; the value is that ramp
+    diffused with the profile integrated along the edge. Returns (lut, (1/max_width, 1/min_width)).
+    """
+    variances, weights = profile.arrays()
+    s = np.linspace(0.0, 1.0, size)
+    inv_w = np.linspace(1.0 / max_width, 1.0 / min_width, size)
+    width = 1.0 / inv_w
+    x = (s[None, :] - 0.5) * width[:, None]  # (rows, cols) mm
+    half = 0.5 * width[:, None, None] / sharpening
+    sigma = np.sqrt(variances)
+    per_gaussian = _ramp_convolved(x[..., None], half, sigma[None, None, :])  # (rows, cols, k)
+    out = per_gaussian @ weights.T / weights.sum(axis=1)
+    return np.clip(out, 0.0, 1.0), (float(inv_w[0]), float(inv_w[-1]))
+
+
+
+
+def jimenez_kernel(taps: int = 17, strength=JIMENEZ_STRENGTH, falloff=JIMENEZ_FALLOFF) -> np.ndarray:
+    """Separable SSS kernel of Jimenez et al. 2015: (taps, 4) rows (r, g, b weight, offset), centre tap first.
+
+    As in the reference ``SeparableSSS::calculateKernel``: offsets span +-2 (+-3 above 20 taps) with quadratic
+    spacing (dense near the centre); weights are the area of each tap times the profile, which is d'Eon's skin fit
+    without its narrowest Gaussian (that one is the directly bounced light, kept by ``strength``) and stretched per
+    channel by ``falloff``; normalized per channel, then the centre tap is lerp(1, w0, strength) and the others
+    w * strength. Offsets are in units of the runtime's kernel width (sssWidth times the pixel footprint).
+    """
+    if taps < 3:
+        raise ValueError("taps must be >= 3")
+    strength = np.asarray(strength, np.float64)
+    falloff = np.asarray(falloff, np.float64)
+    extent = 3.0 if taps > 20 else 2.0
+    exponent = 2.0
+    o = -extent + np.arange(taps) * (2.0 * extent / (taps - 1))
+    offsets = extent * np.sign(o) * np.abs(o) ** exponent / extent ** exponent
+    w0 = np.abs(np.diff(offsets, prepend=np.nan))
+    w1 = np.abs(np.diff(offsets, append=np.nan))
+    area = (np.nan_to_num(w0) + np.nan_to_num(w1)) / 2.0
+
+    def profile(r):
+        rr = r[:, None] / (0.001 + falloff[None, :])
+        out = np.zeros_like(rr)
+        for weight, variance in ((0.100, 0.0484), (0.118, 0.187), (0.113, 0.567), (0.358, 1.99), (0.078, 7.41)):
+            out += weight * np.exp(-rr * rr / (2.0 * variance)) / (2.0 * 3.14 * variance)
+        return out
+
+    rgb = area[:, None] * profile(offsets)
+    kernel = np.concatenate([rgb, offsets[:, None]], axis=1)
+    centre = taps // 2
+    kernel = np.concatenate([kernel[centre:centre + 1], kernel[:centre], kernel[centre + 1:]])
+    kernel[:, :3] /= kernel[:, :3].sum(axis=0)
+    kernel[0, :3] = (1.0 - strength) + strength * kernel[0, :3]
+    kernel[1:, :3] *= strength
+    return kernel
+
+
+def deon_gaussians(profile: Profile = DEON_SKIN) -> list[dict]:
+    """Texture-space diffusion as successive Gaussian blurs (d'Eon & Luebke 2007): one entry per Gaussian.
+
+    ``incrementalVariance`` is what blurring the previous result adds (variances add under convolution), ``weights``
+    the RGB weights normalized per channel, ``taps7`` the 7-tap separable blur over +-3 sigma (each tap the Gaussian's
+    mass over its interval, renormalized: 0.006, 0.061, 0.242, 0.382, ...).
+    """
+    from scipy.special import ndtr
+
+    variances, weights = profile.arrays()
+    order = np.argsort(variances, kind="stable")
+    norm = weights / weights.sum(axis=1, keepdims=True)
+    edges = np.arange(-3.5, 4.5, 1.0)
+    mass = np.diff(ndtr(edges))
+    taps = mass / mass.sum()
+    out, previous = [], 0.0
+    for i in order:
+        v = float(variances[i])
+        out.append({"variance": v, "incrementalVariance": v - previous, "sigma": math.sqrt(v),
+                    "weights": [float(norm[c, i]) for c in range(3)],
+                    "taps7": {"offsets": [float(k) for k in range(-3, 4)], "weights": [float(t) for t in taps]}})
+        previous = v
+    return out
+
+
+
+
+def default_normal_blend(profile: Profile) -> np.ndarray:
+    rms = profile.rms_radius()
+    return rms / rms.max()
+
+
+@dataclass
+class SkinTables:
+    """Everything ``baker skin-lut`` and ``--bakes skin`` write, in linear float."""
+
+    lut: np.ndarray  # (height, width, 3)
+    axes: LutAxes
+    penumbra: np.ndarray | None  # (size, size, 3)
+    penumbra_range: tuple | None  # (1/max_width, 1/min_width), 1/mm
+    profile: Profile
+    jimenez: np.ndarray  # (taps, 4)
+    gaussians: list
+    normal_blend: np.ndarray  # (3,)
+
+
+def skin_tables(options: SkinOptions) -> SkinTables:
+    options.check()
+    profile = load_profile(options.profile) if options.profile else DEON_SKIN
+    lut, axes = diffusion_lut(options.width, options.height, options.min_radius, options.max_radius, profile,
+                              options.samples)
+    penumbra = penumbra_range = None
+    if options.penumbra:
+        penumbra, penumbra_range = penumbra_lut(options.penumbra_size, options.penumbra_min_width,
+                                                options.penumbra_max_width, options.sharpening, profile)
+    blend = np.asarray(options.normal_blend, np.float64)
+    blend = np.where(blend < 0.0, default_normal_blend(profile), blend)
+    return SkinTables(lut, axes, penumbra, penumbra_range, profile,
+                      jimenez_kernel(options.jimenez_taps, options.jimenez_strength, options.jimenez_falloff),
+                      deon_gaussians(profile), blend)
+
+
+def srgb_encode(linear: np.ndarray) -> np.ndarray:
+    linear = np.clip(linear, 0.0, 1.0)
+    return np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * np.power(linear, 1.0 / 2.4) - 0.055)
+
+
+def quantize(values: np.ndarray, bits: int, encoding: str = "linear") -> np.ndarray:
+    """Linear [0, 1] floats -> uint8/uint16 (optionally sRGB-encoded), round to nearest."""
+    if encoding == "srgb":
+        values = srgb_encode(values)
+    scale = (1 << bits) - 1
+    return np.clip(np.rint(values * scale), 0, scale).astype(np.uint16 if bits == 16 else np.uint8)

@@ -1,0 +1,74 @@
+"""Wire the TAM generator to an Asset: one TAM, attached to every material as ``BAKER_tonal_art_map``.
+
+The TAM tiles, so any UV set works, overlapping or not: a material whose primitives all have ``TEXCOORD_0`` uses
+it; otherwise its primitives are unwrapped with xatlas into a new set (as the texture bakes do). The tiling rate
+``scale`` (finest-level texels per UV unit) defaults to one tile across about 1/6 of the mesh's bounding-box
+diagonal, measured through the UV set's own texel density (world area / UV area).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from baker.geometry.asset import Asset
+from baker.techniques.tam.options import TamOptions
+from baker.techniques.tam.kernel import check_options, generate_tam
+from baker.errors import BakerError
+from baker.techniques.tam import extension as ext
+from baker.progress import QUIET, Progress
+from baker.geometry.texture_space import unwrap
+from baker.geometry.texture_target import reindex_primitive, material_groups
+
+TILES_PER_DIAGONAL = 6.0
+
+
+def _area(points: np.ndarray, faces: np.ndarray) -> float:
+    a, b, c = (points[faces[:, k]] for k in range(3))
+    if points.shape[1] == 2:
+        cross = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+        return float(0.5 * np.abs(cross).sum())
+    return float(0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
+
+
+def auto_scale(geoms: list, texcoord: int, size: int) -> float:
+    """Finest-level texels per UV unit so that one tile spans ~1/TILES_PER_DIAGONAL of the bounding diagonal."""
+    points = np.concatenate([g.positions for g in geoms])
+    diagonal = float(np.linalg.norm(points.max(0) - points.min(0))) or 1.0
+    world = sum(_area(g.positions, g.faces) for g in geoms)
+    uv = sum(_area(g.texcoords[texcoord], g.faces) for g in geoms)
+    if world <= 0.0 or uv <= 0.0:
+        return float(size)
+    world_per_uv = math.sqrt(world / uv)  # mesh units spanned by one UV unit, on average
+    tiles = max(1, round(world_per_uv * TILES_PER_DIAGONAL / diagonal))  # whole tiles: seamless at UV 0/1
+    return float(tiles * size)
+
+
+def run(asset: Asset, options: TamOptions, seed: int = 0, progress: Progress = QUIET) -> None:
+    try:
+        check_options(options)
+    except ValueError as exc:
+        raise BakerError(asset.source, str(exc)) from None
+    doc = asset.doc
+    with progress.task("tonal art map", 1) as advance:
+        tam = generate_tam(options, seed=seed)
+        advance(1)
+    textures = None
+    for material, members in material_groups(asset).items():
+        geoms = [asset.primitive(m, p) for m, p in members]
+        keep = [i for i, g in enumerate(geoms) if len(g.faces)]
+        if not keep:
+            continue
+        members, geoms = [members[i] for i in keep], [geoms[i] for i in keep]
+        if all(0 in g.texcoords for g in geoms):
+            texcoord = 0
+        else:  # no UVs to tile along: unwrap, as the texture bakes do
+            texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
+            layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=512, seed=seed)
+            for (m, p), (vmap, faces, uv) in zip(members, layouts):
+                reindex_primitive(asset, m, p, vmap, faces, uv, texcoord)
+            geoms = [asset.primitive(m, p) for m, p in members]
+        scale = options.scale if options.scale is not None else auto_scale(geoms, texcoord, options.size)
+        if textures is None:
+            textures = ext.write_tam_textures(doc, tam)
+        ext.write_tam(doc, material, tam, textures, scale=scale, texcoord=texcoord)

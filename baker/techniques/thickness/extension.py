@@ -1,0 +1,130 @@
+"""``BAKER_thickness`` and the Khronos fields it rides on: result arrays -> glTF JSON/accessors/images, and USD.
+
+Where the data goes (see ``schemas/BAKER_thickness/README.md``):
+- per vertex: the primitive attribute ``_THICKNESS`` (FLOAT SCALAR, mean chord in mesh units);
+- per texel: ``KHR_materials_volume.thicknessTexture`` (green channel, 1.0 = ``thicknessFactor`` mesh units);
+- ``BAKER_thickness`` on the material: how it was baked and the translucency parameters of RTR4 eq. 14.30.
+
+KHR_materials_transmission is never added: KHR_materials_volume without a transmission extension has no effect in
+a standard viewer, so an opaque asset looks exactly as before (README, "Relation to Khronos extensions").
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from baker.gltf.document import GltfDocument
+from baker.gltf.images import encode_image
+
+NAME = "BAKER_thickness"
+ATTRIBUTE = "_THICKNESS"
+KHR_VOLUME = "KHR_materials_volume"
+
+
+def write_vertex_thickness(doc: GltfDocument, mesh: int, primitive: int, thickness: np.ndarray) -> int:
+    """Add ``_THICKNESS`` to a primitive; returns the accessor index."""
+    acc = doc.add_accessor(thickness.astype(np.float32), min_max=True)
+    doc.json["meshes"][mesh]["primitives"][primitive]["attributes"][ATTRIBUTE] = acc
+    return acc
+
+
+def encode_thickness_texture(thickness: np.ndarray, bits: int) -> tuple[bytes, float]:
+    """Normalize a (H, W) thickness image by its maximum into a grayscale PNG; returns (png, thicknessFactor).
+
+    Grayscale: every decoder expands it to R = G = B, so the green channel KHR_materials_volume reads is the value.
+    """
+    factor = float(thickness.max()) if thickness.size and thickness.max() > 0 else 1.0
+    scale = (1 << bits) - 1
+    quantized = np.clip(np.rint(thickness / factor * scale), 0, scale)
+    pixels = quantized.astype(np.uint16 if bits == 16 else np.uint8)
+    return encode_image(pixels, ".png"), factor
+
+
+def write_thickness_texture(doc: GltfDocument, material: int, png: bytes, factor: float, texcoord: int) -> int:
+    """Point ``KHR_materials_volume.thicknessTexture`` of ``material`` at a new texture; returns the texture index."""
+    image = doc.add_image(png, "image/png", f"thickness_m{material}")
+    texture = doc.add_texture(image, sampler={"magFilter": 9729, "minFilter": 9987},
+                              name=f"baker thickness (material {material})")
+    volume = doc.json["materials"][material].setdefault("extensions", {}).setdefault(KHR_VOLUME, {})
+    info = {"index": texture}
+    if texcoord:
+        info["texCoord"] = texcoord
+    volume["thicknessTexture"] = info
+    volume["thicknessFactor"] = factor
+    doc.use_extension(KHR_VOLUME)
+    return texture
+
+
+def write_material_parameters(doc: GltfDocument, material: int, *, options, max_distance: float, bias: float,
+                              mean_thickness: float, per_vertex: bool, texture: bool) -> dict:
+    """Write ``BAKER_thickness`` on ``material``: bake settings and eq. 14.30 parameters."""
+    ext = {
+        "rays": int(options.rays),
+        "distribution": options.distribution,
+        "spreadAngle": math.radians(options.spread),
+        "maxDistance": float(max_distance),
+        "bias": float(bias),
+        "meanThickness": float(mean_thickness),
+        "attenuationDistance": float(options.attenuation_distance or mean_thickness or 1.0),
+        "distortion": float(options.distortion),
+        "power": float(options.power),
+        "scale": float(options.scale),
+        "ambient": float(options.ambient),
+        "subsurfaceColor": [float(c) for c in options.subsurface_color],
+        "thicknessTexture": bool(texture),
+    }
+    if per_vertex:
+        ext["attribute"] = ATTRIBUTE
+    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
+    doc.use_extension(NAME)
+    return ext
+
+
+def check(doc: GltfDocument, places: list, issues) -> None:
+    """Semantic rules of BAKER_thickness (``baker validate``): the attribute and texture it announces exist and
+    hold sane thickness. ``places`` lists (JSON path parts, extension object) for every occurrence."""
+    from baker.checks import is_index, is_number, primitives_using, check_vertex_attribute, pointer
+
+    gltf = doc.json
+    for parts, ext in places:
+        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
+            continue  # misplaced or malformed: already reported by the schema pass
+        material = parts[1]
+        ext_ptr = pointer("materials", material, "extensions", NAME)
+        users = list(primitives_using(gltf, material))
+        if not users:
+            issues.info("BAKER_THICKNESS_UNUSED", "no triangle primitive uses this material", ext_ptr)
+        max_distance = ext.get("maxDistance")
+        name = ext.get("attribute")
+        if isinstance(name, str):
+            for m, p, prim in users:
+                values = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_THICKNESS")
+                if values is None:
+                    continue
+                values = values[np.isfinite(values)]
+                acc_ptr = pointer("accessors", prim["attributes"][name])
+                if (values < 0).any():
+                    issues.error("BAKER_THICKNESS_VALUE_NEGATIVE", f"{int((values < 0).sum())} of {len(values)} "
+                                 f"values are negative (min {values.min():g})", acc_ptr)
+                if is_number(max_distance) and len(values) and values.max() > max_distance * 1.001:
+                    issues.warning("BAKER_THICKNESS_VALUE_ABOVE_MAX", f"largest value {values.max():g} exceeds "
+                                   f"maxDistance {max_distance:g}", acc_ptr)
+        if ext.get("thicknessTexture") is True:
+            volume = (gltf["materials"][material].get("extensions") or {}).get(KHR_VOLUME)
+            info = volume.get("thicknessTexture") if isinstance(volume, dict) else None
+            vol_ptr = pointer("materials", material, "extensions", KHR_VOLUME)
+            if not isinstance(info, dict):
+                issues.error("BAKER_THICKNESS_TEXTURE_MISSING", "BAKER_thickness.thicknessTexture is true but the "
+                             "material has no KHR_materials_volume.thicknessTexture", ext_ptr + "/thicknessTexture")
+                continue
+            if not is_index(info.get("index"), gltf.get("textures") or []):
+                continue  # reported as UNRESOLVED_REFERENCE
+            texcoord = info.get("texCoord", 0)
+            for m, p, prim in users:
+                if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
+                    issues.error("BAKER_THICKNESS_TEXCOORD_MISSING", f"the thickness texture reads TEXCOORD_{texcoord}"
+                                 " but this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
+            if KHR_VOLUME not in (gltf.get("extensionsUsed") or []):
+                issues.warning("BAKER_EXTENSION_NOT_DECLARED", "KHR_materials_volume is used but missing from "
+                               "extensionsUsed", vol_ptr)

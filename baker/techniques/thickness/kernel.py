@@ -1,0 +1,216 @@
+"""Local thickness: the mean distance to the far side of the surface, seen from inside.
+
+Barré-Brisebois & Bouchard, "Approximating Translucency for a Fast, Cheap and Convincing Subsurface Scattering
+Look", GDC 2011 (RTR4 section 14.6, eq. 14.30): ambient occlusion computed with the normals inverted. From each
+surface point we cast rays into the hemisphere (or a narrower cone) around -n and average the distance to the first
+hit; a miss counts as ``max_distance``. Unlike the paper's 0-1 texture we keep the mean chord **in mesh units**:
+the runtime turns it into a transmittance (see ``schemas/BAKER_thickness``), and KHR_materials_volume wants units.
+
+For a sphere of radius r, a chord leaving at angle theta from the inward normal has length 2 r cos(theta): cosine-
+weighted rays average 4r/3, uniform (solid-angle) rays average r. The tests check exactly that.
+
+Rays are generated, traced by Embree and averaged in one compiled, GIL-free loop per batch of points, run from
+two threads (see :mod:`baker.geometry.embree`); there is no per-ray Python.
+"""
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import numba
+import numpy as np
+
+from baker.geometry import embree
+from baker.geometry.raycast import RayScene
+
+
+
+
+def hemisphere_samples(n: int, seed: int) -> np.ndarray:
+    """``n`` stratified 2D samples in [0, 1)^2 (Hammersley set, base-2 radical inverse), shared by all points."""
+    i = np.arange(n, dtype=np.uint64)
+    bits = i.copy()
+    # Van der Corput radical inverse in base 2 via bit reversal of 32-bit integers
+    bits = ((bits << np.uint64(16)) | (bits >> np.uint64(16))) & np.uint64(0xFFFFFFFF)
+    bits = ((bits & np.uint64(0x55555555)) << np.uint64(1)) | ((bits & np.uint64(0xAAAAAAAA)) >> np.uint64(1))
+    bits = ((bits & np.uint64(0x33333333)) << np.uint64(2)) | ((bits & np.uint64(0xCCCCCCCC)) >> np.uint64(2))
+    bits = ((bits & np.uint64(0x0F0F0F0F)) << np.uint64(4)) | ((bits & np.uint64(0xF0F0F0F0)) >> np.uint64(4))
+    bits = ((bits & np.uint64(0x00FF00FF)) << np.uint64(8)) | ((bits & np.uint64(0xFF00FF00)) >> np.uint64(8))
+    return np.stack([(i.astype(np.float64) + 0.5) / n, bits.astype(np.float64) / 2.0**32], axis=1)
+
+
+
+
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _frame(nx, ny, nz):
+    """Two unit tangents completing the unit axis (nx, ny, nz) to a right-handed frame (Duff et al. 2017)."""
+    sign = 1.0 if nz >= 0.0 else -1.0
+    a = -1.0 / (sign + nz)
+    b = nx * ny * a
+    return 1.0 + sign * nx * nx * a, sign * b, -sign * nx, b, sign + ny * ny * a, -ny
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _direction(u0, u1, cosine, sin_max, cos_max):
+    """Local direction (x, y along the tangents; cos theta along the axis) for a sample (u0, u1) in [0, 1)^2.
+
+    Cosine-weighted within a cone of half-angle theta_max: sin^2(theta) uniform on [0, sin^2(theta_max)];
+    uniform: cos(theta) uniform on [cos(theta_max), 1]."""
+    if cosine:
+        st = np.sqrt(u0) * sin_max
+        ct = np.sqrt(max(0.0, 1.0 - st * st))
+    else:
+        ct = 1.0 - u0 * (1.0 - cos_max)
+        st = np.sqrt(max(0.0, 1.0 - ct * ct))
+    phi = 2.0 * np.pi * u1
+    return st * np.cos(phi), st * np.sin(phi), ct
+
+
+@numba.njit(nogil=True)
+def _thickness_direct(scene, points, axes, samples, shifts, cosine, sin_max, cos_max, bias, max_distance, out):
+    """Generate, trace and average each point's rays in one GIL-free loop (Embree called directly)."""
+    rayhit = np.zeros(48, np.uint32)
+    offset = (-rayhit.ctypes.data % 16) // 4
+    rayhit = rayhit[offset: offset + 32]
+    rays = samples.shape[0]
+    for i in range(points.shape[0]):
+        nx, ny, nz = axes[i, 0], axes[i, 1], axes[i, 2]
+        tx, ty, tz, bx, by, bz = _frame(nx, ny, nz)
+        ox, oy, oz = points[i, 0] + nx * bias, points[i, 1] + ny * bias, points[i, 2] + nz * bias
+        acc = 0.0
+        for k in range(rays):
+            c, s, ct = _direction((samples[k, 0] + shifts[i, 0]) % 1.0, (samples[k, 1] + shifts[i, 1]) % 1.0,
+                                  cosine, sin_max, cos_max)
+            t = embree.trace_one(scene, rayhit, ox, oy, oz, tx * c + bx * s + nx * ct, ty * c + by * s + ny * ct,
+                                 tz * c + bz * s + nz * ct)
+            acc += min(t + bias * ct, max_distance)
+        out[i] = acc / rays
+
+
+@numba.njit(cache=True, nogil=True)
+def _make_rays(points, axes, samples, shifts, cosine, sin_max, cos_max, bias, origins, directions, cos_theta):
+    """The rays of :func:`_thickness_direct` written out (float32), for the embreex batch path and benchmarks."""
+    rays = samples.shape[0]
+    for i in range(points.shape[0]):
+        nx, ny, nz = axes[i, 0], axes[i, 1], axes[i, 2]
+        tx, ty, tz, bx, by, bz = _frame(nx, ny, nz)
+        ox, oy, oz = points[i, 0] + nx * bias, points[i, 1] + ny * bias, points[i, 2] + nz * bias
+        for k in range(rays):
+            c, s, ct = _direction((samples[k, 0] + shifts[i, 0]) % 1.0, (samples[k, 1] + shifts[i, 1]) % 1.0,
+                                  cosine, sin_max, cos_max)
+            r = i * rays + k
+            directions[r, 0] = tx * c + bx * s + nx * ct
+            directions[r, 1] = ty * c + by * s + ny * ct
+            directions[r, 2] = tz * c + bz * s + nz * ct
+            origins[r, 0] = ox
+            origins[r, 1] = oy
+            origins[r, 2] = oz
+            cos_theta[r] = ct
+
+
+@numba.njit(cache=True, nogil=True)
+def _mean_chords(dist, cos_theta, bias, max_distance, rays, out):
+    for i in range(out.shape[0]):
+        acc = 0.0
+        for k in range(rays):
+            r = i * rays + k
+            acc += min(dist[r] + bias * cos_theta[r], max_distance)
+        out[i] = acc / rays
+
+
+def default_max_distance(vertices: np.ndarray) -> float:
+    return float(np.linalg.norm(vertices.max(0) - vertices.min(0))) if len(vertices) else 1.0
+
+
+def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *, rays: int = 64,
+                    distribution: str = "cosine", spread: float = 180.0, max_distance: float = 1.0,
+                    bias: float = 1e-5, seed: int = 0, progress=None, threads: int | None = None) -> np.ndarray:
+    """Mean distance from each point to the first surface hit along rays around ``-normals``.
+
+    Parameters
+    ----------
+    scene : RayScene
+        The mesh the rays hit (in the same space as ``points``).
+    points, normals : (n, 3) arrays
+        Sample points on the surface and their outward unit normals.
+    rays : int
+        Rays per point.
+    distribution : {'cosine', 'uniform'}
+        Cosine-weighted (AO-style, the default) or uniform over the solid angle.
+    spread : float
+        Full cone angle in degrees; 180 is the hemisphere.
+    max_distance : float
+        Length given to misses and clamp of hits, in mesh units.
+    bias : float
+        Rays start ``bias`` inside the surface (along -n) to skip the surface they leave; the offset's share along
+        each ray is added back to its distance.
+    seed : int
+        Seeds the per-point rotation of the sample pattern.
+    progress : callable(int) or None
+        Called with the number of points finished after each batch.
+
+    Returns
+    -------
+    (n,) float64 mean chord length in mesh units.
+    """
+    if distribution not in ("cosine", "uniform"):
+        raise ValueError(f"unknown distribution {distribution!r}")
+    n = len(points)
+    out = np.empty(n, np.float64)
+    if n == 0:
+        return out
+    samples = hemisphere_samples(rays, seed)
+    shifts = np.random.default_rng(seed).random((n, 2))
+    axes = -normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-30)
+    batch = max(1, (1 << 19) // rays)  # ~0.5 M rays per Embree call: large enough to amortize, small for memory
+
+    half = math.radians(spread) / 2.0
+    sin_max, cos_max = math.sin(min(half, math.pi / 2)), math.cos(half)
+    # trace points in Morton (Z-curve) order: consecutive batches then walk the same BVH nodes, which measured
+    # ~10% faster in Embree than file order and ~25% faster than random order
+    order = morton_order(points)
+    points = np.ascontiguousarray(points[order], np.float64)
+    axes = np.ascontiguousarray(axes[order])
+    shifts = shifts[order]
+    result = np.empty(n, np.float64)
+
+    def run(start: int) -> int:
+        stop = min(n, start + batch)
+        if scene.direct is not None:
+            _thickness_direct(scene.direct.pointer, points[start:stop], axes[start:stop], samples, shifts[start:stop],
+                              distribution == "cosine", sin_max, cos_max, bias, max_distance, out[start:stop])
+            return stop - start
+        count = (stop - start) * rays
+        origins = np.empty((count, 3), np.float32)
+        directions = np.empty((count, 3), np.float32)
+        cos_t = np.empty(count, np.float64)
+        # start `bias` inside the solid (along -n), not along the ray: grazing rays from a vertex of a faceted
+        # surface would otherwise leave through the facets' gap below the tangent plane and count as misses
+        _make_rays(points[start:stop], axes[start:stop], samples, shifts[start:stop], distribution == "cosine",
+                   sin_max, cos_max, bias, origins, directions, cos_t)
+        dist = scene.distances(origins, directions)
+        _mean_chords(dist, cos_t, bias, max_distance, rays, out[start:stop])
+        return stop - start
+
+    # BAKER_THREADS caps the ray threads (``baker build --jobs`` sets 1 per process); results do not depend on it
+    threads = threads or int(os.environ.get("BAKER_THREADS", 0)) or min(2, os.cpu_count() or 1)
+    with ThreadPoolExecutor(threads) as pool:
+        for done in pool.map(run, range(0, n, batch)):
+            if progress:
+                progress(done)
+    result[order] = out
+    return result
+
+
+def morton_order(points: np.ndarray, bits: int = 10) -> np.ndarray:
+    """Indices sorting ``points`` along a 3D Z-order curve on a 2^bits grid over their bounding box."""
+    lo, hi = points.min(0), points.max(0)
+    q = ((points - lo) / np.maximum(hi - lo, 1e-30) * ((1 << bits) - 1)).astype(np.int64)
+    code = np.zeros(len(points), np.int64)
+    for b in range(bits):  # interleave bit b of x, y, z (a loop over bits, vectorized over points)
+        for axis in range(3):
+            code |= ((q[:, axis] >> b) & 1) << (3 * b + axis)
+    return np.argsort(code, kind="stable")

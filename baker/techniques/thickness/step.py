@@ -1,0 +1,81 @@
+"""Wire the local-thickness kernel to an Asset: gather geometry, cast, hand results to the extension writer."""
+from __future__ import annotations
+
+import numpy as np
+
+from baker.geometry.asset import Asset
+from baker.geometry.normals import vertex_normals
+from baker.geometry.welding import weld
+from baker.geometry.raycast import RayScene
+from baker.techniques.thickness.options import ThicknessOptions
+from baker.techniques.thickness.kernel import default_max_distance, local_thickness
+from baker.techniques.thickness import extension as ext
+from baker.progress import QUIET, Progress
+from baker.geometry.texture_space import dilate, interpolate
+from baker.geometry.texture_target import material_groups, material_targets
+
+
+def run(asset: Asset, options: ThicknessOptions, seed: int = 0, progress: Progress = QUIET) -> None:
+    doc = asset.doc
+    scenes, limits = {}, {}
+    for m in range(len(asset.meshes())):
+        vertices, faces = asset.mesh_triangles(m)
+        if len(faces):
+            scenes[m] = RayScene(vertices, faces)
+            diag = default_max_distance(vertices)
+            limits[m] = (options.max_distance or diag, options.bias if options.bias is not None else 1e-5 * diag)
+
+    def cast(mesh, points, normals, label):
+        max_distance, bias = limits[mesh]
+        with progress.task(label, len(points)) as advance:
+            return local_thickness(scenes[mesh], points, normals, rays=options.rays,
+                                   distribution=options.distribution, spread=options.spread,
+                                   max_distance=max_distance, bias=bias, seed=seed, progress=advance)
+
+    groups = material_groups(asset)  # also gives material-less primitives a default material
+    sums = {mat: [0.0, 0] for mat in groups}
+    material_of = {mp: mat for mat, members in groups.items() for mp in members}
+
+    if options.per_vertex:
+        for m in scenes:
+            prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
+            geoms = [asset.primitive(m, p) for p in prims]
+            positions = np.concatenate([g.positions for g in geoms])
+            # weld across UV/normal seams and primitives: one sample per position, so split vertices agree
+            welded, inverse = weld(positions)
+            offsets = np.cumsum([0] + [len(g.positions) for g in geoms])
+            all_faces = np.concatenate([inverse[g.faces + offsets[i]] for i, g in enumerate(geoms)])
+            normals = vertex_normals(welded, all_faces)
+            values = cast(m, welded, normals, f"thickness mesh {m} vertices")[inverse]
+            for i, (p, g) in enumerate(zip(prims, geoms)):
+                per_vertex = values[offsets[i]: offsets[i + 1]]
+                ext.write_vertex_thickness(doc, m, p, per_vertex)
+                s = sums[material_of[(m, p)]]
+                s[0] += float(per_vertex.sum())
+                s[1] += len(per_vertex)
+
+    textured = set()
+    if options.per_texel:
+        for target in material_targets(asset, options.texture_size, seed):
+            image = np.zeros((target.size, target.size), np.float64)
+            for pt in target.primitives:
+                g, t = pt.geometry, pt.texels
+                points = interpolate(g.positions, g.faces, t.triangle, t.bary)
+                normals = interpolate(pt.normals, g.faces, t.triangle, t.bary)
+                image[t.rows, t.cols] = cast(g.mesh, points, normals, f"thickness material {target.material} texels")
+            mask = target.mask
+            if not options.per_vertex:
+                sums[target.material][0] += float(image[mask].sum())
+                sums[target.material][1] += int(mask.sum())
+            png, factor = ext.encode_thickness_texture(dilate(image, mask), options.texture_bits)
+            ext.write_thickness_texture(doc, target.material, png, factor, target.texcoord)
+            textured.add(target.material)
+
+    for material, members in groups.items():
+        mesh_limits = [limits[m] for m, _ in members if m in limits]
+        if not mesh_limits:
+            continue
+        total, count = sums[material]
+        ext.write_material_parameters(doc, material, options=options, max_distance=max(l[0] for l in mesh_limits),
+                                      bias=max(l[1] for l in mesh_limits), mean_thickness=total / count if count else 0.0,
+                                      per_vertex=options.per_vertex, texture=material in textured)
