@@ -65,11 +65,17 @@ def from_mapping(cls, values: dict):
     return cls(**{k.replace("-", "_"): coerce(cls, k.replace("-", "_"), v) for k, v in values.items()})
 
 
-def add_arguments(parser, cls, prefix: str) -> None:
-    """Add one ``--<prefix>-<name>`` flag per field of ``cls`` to an argparse parser (default: unset)."""
+def add_arguments(parser, cls, prefix: str, *, prefixed_flags: bool = True, skip=()) -> None:
+    """Add one ``--<prefix>-<name>`` flag per field of ``cls`` to an argparse parser (default: unset).
+
+    ``prefixed_flags=False`` gives plain ``--<name>`` flags, for commands with a single option set (``baker hair``,
+    ``baker glyphs``); values land in ``<prefix>__<name>`` either way, so :func:`from_args` reads both. Fields in
+    ``skip`` get no flag."""
     group = parser.add_argument_group(f"{prefix} options", (cls.__doc__ or "").strip())
     for f in dataclasses.fields(cls):
-        flag = f"--{prefix}-{f.name.replace('_', '-')}"
+        if f.name in skip:
+            continue
+        flag = f"--{prefix + '-' if prefixed_flags else ''}{f.name.replace('_', '-')}"
         meta = f.metadata
         default = f.default
         shown = ",".join(map(str, default)) if isinstance(default, tuple) else default

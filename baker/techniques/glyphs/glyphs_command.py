@@ -7,22 +7,14 @@ import sys
 
 from baker.techniques.glyphs.options import GlyphOptions
 from baker.errors import BakerError
-from baker.options import from_args
+from baker.options import add_arguments, from_args
 
 PREFIX = "glyphs"
 
 
-def add_option_flags(parser, cls=GlyphOptions, skip=()) -> None:
-    """One ``--<name>`` flag per option field (no prefix: these commands have a single option set)."""
-    for f in dataclasses.fields(cls):
-        if f.name in skip:
-            continue
-        meta = f.metadata
-        shown = f.default
-        text = meta.get("help", "") + (f" (default: {shown})" if shown is not None else "")
-        metavar = "{" + ",".join(map(str, meta["choices"])) + "}" if meta.get("choices") else f.name.upper()
-        parser.add_argument(f"--{f.name.replace('_', '-')}", dest=f"{PREFIX}__{f.name}", default=None,
-                            metavar=metavar, help=text)
+def add_option_flags(parser, skip=()) -> None:
+    """One ``--<name>`` flag per glyph option (no prefix: these commands have a single option set)."""
+    add_arguments(parser, GlyphOptions, PREFIX, prefixed_flags=False, skip=skip)
 
 
 def options_from(args, **overrides) -> GlyphOptions:

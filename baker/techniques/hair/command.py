@@ -1,8 +1,7 @@
 """``baker hair SCALP -o OUT``: the parser; the work is in :mod:`baker.techniques.hair.grow`, imported when it runs."""
 from __future__ import annotations
 
-import dataclasses
-
+from baker.options import add_arguments
 from baker.technique import lazy
 from baker.techniques.hair.options import HairOptions
 
@@ -15,12 +14,5 @@ def add_parser(subparsers) -> None:
     p.add_argument("-o", "--output", required=True, help=f"output file ({' '.join(OUTPUT_SUFFIXES)})")
     p.add_argument("--seed", type=int, default=0, help="random seed; the same seed gives byte-identical output")
     p.add_argument("-q", "--quiet", action="store_true", help="no summary")
-    group = p.add_argument_group("hair options", (HairOptions.__doc__ or "").strip())
-    for f in dataclasses.fields(HairOptions):
-        meta = f.metadata
-        shown = ",".join(map(str, f.default)) if isinstance(f.default, tuple) else f.default
-        text = meta.get("help", "") + (f" (default: {shown})" if shown is not None else "")
-        metavar = "{" + ",".join(map(str, meta["choices"])) + "}" if meta.get("choices") else f.name.upper()
-        group.add_argument(f"--{f.name.replace('_', '-')}", dest=f"hair__{f.name}", default=None, metavar=metavar,
-                           help=text)
+    add_arguments(p, HairOptions, "hair", prefixed_flags=False)
     p.set_defaults(func=lazy("baker.techniques.hair.grow:run"))
