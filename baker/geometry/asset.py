@@ -5,7 +5,7 @@ usd-core, then converted to a glTF document, so every bake and writer deals with
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -13,6 +13,7 @@ import numpy as np
 from baker.errors import BakerError
 from baker.gltf.document import GltfDocument
 from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, faces_from_indices, is_derived_fins, to_float
+from baker.geometry.welding import weld
 
 GLTF_SUFFIXES = {".gltf", ".glb"}
 TRIMESH_SUFFIXES = {".obj", ".ply", ".stl"}
@@ -35,9 +36,28 @@ class PrimitiveGeometry:
 
 
 @dataclass
+class WeldedMesh:
+    """Several primitives of one mesh as one welded triangle mesh: one vertex per position, so the split copies of a
+    vertex (UV, normal or primitive seams) get one value. ``positions[inverse[offsets[i] + k]]`` is vertex ``k`` of
+    ``geometries[i]``."""
+
+    geometries: list  # PrimitiveGeometry per primitive, in the order asked for
+    positions: np.ndarray  # (n, 3) welded positions
+    inverse: np.ndarray  # (sum of primitive vertex counts,) index into ``positions``
+    offsets: np.ndarray  # (len(geometries) + 1,) start of each primitive's vertices in ``inverse``
+    faces: np.ndarray  # (m, 3) every primitive's triangles on the welded vertices (degenerate ones kept)
+
+
+@dataclass
 class Asset:
+    """A glTF document plus geometry decoded from it. Decoded primitives and welded meshes are cached (as trimesh
+    caches ``face_adjacency``), keyed by the accessors they were read from: accessors are never rewritten, so a bake
+    that re-indexes a primitive (a new texture layout) gets a new key, and every other bake reuses the arrays. Cached
+    arrays are read-only."""
+
     doc: GltfDocument
     source: Path
+    cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @classmethod
     def load(cls, path) -> "Asset":
@@ -92,7 +112,35 @@ class Asset:
                 if prim.get("mode", MODE_TRIANGLES) in (MODE_TRIANGLES, MODE_STRIP, MODE_FAN)
                 and not is_derived_fins(prim)]
 
+    def primitive_key(self, mesh: int, primitive: int) -> tuple:
+        """What a decoded primitive depends on: its mode, material and the accessors of its indices, positions,
+        normals and texture coordinates."""
+        prim = self.meshes()[mesh]["primitives"][primitive]
+        read = tuple(sorted((k, v) for k, v in prim.get("attributes", {}).items()
+                            if k in ("POSITION", "NORMAL") or k.startswith("TEXCOORD_")))
+        return (mesh, primitive, prim.get("mode", MODE_TRIANGLES), prim.get("indices"), prim.get("material"), read)
+
     def primitive(self, mesh: int, primitive: int) -> PrimitiveGeometry:
+        """Primitive ``primitive`` of ``mesh`` decoded to float64 arrays (cached; see the class docstring)."""
+        key = ("primitive", self.primitive_key(mesh, primitive))
+        if key not in self.cache:
+            self.cache[key] = self._decode_primitive(mesh, primitive)
+        return self.cache[key]
+
+    def welded(self, mesh: int, primitives: list[int]) -> WeldedMesh:
+        """Primitives ``primitives`` of ``mesh`` welded into one mesh (cached)."""
+        key = ("welded", tuple(self.primitive_key(mesh, p) for p in primitives))
+        if key not in self.cache:
+            geoms = [self.primitive(mesh, p) for p in primitives]
+            positions = np.concatenate([g.positions for g in geoms])
+            welded, inverse = weld(positions)
+            offsets = np.cumsum([0] + [len(g.positions) for g in geoms])
+            faces = np.concatenate([inverse[g.faces + offsets[i]] for i, g in enumerate(geoms)])
+            self.cache[key] = WeldedMesh(geoms, _read_only(welded), _read_only(inverse), _read_only(offsets),
+                                         _read_only(faces))
+        return self.cache[key]
+
+    def _decode_primitive(self, mesh: int, primitive: int) -> PrimitiveGeometry:
         prim = self.meshes()[mesh]["primitives"][primitive]
         attrs = prim.get("attributes", {})
         if "POSITION" not in attrs:
@@ -115,7 +163,9 @@ class Asset:
         for key, acc in attrs.items():
             if key.startswith("TEXCOORD_"):
                 texcoords[int(key[9:])] = to_float(self.doc, acc)
-        return PrimitiveGeometry(mesh, primitive, positions, faces, normals, texcoords, prim.get("material"))
+        return PrimitiveGeometry(mesh, primitive, _read_only(positions), _read_only(faces),
+                                 None if normals is None else _read_only(normals),
+                                 {k: _read_only(v) for k, v in texcoords.items()}, prim.get("material"))
 
     def mesh_triangles(self, mesh: int) -> tuple[np.ndarray, np.ndarray]:
         """All triangles of ``mesh`` (every triangle primitive) as (vertices, faces) in mesh space."""
@@ -134,6 +184,11 @@ class Asset:
 
 
 
+
+
+def _read_only(array: np.ndarray) -> np.ndarray:
+    array.setflags(write=False)
+    return array
 
 
 def _load_trimesh(path: Path):

@@ -4,7 +4,6 @@ from __future__ import annotations
 import numpy as np
 
 from baker.geometry.asset import Asset
-from baker.geometry.welding import weld
 from baker.techniques.curvature.options import CurvatureOptions
 from baker.techniques.curvature.kernel import principal_curvatures
 from baker.techniques.curvature import extension as ext
@@ -26,11 +25,9 @@ def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progre
         geoms_with_faces = [g for g in geoms if len(g.faces)]
         if not geoms_with_faces:
             continue
-        positions = np.concatenate([g.positions for g in geoms])
-        # weld across UV/normal seams and primitives: one estimate per position, so split copies agree
-        welded, inverse = weld(positions)
-        offsets = np.cumsum([0] + [len(g.positions) for g in geoms])
-        faces = np.concatenate([inverse[g.faces + offsets[i]] for i, g in enumerate(geoms)])
+        # welded across UV/normal seams and primitives: one estimate per position, so split copies agree
+        mesh = asset.welded(m, prims)
+        welded, inverse, offsets, faces = mesh.positions, mesh.inverse, mesh.offsets, mesh.faces
         faces = faces[(faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])]
         with progress.task(f"curvature mesh {m}", 1) as advance:
             result = principal_curvatures(welded, faces, rings=options.rings, radius=options.radius,

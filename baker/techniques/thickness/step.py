@@ -5,7 +5,6 @@ import numpy as np
 
 from baker.geometry.asset import Asset
 from baker.geometry.normals import vertex_normals
-from baker.geometry.welding import weld
 from baker.geometry.raycast import RayScene
 from baker.techniques.thickness.options import ThicknessOptions
 from baker.techniques.thickness.kernel import default_max_distance, local_thickness
@@ -39,13 +38,10 @@ def run(asset: Asset, options: ThicknessOptions, seed: int = 0, progress: Progre
     if options.per_vertex:
         for m in scenes:
             prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
-            geoms = [asset.primitive(m, p) for p in prims]
-            positions = np.concatenate([g.positions for g in geoms])
-            # weld across UV/normal seams and primitives: one sample per position, so split vertices agree
-            welded, inverse = weld(positions)
-            offsets = np.cumsum([0] + [len(g.positions) for g in geoms])
-            all_faces = np.concatenate([inverse[g.faces + offsets[i]] for i, g in enumerate(geoms)])
-            normals = vertex_normals(welded, all_faces)
+            # welded across UV/normal seams and primitives: one sample per position, so split vertices agree
+            mesh = asset.welded(m, prims)
+            geoms, welded, inverse, offsets = mesh.geometries, mesh.positions, mesh.inverse, mesh.offsets
+            normals = vertex_normals(welded, mesh.faces)
             values = cast(m, welded, normals, f"thickness mesh {m} vertices")[inverse]
             for i, (p, g) in enumerate(zip(prims, geoms)):
                 per_vertex = values[offsets[i]: offsets[i + 1]]
