@@ -6,22 +6,17 @@ the npm package, the check is skipped (the rest of the test still runs).
 """
 from __future__ import annotations
 
-import os
-
 import pytest
 
 from baker import validate
-
-
-def _in_ci() -> bool:
-    return os.environ.get("CI", "").lower() in ("1", "true", "yes")
+from ci import in_ci
 
 
 def khronos_validate(path) -> dict | None:
     """Khronos glTF-Validator's report on ``path`` (as it prints it), or None when it is not installed outside CI."""
     reason = validate.khronos_unavailable()
     if reason:
-        if _in_ci():
+        if in_ci():
             pytest.fail(f"Khronos glTF-Validator is required in CI: {reason}")
         return None
     return validate.khronos_report(path)
@@ -36,7 +31,3 @@ def assert_khronos_clean(path) -> dict | None:
     assert not errors, f"Khronos glTF-Validator errors in {path}:\n" + "\n".join(
         f"  {m['code']} {m.get('pointer', '-')}: {m['message']}" for m in errors)
     return report
-
-
-
-

@@ -1,19 +1,20 @@
 """Fixtures for the headless GLSL tests: a glslangValidator path and an EGL (llvmpipe) moderngl context.
 
-A missing tool or GPU stack skips the tests with the reason on a developer machine; under ``CI=true`` it fails
-instead, so CI cannot go green by silently not rendering.
+A missing tool or GPU stack skips the tests with the reason on a developer machine; under CI (``tests/ci.py``) it
+fails instead, so CI cannot go green by silently not rendering.
 """
 from __future__ import annotations
 
-import os
 import shutil
 
 import pytest
 
+from ci import in_ci
+
 
 def unavailable(reason: str):
     """Skip locally, fail under CI (``CI=true``): a runtime-shader test must never be skipped in CI."""
-    if os.environ.get("CI", "").lower() == "true":
+    if in_ci():
         pytest.fail(f"{reason} (CI=true: required in CI)", pytrace=False)
     pytest.skip(reason)
 

@@ -19,7 +19,7 @@ from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 from conftest import assert_khronos_clean
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 SPOT = REPO / "examples" / "spot" / "spot.obj"
 
 

@@ -18,8 +18,8 @@ from baker.pipeline import save
 from baker.validate import validate_file
 from conftest import assert_khronos_clean
 
-MESHES = Path(__file__).resolve().parents[2] / "shared" / "assets" / "meshes"
-SPOT = Path(__file__).resolve().parents[1] / "examples" / "spot" / "spot.obj"
+MESHES = Path(__file__).resolve().parents[3] / "shared" / "assets" / "meshes"
+SPOT = Path(__file__).resolve().parents[2] / "examples" / "spot" / "spot.obj"
 
 
 def split_cube(open_top: bool = False) -> trimesh.Trimesh:
@@ -423,7 +423,7 @@ def test_schema_accepts_what_the_writer_writes_and_the_readme_example(cube):
 
     from jsonschema import Draft202012Validator
 
-    from baker.validate import SCHEMA_ROOT
+    from baker.data import SCHEMA_ROOT
 
     schema = json.loads((SCHEMA_ROOT / "BAKER_edges" / "schema" / "mesh.primitive.BAKER_edges.schema.json").read_text())
     validator = Draft202012Validator(schema)

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -13,7 +14,7 @@ from baker.pipeline import save
 from baker.validate import validate_file
 from conftest import assert_khronos_clean
 
-SPOT = "examples/spot/spot.obj"
+SPOT = str(Path(__file__).resolve().parents[2] / "examples" / "spot" / "spot.obj")
 
 
 def test_shell_coverage_is_the_union_of_hair_discs():

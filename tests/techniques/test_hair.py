@@ -2,8 +2,7 @@
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,7 +21,7 @@ from baker.gltf.document import GltfDocument
 from baker.validate import validate_file
 from conftest import assert_khronos_clean
 
-SPOT = "examples/spot/spot.obj"
+SPOT = str(Path(__file__).resolve().parents[2] / "examples" / "spot" / "spot.obj")
 
 
 def winding_number(points: np.ndarray, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:

@@ -152,7 +152,7 @@ def test_seam_split_vertices_agree(tmp_path):
     # spot is split at UV seams: vertices at one position must get one value
     from pathlib import Path
 
-    spot = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
+    spot = Path(__file__).parents[2] / "examples" / "spot" / "spot.obj"
     asset = baker.bake(spot, options={"thickness": {"rays": 16, "per_texel": False}})
     prim = asset.doc.json["meshes"][0]["primitives"][0]
     positions = asset.doc.accessor(prim["attributes"]["POSITION"])
