@@ -27,6 +27,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from baker.geometry.asset import Asset  # noqa: E402
+from baker.geometry.frames import orthonormal_basis  # noqa: E402
 from baker.techniques.hair import kernel as hair  # noqa: E402
 from baker.techniques.hair.grow import emitter_from_asset  # noqa: E402
 from common import best_of  # noqa: E402
@@ -50,7 +51,7 @@ def naive_children(guides, guide_rest, roots, croots, cnormals, spacing, spread,
         ids = np.argsort(d2, kind="stable")[:3]
         w = hair.barycentric_weights(p[None], roots[ids[0]][None], roots[ids[1]][None], roots[ids[2]][None])[0]
         shape = sum(w[i] * (guides[ids[i]] - guides[ids[i], 0]) for i in range(3))
-        tangent, bitangent = hair.orthonormal_frames(cnormals[c][None])
+        tangent, bitangent = orthonormal_basis(cnormals[c][None])
         offset = (math.cos(phi[c]) * tangent[0] + math.sin(phi[c]) * bitangent[0]) * radius[c]
         strand = p + shape + t[:, None] * offset
         if clump > 0:
@@ -119,7 +120,7 @@ def main(argv=None) -> int:
         shapes = guides - guides[:, :1]
         t = np.linspace(0.0, 1.0, guides.shape[1])
         p = croots[:, None] + np.einsum("ck,ckvd->cvd", w2, shapes[ids2])
-        tangent, bitangent = hair.orthonormal_frames(cnormals)
+        tangent, bitangent = orthonormal_basis(cnormals)
         offset = (np.cos(phi)[:, None] * tangent + np.sin(phi)[:, None] * bitangent) * radius[:, None]
         p += t[None, :, None] * offset[:, None, :]
         dom = ids2[np.arange(n), w2.argmax(axis=1)]

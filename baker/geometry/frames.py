@@ -6,7 +6,8 @@ import numpy as np
 
 def orthonormal_basis(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Two unit tangents completing each unit normal to a right-handed frame (Duff et al. 2017, branchless);
-    the vectorized twin of :func:`_frame`."""
+    the vectorized twin of
+    :func:`baker.techniques.thickness.kernel._frame` (which runs inside numba loops)."""
     sign = np.where(n[:, 2] >= 0.0, 1.0, -1.0)
     a = -1.0 / (sign + n[:, 2])
     b = n[:, 0] * n[:, 1] * a

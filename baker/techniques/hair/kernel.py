@@ -37,6 +37,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from baker.techniques.hair.options import HairOptions
+from baker.geometry.frames import orthonormal_basis
 
 
 
@@ -248,15 +249,6 @@ def sample_roots(emitter: Emitter, count: int, rng: np.random.Generator, oversam
     return tri[alive], bary[alive], points[alive], rmax
 
 
-# ---------------------------------------------------------------------------------------------------- shapes
-def orthonormal_frames(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit tangents completing each unit normal (Duff et al. 2017)."""
-    sign = np.where(n[:, 2] >= 0.0, 1.0, -1.0)
-    a = -1.0 / (sign + n[:, 2])
-    b = n[:, 0] * n[:, 1] * a
-    t = np.stack([1.0 + sign * n[:, 0] ** 2 * a, sign * b, -sign * n[:, 0]], axis=1)
-    bt = np.stack([b, sign + n[:, 1] ** 2 * a, -n[:, 1]], axis=1)
-    return t, bt
 
 
 def grow_guides(roots: np.ndarray, normals: np.ndarray, lengths: np.ndarray, segments: int,
@@ -266,7 +258,7 @@ def grow_guides(roots: np.ndarray, normals: np.ndarray, lengths: np.ndarray, seg
     The curl only bends the rest shape; :func:`follow_the_leader` afterwards gives every segment its exact length.
     """
     t = np.linspace(0.0, 1.0, segments + 1)
-    tangent, bitangent = orthonormal_frames(normals)
+    tangent, bitangent = orthonormal_basis(normals)
     along = t[None, :, None] * lengths[:, None, None] * normals[:, None, :]
     angle = 2.0 * math.pi * curl_frequency * t[None, :] + phases[:, None]
     radius = curl_amplitude * lengths[:, None] * np.minimum(1.0, 4.0 * t)[None, :]  # reach full radius at 1/4
@@ -652,7 +644,7 @@ def interpolate_children(guides: np.ndarray, guide_rest: np.ndarray, guide_roots
     t = np.linspace(0.0, 1.0, guides.shape[1])
     pos = child_roots[:, None, :] + np.einsum("ck,ckvd->cvd", weights, shapes[ids])
     # follow offset: a random direction in the child's tangent plane, radius sqrt(U) (uniform in the disc)
-    tangent, bitangent = orthonormal_frames(child_normals)
+    tangent, bitangent = orthonormal_basis(child_normals)
     phi = rng.random(c) * 2.0 * math.pi
     radius = np.sqrt(rng.random(c)) * spread * spacing
     offset = (np.cos(phi)[:, None] * tangent + np.sin(phi)[:, None] * bitangent) * radius[:, None]
