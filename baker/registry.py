@@ -7,6 +7,7 @@ import pkgutil
 from functools import lru_cache
 from importlib.metadata import entry_points
 
+from baker.data import SCHEMA_ROOT
 from baker.errors import BakerError
 from baker.technique import Technique
 
@@ -70,6 +71,17 @@ def usd_primitive_hooks() -> dict:
 def semantic_checks() -> dict:
     """Extension name -> its ``check(doc, places, issues)`` for ``baker validate``."""
     return {name: ext.check for name, ext in extensions().items() if hasattr(ext, "check")}
+
+
+def schema_roots() -> list:
+    """Every folder laid out like ``schemas/`` (``<EXT>/schema/<kind>.<EXT>.schema.json``): the repo's own, then each
+    technique's ``schemas`` (techniques installed from elsewhere bring theirs), in technique order."""
+    roots = [SCHEMA_ROOT]
+    for technique in techniques().values():
+        root = technique.schema_root()
+        if root is not None and root not in roots:
+            roots.append(root)
+    return roots
 
 
 def command_modules() -> list:

@@ -6,7 +6,9 @@ reference and imported only when used, so discovering every technique (``baker -
 from __future__ import annotations
 
 import importlib
+import importlib.resources
 from dataclasses import dataclass
+from pathlib import Path
 
 
 def load(reference: str):
@@ -41,9 +43,23 @@ class Technique:
     panels: str | None = None  # "module:attribute" -> list of preview panels
     commands: tuple[str, ...] = ()  # light modules with ``add_parser(subparsers)`` (standalone commands)
     requires: tuple[str, ...] = ()
+    # a folder laid out like the repo's ``schemas/`` (``<EXT>/schema/<kind>.<EXT>.schema.json``), for a technique
+    # that brings its own: "package:folder" (a folder inside an importable package) or a path; None: the built-in
+    # techniques, whose schemas live in the repo's top-level ``schemas/``
+    schemas: str | None = None
 
     def bake(self, asset, options, seed: int = 0, progress=None) -> None:
         load(self.run)(asset, options, seed=seed, progress=progress)
 
     def extension_objects(self) -> list:
         return [load(reference) for reference in self.extensions]
+
+    def schema_root(self) -> Path | None:
+        """The folder ``schemas`` names, or None. "package:folder" resolves inside the installed package (imported
+        now, which a technique's own package already is), so the schemas travel with it as package data."""
+        if self.schemas is None:
+            return None
+        package, sep, folder = self.schemas.partition(":")
+        if not sep:
+            return Path(self.schemas)
+        return Path(str(importlib.resources.files(package).joinpath(folder)))

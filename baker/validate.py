@@ -10,7 +10,7 @@ Three layers, each skipped when the one before found errors it cannot read past:
 1. structure, on the JSON as written: buffer/bufferView/accessor bounds, component types, references between
    objects. Only what baker must trust before it reads a byte; the full core-spec check is Khronos' job.
 2. every ``BAKER_*`` extension, wherever it appears, against its JSON schema ``schemas/<EXT>/schema/
-   <kind>.<EXT>.schema.json`` (found by that name pattern; ``kind`` is the glTF object type, e.g. ``material``,
+   <kind>.<EXT>.schema.json`` (found by that name pattern, in the repo's folder and each technique's own; ``kind`` is the glTF object type, e.g. ``material``,
    ``mesh.primitive``, ``node``, ``glTF`` for the root), then the extension's semantic rules (``check`` in its module)
    (data read through :class:`~baker.gltf.document.GltfDocument`).
 3. Khronos glTF-Validator (npm ``gltf-validator``, pinned by ``scripts/install-node-tools``), when ``node`` and the
@@ -32,7 +32,7 @@ import numpy as np
 
 from baker.version import __version__
 from baker import registry
-from baker.data import REPO_ROOT, SCHEMA_ROOT
+from baker.data import REPO_ROOT
 from baker.errors import BakerError
 from baker.gltf.document import COMPONENT_DTYPES, TYPE_SIZES, GltfDocument, parse_glb
 from baker.checks import ERROR, SEVERITY_NAMES, Issues, is_count, is_index, pointer
@@ -52,34 +52,41 @@ COLLECTION_KINDS = {
 }
 
 
-
-
-
-
 # ---------------------------------------------------------------------------------------------------- schemas
+def schema_roots() -> tuple:
+    """The folders schemas are looked up in: the repo's ``schemas/`` and every technique's own (``registry``)."""
+    return tuple(registry.schema_roots())
+
+
 @lru_cache(maxsize=None)
-def schema_registry(root: Path = SCHEMA_ROOT) -> dict:
-    """Map (extension name, object kind) -> schema file, from ``<root>/<EXT>/schema/<kind>.<EXT>.schema.json``."""
+def schema_registry(roots: tuple | None = None) -> dict:
+    """Map (extension name, object kind) -> schema file, from ``<root>/<EXT>/schema/<kind>.<EXT>.schema.json`` in
+    each of ``roots`` (default :func:`schema_roots`). Two roots defining the same (extension, kind) is an error."""
     found = {}
-    for path in sorted(root.glob("*/schema/*.schema.json")):
-        ext = path.parent.parent.name
-        stem = path.name[: -len(".schema.json")]
-        kind, _, name = stem.rpartition(".")
-        if kind and name == ext:
-            found[(ext, kind)] = path
+    for root in schema_roots() if roots is None else roots:
+        for path in sorted(Path(root).glob("*/schema/*.schema.json")):
+            ext = path.parent.parent.name
+            stem = path.name[: -len(".schema.json")]
+            kind, _, name = stem.rpartition(".")
+            if kind and name == ext:
+                if (ext, kind) in found:
+                    raise RuntimeError(f"two schemas for {ext} on {kind}: {found[(ext, kind)]} and {path}")
+                found[(ext, kind)] = path
     return found
 
 
 @lru_cache(maxsize=None)
 def _schema_validator(path: Path):
-    """A draft 2020-12 validator for one schema file; ``$ref``s resolve to files of the same name under schemas/."""
+    """A draft 2020-12 validator for one schema file; a ``$ref`` resolves to the file of that name beside it, else
+    under ``<root>/*/schema/`` of any schema root."""
     from jsonschema import Draft202012Validator
     from referencing import Registry, Resource
     from referencing.exceptions import NoSuchResource
 
     def retrieve(uri: str):
         name = Path(urllib.parse.urlparse(uri).path).name
-        for candidate in [path.parent / name, *sorted(SCHEMA_ROOT.glob(f"*/schema/{name}"))]:
+        elsewhere = [candidate for root in schema_roots() for candidate in sorted(Path(root).glob(f"*/schema/{name}"))]
+        for candidate in [path.parent / name, *elsewhere]:
             if candidate.is_file():
                 return Resource.from_contents(json.loads(candidate.read_text("utf-8")))
         raise NoSuchResource(ref=uri)
@@ -139,7 +146,7 @@ def check_extensions(gltf: dict, issues: Issues) -> dict:
         kind = _object_kind(owner)
         schema_path = schema_files.get((name, kind))
         if schema_path is None:
-            kinds = sorted(k for e, k in registry if e == name)
+            kinds = sorted(k for e, k in schema_files if e == name)
             issues.error("BAKER_EXTENSION_UNEXPECTED_OBJECT",
                          f"'{name}' is defined on {', '.join(kinds)}, not on {kind or 'this object'}", ptr)
             continue
@@ -170,10 +177,6 @@ def check_extensions(gltf: dict, issues: Issues) -> dict:
                                "know it will refuse the asset, though it only adds data they can ignore",
                                pointer("extensionsRequired", i))
     return found
-
-
-
-
 
 
 def _buffer_sizes(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issues) -> list:
@@ -424,12 +427,6 @@ def check_indices(doc: GltfDocument, issues: Issues) -> None:
                 bad = int(np.count_nonzero(indices >= vertex_count))
                 issues.error("ACCESSOR_INDEX_OOB", f"{bad} indices are >= the vertex count {vertex_count} "
                              f"(largest {int(indices.max())})", pointer("meshes", m, "primitives", p, "indices"))
-
-
-
-
-
-
 
 
 # one entry per extension with rules a schema cannot express: (document, [(object path, value)], issues) -> None

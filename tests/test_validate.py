@@ -13,6 +13,7 @@ from jsonschema import Draft202012Validator
 import baker
 import baker.pipeline
 from baker import validate
+from baker.data import SCHEMA_ROOT
 from baker.cli import main as cli
 from baker.gltf.document import GltfDocument
 from conftest import assert_khronos_clean, khronos_validate
@@ -219,7 +220,9 @@ def test_misplaced_and_unknown_extensions(copy):
     copy.json["nodes"][0]["extensions"]["BAKER_nonsense"] = {}
     copy.json["extensionsUsed"] += ["BAKER_nonsense"]
     report = validate.validate_file(copy.save(), khronos=False)
-    assert find(report, "BAKER_EXTENSION_UNEXPECTED_OBJECT")[0]["pointer"] == "/nodes/0/extensions/BAKER_thickness"
+    unexpected = find(report, "BAKER_EXTENSION_UNEXPECTED_OBJECT")[0]
+    assert unexpected["pointer"] == "/nodes/0/extensions/BAKER_thickness"
+    assert "is defined on material, not on node" in unexpected["message"]
     assert find(report, "BAKER_UNKNOWN_EXTENSION")[0]["pointer"] == "/nodes/0/extensions/BAKER_nonsense"
 
 
@@ -314,10 +317,27 @@ def test_schema_registry_and_files():
         assert (path.parents[1] / "README.md").is_file(), f"{ext} has no README.md"
 
 
+def test_schema_roots_are_the_repo_then_each_techniques_own(tmp_path):
+    """Built-in techniques use the top-level schemas/; another root adds its extensions and may not redefine ours
+    (tests/test_add_technique.py shows a technique bringing its root through the CLI)."""
+    assert validate.schema_roots()[0] == SCHEMA_ROOT
+    assert all(path.is_relative_to(SCHEMA_ROOT) for path in validate.schema_registry().values())
+    (tmp_path / "BAKER_extra" / "schema").mkdir(parents=True)
+    (tmp_path / "BAKER_extra" / "schema" / "node.BAKER_extra.schema.json").write_text("{}")
+    both = validate.schema_registry((SCHEMA_ROOT, tmp_path))
+    assert both[("BAKER_extra", "node")].parent == tmp_path / "BAKER_extra" / "schema"
+    assert len(both) == len(validate.schema_registry()) + 1
+    clash = tmp_path / "clash"
+    (clash / "BAKER_thickness" / "schema").mkdir(parents=True)
+    (clash / "BAKER_thickness" / "schema" / "material.BAKER_thickness.schema.json").write_text("{}")
+    with pytest.raises(RuntimeError, match="two schemas for BAKER_thickness on material"):
+        validate.schema_registry((SCHEMA_ROOT, clash))
+
+
 def test_schema_matches_the_writer():
     """Everything the writer puts in BAKER_thickness is declared in the schema, and the README example is valid."""
     schema = json.loads(validate.schema_registry()[("BAKER_thickness", "material")].read_text())
-    readme = (validate.SCHEMA_ROOT / "BAKER_thickness" / "README.md").read_text()
+    readme = (SCHEMA_ROOT / "BAKER_thickness" / "README.md").read_text()
     example = json.loads(readme.split("```json")[1].split("```")[0])
     ext = example["materials"][0]["extensions"]["BAKER_thickness"]
     assert not list(Draft202012Validator(schema).iter_errors(ext))
