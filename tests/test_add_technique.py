@@ -227,6 +227,30 @@ STEP_8_METADATA = "Metadata-Version: 2.1\nName: baker-height\nVersion: 0.1\n"
 STEP_8_ENTRY_POINTS = "[baker.techniques]\nheight = baker_height:TECHNIQUE\n"
 
 
+# what each numbered step of the docs list must name, in order
+DOCS_STEPS = {1: "options.py", 2: "kernel.py", 3: "extension.py", 4: "step.py", 5: "command.py", 6: "__init__.py",
+              7: ".schema.json", 8: "entry_points.txt", 9: "baker inspect"}
+
+
+def test_the_docs_list_is_these_steps():
+    text = (REPO / "docs" / "ARCHITECTURE.md").read_text()
+    section = text.split("## How to add a technique")[1].split("\n## ")[0]
+    items, current = {}, None
+    for line in section.splitlines():
+        head = line.split(". ", 1)[0]
+        if head.isdigit():
+            current = int(head)
+            items[current] = line
+        elif current is not None and line.startswith("   "):
+            items[current] += " " + line.strip()
+        else:
+            current = None
+    assert sorted(items) == sorted(DOCS_STEPS) and "tests/test_add_technique.py" in section
+    for number, name in DOCS_STEPS.items():
+        assert name in items[number], f"step {number} of docs/ARCHITECTURE.md does not name {name}"
+    assert all(f"STEP_{n}_" in Path(__file__).read_text() for n in range(1, 9))
+
+
 @pytest.fixture(scope="module")
 def plugin(tmp_path_factory) -> Path:
     """Steps 1-8 written into a temporary folder that is on no path of the repo."""
