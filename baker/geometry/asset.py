@@ -199,6 +199,8 @@ def _load_trimesh(path: Path):
         loaded = trimesh.load(str(path), process=False)
     except Exception as exc:  # trimesh raises many types for malformed files
         raise BakerError(path, f"cannot read mesh: {exc}") from None
+    if isinstance(loaded, trimesh.PointCloud) and path.suffix.lower() == ".ply":
+        loaded = _mesh_from_ply_strips(path, loaded)
     if path.suffix.lower() == ".obj" and b"mtllib" not in path.read_bytes():
         # without a .mtl trimesh invents a material with a 2x2 grey image; keep the glTF default material instead
         geoms = [loaded] if isinstance(loaded, trimesh.Trimesh) else list(getattr(loaded, "geometry", {}).values())
@@ -206,6 +208,32 @@ def _load_trimesh(path: Path):
             if getattr(g.visual, "kind", None) == "texture":
                 g.visual.material = trimesh.visual.material.PBRMaterial()
     return loaded
+
+
+def _mesh_from_ply_strips(path: Path, cloud):
+    """A PLY whose surface is a ``tristrips`` element (Stanford scans such as igea.ply): trimesh reads only its
+    vertices; build the triangles from the strips. Other point clouds are returned as they are."""
+    import trimesh
+
+    from baker.geometry.strips import ply_strip_indices, triangles_from_strips
+
+    elements = cloud.metadata.get("_ply_raw") or {}
+    strips = ply_strip_indices(elements)
+    if strips is None:
+        return cloud
+    vertices = np.asarray(cloud.vertices, dtype=np.float64)
+    valid = strips[strips >= 0]
+    if len(valid) and valid.max() >= len(vertices):
+        raise BakerError(path, f"tristrips: vertex index {int(valid.max())} out of range ({len(vertices)} vertices)")
+    if (strips < -1).any():
+        raise BakerError(path, "tristrips: negative vertex index other than the -1 restart")
+    faces = triangles_from_strips(strips)
+    kwargs = {}
+    data = elements["vertex"]["data"]
+    names = data.keys() if isinstance(data, dict) else (data.dtype.names or ())
+    if all(name in names for name in ("nx", "ny", "nz")):
+        kwargs["vertex_normals"] = np.column_stack([data[name] for name in ("nx", "ny", "nz")])
+    return trimesh.Trimesh(vertices=vertices, faces=faces, process=False, **kwargs)
 
 
 def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
