@@ -61,7 +61,7 @@ def site(tmp_path_factory):
 
     items = pv.scene_items(asset)
     camera = pv.frame_camera(items, azimuth=150, elevation=15)
-    panel = next(p for p in pv.PANELS if p.name == "translucency")
+    panel = next(p for p in pv.all_panels() if p.name == "translucency")
     (root / "panel.frag").write_text(pv.fragment_shader(panel))
     uniforms = {k: list(v) if isinstance(v, tuple) else v for k, v in panel.uniforms(items[0]).items()}
     setup = {

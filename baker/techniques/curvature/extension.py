@@ -10,6 +10,8 @@ through the generic custom-attribute path of :mod:`baker.gltf.usd`.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from baker.gltf.document import GltfDocument
@@ -149,3 +151,40 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                     and all(map(is_number, texture_range)) and texture_range[0] < texture_range[1]):
                 issues.error("BAKER_CURVATURE_TEXTURE_RANGE", "curvatureTexture needs textureRange [lo, hi] with "
                              "lo < hi", ext_ptr)
+
+
+# ---------------------------------------------------------------------------------------------------- reading back
+@dataclass(frozen=True)
+class CurvatureMaterial:
+    """``BAKER_curvature`` of one material as read back (signed mean curvature, 1 / mesh units)."""
+
+    method: str | None = None
+    smoothing_passes: int = 0
+    range: tuple = (0.0, 0.0)  # (min, max) of the baked values
+    mean_curvature: float | None = None
+    radius: float | None = None  # neighbourhood radius (mesh units), or ``rings`` of neighbours
+    rings: int | None = None
+    attribute: str | None = None  # ``_CURVATURE`` when baked per vertex
+    principal_curvatures_attribute: str | None = None
+    principal_direction_attribute: str | None = None
+    curvature_texture: int | None = None
+    curvature_texcoord: int = 0
+    texture_range: tuple | None = None  # values at texel 0 and 1
+
+
+def read(doc: GltfDocument, material: int) -> CurvatureMaterial | None:
+    """What :func:`write_material_parameters` wrote on ``material``, or None without ``BAKER_curvature``."""
+    ext = (doc.json.get("materials", [])[material].get("extensions") or {}).get(NAME)
+    if ext is None:
+        return None
+    info = ext.get("curvatureTexture") or {}
+    return CurvatureMaterial(
+        method=ext.get("method"), smoothing_passes=int(ext.get("smoothingPasses", 0)),
+        range=tuple(float(v) for v in ext.get("range", (0.0, 0.0))),
+        mean_curvature=float(ext["meanCurvature"]) if "meanCurvature" in ext else None,
+        radius=float(ext["radius"]) if "radius" in ext else None, rings=int(ext["rings"]) if "rings" in ext else None,
+        attribute=ext.get("attribute"), principal_curvatures_attribute=ext.get("principalCurvaturesAttribute"),
+        principal_direction_attribute=ext.get("principalDirectionAttribute"),
+        curvature_texture=int(info["index"]) if "index" in info else None,
+        curvature_texcoord=int(info.get("texCoord", 0)),
+        texture_range=tuple(float(v) for v in ext["textureRange"]) if "textureRange" in ext else None)

@@ -8,5 +8,6 @@ TECHNIQUE = Technique(
     options=EdgesOptions,
     run="baker.techniques.edges.step:run",
     extensions=("baker.techniques.edges.extension",),
+    panels="baker.techniques.edges.panel:PANELS",
     commands=('baker.techniques.edges.command',),
 )

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import math
 
+from dataclasses import dataclass, field
+
 import numpy as np
 
 from baker.geometry import edges as kernel
@@ -437,3 +439,51 @@ def to_usd_primitive(stage, name: str, parent: str, doc: GltfDocument, mesh: int
     """USD hook (called by baker.gltf.usd for primitives carrying BAKER_edges): the crease, boundary, material and
     non-manifold edges as a linear BasisCurves prim ``<parent>/<name>`` beside the mesh."""
     usd_basis_curves(stage, f"{parent}/{name}", doc, mesh, primitive)
+
+
+# =========================================================================================================== reading back
+@dataclass(frozen=True, eq=False)  # holds arrays: compared by identity
+class EdgesPrimitive:
+    """``BAKER_edges`` of one primitive as read back: on a triangle primitive its settings, counts and accessors;
+    on a fin primitive (``fins_of`` set) the fin attributes and indices."""
+
+    fins_of: int | None = None  # a fin primitive: its source triangle primitive
+    crease_angle: float | None = None  # radians
+    planar_angle: float | None = None
+    weld_tolerance: float | None = None
+    counts: dict = field(default_factory=dict)
+    edge_visibility: bool = False
+    outline_normal: str | None = None  # the attribute (``_OUTLINE_NORMAL``)
+    fins: int | None = None  # the fin primitive's index
+    wireframe_mask: np.ndarray | None = None  # one 3-bit mask per triangle (bit k: edge k is drawn)
+    wireframe_hides: str | None = None
+    edges: np.ndarray | None = None  # (e, 2) vertex indices (``edge_list``)
+    opposite_vertices: np.ndarray | None = None
+    flags: np.ndarray | None = None
+    dihedral_angles: np.ndarray | None = None
+    fin_attributes: dict = field(default_factory=dict)  # fin primitive: _FIN_V0.._FIN_V3, _FIN_CORNER, _FIN_FLAGS
+    fin_indices: np.ndarray | None = None  # fin primitive: (2 e, 3) triangles
+
+
+def read(doc: GltfDocument, mesh: int, primitive: int) -> EdgesPrimitive | None:
+    """What :func:`write_primitive_edges` (or :func:`write_fin_primitive`) wrote on a primitive, accessors read;
+    None when the primitive has no ``BAKER_edges``."""
+    prim = doc.json["meshes"][mesh]["primitives"][primitive]
+    ext = (prim.get("extensions") or {}).get(NAME)
+    if ext is None:
+        return None
+    accessor = lambda key: doc.accessor(ext[key]) if key in ext else None  # noqa: E731
+    if "finsOf" in ext:
+        return EdgesPrimitive(
+            fins_of=int(ext["finsOf"]),
+            fin_attributes={k: doc.accessor(a) for k, a in prim["attributes"].items() if k.startswith("_FIN_")},
+            fin_indices=doc.accessor(prim["indices"]).reshape(-1, 3))
+    return EdgesPrimitive(
+        crease_angle=float(ext["creaseAngle"]) if "creaseAngle" in ext else None,
+        planar_angle=float(ext["planarAngle"]) if "planarAngle" in ext else None,
+        weld_tolerance=float(ext["weldTolerance"]) if "weldTolerance" in ext else None,
+        counts=dict(ext.get("counts", {})), edge_visibility=bool(ext.get("edgeVisibility", False)),
+        outline_normal=ext.get("outlineNormal"), fins=int(ext["fins"]) if "fins" in ext else None,
+        wireframe_mask=accessor("wireframeMask"), wireframe_hides=ext.get("wireframeHides"),
+        edges=accessor("edges"), opposite_vertices=accessor("oppositeVertices"), flags=accessor("flags"),
+        dihedral_angles=accessor("dihedralAngles"))

@@ -8,4 +8,5 @@ TECHNIQUE = Technique(
     options=FurOptions,
     run="baker.techniques.fur.step:run",
     extensions=("baker.techniques.fur.extension",),
+    panels="baker.techniques.fur.panel:PANELS",
 )

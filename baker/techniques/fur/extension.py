@@ -11,6 +11,8 @@ Where the data goes (see ``schemas/BAKER_fur/README.md``):
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
@@ -137,3 +139,43 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                 issues.error("BAKER_FUR_FIN_ATTRIBUTES", f"fin primitive lacks {', '.join(missing)}", ptr)
             if "material" in prims[p] and prims[p]["material"] != prims[src].get("material"):
                 issues.warning("BAKER_FUR_FIN_MATERIAL", "the fin primitive's material differs from its source's", ptr)
+
+
+# ---------------------------------------------------------------------------------------------------- reading back
+@dataclass(frozen=True)
+class FurMaterial:
+    """``BAKER_fur`` of one material as read back (Lengyel et al. 2001): shell textures innermost first, the fin
+    texture and the fin primitives."""
+
+    shell_count: int
+    shell_spacing: float  # mesh units between shells
+    shell_textures: tuple  # texture indices, innermost first
+    length: float | None = None
+    tiling: float = 1.0  # texture repeats per texture-coordinate unit
+    tile_size: float | None = None
+    shell_coverage: tuple = ()
+    fin_texture: int | None = None
+    fins: tuple = ()  # (mesh, primitive) of each fin primitive
+
+
+def read(doc: GltfDocument, material: int) -> FurMaterial | None:
+    """What :func:`write_material` wrote on ``material``, or None without ``BAKER_fur``."""
+    ext = (doc.json.get("materials", [])[material].get("extensions") or {}).get(NAME)
+    if ext is None:
+        return None
+    fin = ext.get("finTexture") or {}
+    return FurMaterial(
+        shell_count=int(ext["shellCount"]), shell_spacing=float(ext["shellSpacing"]),
+        shell_textures=tuple(int(t["index"]) for t in ext["shellTextures"]),
+        length=float(ext["length"]) if "length" in ext else None, tiling=float(ext.get("tiling", 1.0)),
+        tile_size=float(ext["tileSize"]) if "tileSize" in ext else None,
+        shell_coverage=tuple(float(c) for c in ext.get("shellCoverage", ())),
+        fin_texture=int(fin["index"]) if "index" in fin else None,
+        fins=tuple((int(f["mesh"]), int(f["primitive"])) for f in ext.get("fins", ())))
+
+
+def read_fin_source(doc: GltfDocument, mesh: int, primitive: int) -> int | None:
+    """The source primitive of a fur fin primitive (its ``BAKER_fur.finsOf``); None for any other primitive."""
+    prim = doc.json["meshes"][mesh]["primitives"][primitive]
+    ext = (prim.get("extensions") or {}).get(NAME) or {}
+    return int(ext["finsOf"]) if "finsOf" in ext else None

@@ -5,5 +5,6 @@ TECHNIQUE = Technique(
     name='glyphs',
     summary='SDF/PSDF/MSDF/MTSDF glyph atlases and distance-field text (BAKER_glyph_atlas + BAKER_text)',
     extensions=("baker.techniques.glyphs.extension:ATLAS", "baker.techniques.glyphs.extension:TEXT"),
+    panels="baker.techniques.glyphs.panel:PANELS",
     commands=('baker.techniques.glyphs.glyphs_command', 'baker.techniques.glyphs.text_command',),
 )

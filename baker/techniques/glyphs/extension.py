@@ -12,6 +12,7 @@ Where the data goes (see ``schemas/BAKER_glyph_atlas/README.md`` and ``schemas/B
 """
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from types import SimpleNamespace
 
 import numpy as np
@@ -246,5 +247,72 @@ def check_text(doc: GltfDocument, places: list, issues) -> None:
                                f"table: {''.join(absent)!r}", ptr + "/text")
 
 
-ATLAS = SimpleNamespace(NAME=ATLAS_NAME, check=check_atlas)
-TEXT = SimpleNamespace(NAME=TEXT_NAME, check=check_text)
+# ---------------------------------------------------------------------------------------------------- reading back
+@dataclass(frozen=True, eq=False)  # holds arrays: compared by identity
+class Font:
+    """One font of ``BAKER_glyph_atlas`` as read back: the atlas texture, its distance field and glyph table."""
+
+    name: str | None
+    texture: int
+    type: str  # "sdf", "psdf", "msdf" or "mtsdf"
+    distance_range: float  # atlas pixels
+    size: float  # atlas pixels per em
+    width: int
+    height: int
+    y_origin: str = "bottom"
+    metrics: dict = field(default_factory=dict)  # em units
+    glyphs: dict = field(default_factory=dict)  # "unicode", "advance", "planeBounds", "atlasBounds" -> arrays
+    kerning: dict = field(default_factory=dict)  # "pairs", "advance" -> arrays (empty: no kerning)
+
+
+@dataclass(frozen=True)
+class TextLabel:
+    """``BAKER_text`` of one node as read back, with its font (None when the font index names no atlas font)."""
+
+    text: str
+    font_index: int
+    font: Font | None
+    em_size: float
+    align: str = "left"
+    color: tuple = (1.0, 1.0, 1.0, 1.0)  # linear RGBA
+    line_spacing: float = 1.0
+    outline_width: float = 0.0  # em units
+    outline_color: tuple = (0.0, 0.0, 0.0, 1.0)
+
+
+def read_atlas(doc: GltfDocument) -> list[Font]:
+    """The fonts :func:`write_glyph_atlas` appended to ``BAKER_glyph_atlas``, glyph tables read (empty: none)."""
+    fonts = ((doc.json.get("extensions") or {}).get(ATLAS_NAME) or {}).get("fonts", [])
+    out = []
+    for f in fonts:
+        table, kerning = f.get("glyphs") or {}, f.get("kerning") or {}
+        out.append(Font(
+            name=f.get("name"), texture=int(f["texture"]), type=f["type"], distance_range=float(f["distanceRange"]),
+            size=float(f["size"]), width=int(f["width"]), height=int(f["height"]), y_origin=f.get("yOrigin", "bottom"),
+            metrics=dict(f.get("metrics", {})),
+            glyphs={k: doc.accessor(table[k]) for k in ("unicode", "advance", "planeBounds", "atlasBounds") if k in table},
+            kerning={k: doc.accessor(kerning[k]) for k in ("pairs", "advance") if k in kerning}))
+    return out
+
+
+def read_text(doc: GltfDocument, node: int, fonts: list | None = None) -> TextLabel | None:
+    """What :func:`write_text_node` wrote on ``node``, or None without ``BAKER_text``; ``fonts``: from
+    :func:`read_atlas` (read when not given)."""
+    ext = (doc.json.get("nodes", [])[node].get("extensions") or {}).get(TEXT_NAME)
+    if ext is None:
+        return None
+    fonts = read_atlas(doc) if fonts is None else fonts
+    index = int(ext.get("font", 0))
+    outline = ext.get("outline") or {}
+    return TextLabel(
+        text=ext.get("text", ""), font_index=index, font=fonts[index] if 0 <= index < len(fonts) else None,
+        em_size=float(ext.get("emSize", 1.0)), align=ext.get("align", "left"),
+        color=tuple(float(c) for c in ext.get("color", (1.0, 1.0, 1.0, 1.0))),
+        line_spacing=float(ext.get("lineSpacing", 1.0)), outline_width=float(outline.get("width", 0.0)),
+        outline_color=tuple(float(c) for c in outline.get("color", (0.0, 0.0, 0.0, 1.0))))
+
+
+read = read_text
+
+ATLAS = SimpleNamespace(NAME=ATLAS_NAME, check=check_atlas, read=read_atlas)
+TEXT = SimpleNamespace(NAME=TEXT_NAME, check=check_text, read=read_text)

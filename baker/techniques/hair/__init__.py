@@ -5,5 +5,6 @@ TECHNIQUE = Technique(
     name='hair',
     summary='hair guide strands and interpolated children grown on an emitter (BAKER_hair)',
     extensions=("baker.techniques.hair.extension",),
+    panels="baker.techniques.hair.panel:PANELS",
     commands=('baker.techniques.hair.command',),
 )

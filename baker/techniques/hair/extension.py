@@ -11,6 +11,8 @@ Where the data goes (see ``schemas/BAKER_hair/README.md``):
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from baker.techniques.hair.kernel import HairResult, StrandSet, ribbon_indices, strand_tangents
@@ -205,3 +207,43 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             if (w < 0).any() or (np.abs(w.sum(axis=1) - 1.0) > 1e-4).any():
                 issues.error("BAKER_HAIR_GUIDE_WEIGHTS", "guide weights must be >= 0 and sum to 1 per strand",
                              pointer("accessors", w_a))
+
+
+@dataclass(frozen=True, eq=False)  # holds arrays: compared by identity
+class HairStrands:
+    """One ``BAKER_hair`` primitive as read back: strands of ``vertices_per_strand`` vertices, root first."""
+
+    strand_count: int
+    vertices_per_strand: int
+    positions: np.ndarray  # (strand_count * vertices_per_strand, 3), as stored
+    tangents: np.ndarray  # unit, per vertex
+    param: np.ndarray  # 0 at the root, 1 at the tip, per vertex
+    ribbon_indices: np.ndarray  # triangles of the view-facing ribbon (ribbon vertex r = line vertex r // 2)
+    root_width: float
+    tip_width: float
+    width_scale: np.ndarray | None = None  # per strand
+    guides_primitive: int | None = None  # children: the guide primitive they follow
+    guide_ids: np.ndarray | None = None
+    guide_weights: np.ndarray | None = None
+    material: int | None = None
+
+
+def read(doc: GltfDocument, mesh: int, primitive: int) -> HairStrands | None:
+    """What :func:`write_strand_primitive` wrote, accessors read; None when the primitive has no ``BAKER_hair``."""
+    prim = doc.json["meshes"][mesh]["primitives"][primitive]
+    ext = (prim.get("extensions") or {}).get(NAME)
+    if ext is None:
+        return None
+    attrs = prim["attributes"]
+    guides = ext.get("guides") or {}
+    return HairStrands(
+        strand_count=int(ext["strandCount"]), vertices_per_strand=int(ext["verticesPerStrand"]),
+        positions=doc.accessor(attrs["POSITION"]), tangents=doc.accessor(attrs[ext.get("tangentAttribute", TANGENT)]),
+        param=doc.accessor(attrs[ext.get("paramAttribute", PARAM)]).reshape(-1),
+        ribbon_indices=doc.accessor(ext["ribbonIndices"]).reshape(-1),
+        root_width=float(ext["rootWidth"]), tip_width=float(ext["tipWidth"]),
+        width_scale=doc.accessor(ext["widthScale"]).reshape(-1) if "widthScale" in ext else None,
+        guides_primitive=int(guides["primitive"]) if "primitive" in guides else None,
+        guide_ids=doc.accessor(guides["ids"]) if "ids" in guides else None,
+        guide_weights=doc.accessor(guides["weights"]) if "weights" in guides else None,
+        material=prim.get("material"))

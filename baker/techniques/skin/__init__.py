@@ -8,6 +8,7 @@ TECHNIQUE = Technique(
     options=SkinOptions,
     run="baker.techniques.skin.step:run",
     extensions=("baker.techniques.skin.extension",),
+    panels="baker.techniques.skin.panel:PANELS",
     commands=('baker.techniques.skin.command',),
     requires=('curvature',),
 )

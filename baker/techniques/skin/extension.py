@@ -9,6 +9,8 @@ no mipmaps.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from baker.techniques.skin.options import SkinOptions
@@ -128,3 +130,57 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                 if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
                     issues.error("BAKER_SKIN_LUT_TEXCOORD_MISSING", f"the curvature texture reads TEXCOORD_{texcoord}"
                                  " but this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
+
+
+# ---------------------------------------------------------------------------------------------------- reading back
+CURVATURE_ATTRIBUTE = "_CURVATURE"
+
+
+@dataclass(frozen=True)
+class SkinMaterial:
+    """``BAKER_skin_lut`` of one material as read back: Penner's LUT (+ penumbra LUT), its axes, and where the
+    curvature comes from (``curvature_attribute``; None: the runtime estimates it from screen-space derivatives)."""
+
+    lut_texture: int
+    encoding: str = "linear"  # "srgb": the LUT texels are sRGB-encoded
+    ndotl_range: tuple = (-1.0, 1.0)
+    curvature_range: tuple = (0.01, 1.0)  # 1/mm at the LUT's v = 0 and 1
+    curvature_scale: float = 1.0  # mesh curvature -> LUT units
+    unit: str = "mm"
+    penumbra_texture: int | None = None
+    penumbra_width_range: tuple = (0.01, 1.0)
+    shadow_sharpening: float | None = None
+    normal_blend: tuple = (1.0, 1.0, 1.0)
+    wrap: float = 0.5
+    scatter_width: float = 0.3
+    scatter_color: tuple = (0.8, 0.25, 0.1)
+    samples: int | None = None
+    profile: dict | None = None
+    curvature_attribute: str | None = CURVATURE_ATTRIBUTE  # absent: ``_CURVATURE`` (when the primitive has it)
+    curvature_texture: int | None = None
+    curvature_texcoord: int = 0
+    curvature_texture_range: tuple | None = None
+
+
+def read(doc: GltfDocument, material: int) -> SkinMaterial | None:
+    """What :func:`write_material_parameters` wrote on ``material``, or None without ``BAKER_skin_lut``."""
+    ext = (doc.json.get("materials", [])[material].get("extensions") or {}).get(NAME)
+    if ext is None:
+        return None
+    pair = lambda key, default: tuple(float(v) for v in ext.get(key, default))  # noqa: E731
+    penumbra = ext.get("penumbraTexture") or {}
+    curvature = ext.get("curvatureTexture") or {}
+    return SkinMaterial(
+        lut_texture=int(ext["lutTexture"]["index"]), encoding=ext.get("encoding", "linear"),
+        ndotl_range=pair("ndotlRange", (-1.0, 1.0)), curvature_range=pair("curvatureRange", (0.01, 1.0)),
+        curvature_scale=float(ext.get("curvatureScale", 1.0)), unit=ext.get("unit", "mm"),
+        penumbra_texture=int(penumbra["index"]) if "index" in penumbra else None,
+        penumbra_width_range=pair("penumbraWidthRange", (0.01, 1.0)),
+        shadow_sharpening=float(ext["shadowSharpening"]) if "shadowSharpening" in ext else None,
+        normal_blend=pair("normalBlend", (1.0, 1.0, 1.0)), wrap=float(ext.get("wrap", 0.5)),
+        scatter_width=float(ext.get("scatterWidth", 0.3)), scatter_color=pair("scatterColor", (0.8, 0.25, 0.1)),
+        samples=int(ext["samples"]) if "samples" in ext else None, profile=ext.get("profile"),
+        curvature_attribute=ext.get("curvatureAttribute", CURVATURE_ATTRIBUTE),
+        curvature_texture=int(curvature["index"]) if "index" in curvature else None,
+        curvature_texcoord=int(curvature.get("texCoord", 0)),
+        curvature_texture_range=pair("curvatureTextureRange", ()) if "curvatureTextureRange" in ext else None)

@@ -8,5 +8,6 @@ TECHNIQUE = Technique(
     options=TamOptions,
     run="baker.techniques.tam.step:run",
     extensions=("baker.techniques.tam.extension",),
+    panels="baker.techniques.tam.panel:PANELS",
     commands=('baker.techniques.tam.command',),
 )

@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import json
 import math
+
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -201,3 +203,41 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
                 issues.error("BAKER_TAM_TEXCOORD_MISSING", f"the TAM reads TEXCOORD_{texcoord} but this primitive has "
                              "none", pointer("meshes", m, "primitives", p, "attributes"))
+
+
+# ---------------------------------------------------------------------------------------------------------- reading back
+@dataclass(frozen=True)
+class TamLevel:
+    """One level of the map, finest first: its size in texels and its textures (packed: tones 0-2 and 3-5 in RGB;
+    volume: one layered texture)."""
+
+    size: int
+    textures: tuple
+
+
+@dataclass(frozen=True)
+class TamMaterial:
+    """``BAKER_tonal_art_map`` of one material as read back (Praun et al. 2001)."""
+
+    layout: str  # "packed" (two RGB textures per level) or "volume"
+    tones: tuple  # target darkness of each tone, lightest first
+    levels: tuple  # TamLevel, finest first
+    scale: float  # TAM tiles per texture-coordinate unit x finest size
+    texcoord: int = 0
+    style: str | None = None
+    level_order: str = LEVEL_ORDER
+    parameters: dict | None = None  # the stroke parameters (tam_parameters: angles in radians)
+
+
+def read(doc: GltfDocument, material: int) -> TamMaterial | None:
+    """What :func:`write_tam` wrote on ``material``, or None without ``BAKER_tonal_art_map``."""
+    ext = (doc.json.get("materials", [])[material].get("extensions") or {}).get(NAME)
+    if ext is None:
+        return None
+    levels = tuple(TamLevel(int(lv["size"]), tuple(int(t["index"]) for t in lv["textures"]) if "textures" in lv
+                            else (int(lv["texture"]["index"]),)) for lv in ext["levels"])
+    skip = {"layout", "tones", "levels", "scale", "texCoord", "style", "levelOrder"}
+    return TamMaterial(layout=ext.get("layout", "packed"), tones=tuple(float(t) for t in ext["tones"]),
+                       levels=levels, scale=float(ext["scale"]), texcoord=int(ext.get("texCoord", 0)),
+                       style=ext.get("style"), level_order=ext.get("levelOrder", LEVEL_ORDER),
+                       parameters={k: v for k, v in ext.items() if k not in skip})

@@ -8,4 +8,5 @@ TECHNIQUE = Technique(
     options=ThicknessOptions,
     run="baker.techniques.thickness.step:run",
     extensions=("baker.techniques.thickness.extension",),
+    panels="baker.techniques.thickness.panel:PANELS",
 )

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import math
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from baker.gltf.document import GltfDocument
@@ -128,3 +130,55 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             if KHR_VOLUME not in (gltf.get("extensionsUsed") or []):
                 issues.warning("BAKER_EXTENSION_NOT_DECLARED", "KHR_materials_volume is used but missing from "
                                "extensionsUsed", vol_ptr)
+
+
+# ---------------------------------------------------------------------------------------------------- reading back
+@dataclass(frozen=True)
+class ThicknessMaterial:
+    """``BAKER_thickness`` of one material as read back, with the ``KHR_materials_volume`` thickness texture.
+
+    The translucency parameters (RTR4 eq. 14.30, GDC 2011) default to what a runtime assumes when a field is absent.
+    """
+
+    attenuation_distance: float = 1.0  # mesh units
+    distortion: float = 0.2
+    power: float = 4.0
+    scale: float = 1.0
+    ambient: float = 0.0
+    subsurface_color: tuple = (1.0, 0.45, 0.3)  # linear RGB
+    attribute: str | None = None  # the per-vertex attribute (``_THICKNESS``) when baked per vertex
+    rays: int | None = None
+    distribution: str | None = None
+    spread_angle: float | None = None  # radians
+    max_distance: float | None = None
+    bias: float | None = None
+    mean_thickness: float | None = None
+    has_texture: bool = False  # ``thicknessTexture``: whether the bake wrote the per-texel map
+    thickness_texture: int | None = None  # KHR_materials_volume.thicknessTexture.index (green channel)
+    thickness_texcoord: int = 0
+    thickness_factor: float = 1.0  # mesh units at texel value 1.0
+
+
+def read(doc: GltfDocument, material: int) -> ThicknessMaterial | None:
+    """What :func:`write_material_parameters` and :func:`write_thickness_texture` wrote on ``material``, or None
+    when the material has no ``BAKER_thickness``."""
+    extensions = doc.json.get("materials", [])[material].get("extensions") or {}
+    ext = extensions.get(NAME)
+    if ext is None:
+        return None
+    volume = extensions.get(KHR_VOLUME) or {}
+    info = volume.get("thicknessTexture") or {}
+
+    def optional(key, kind):
+        return kind(ext[key]) if key in ext else None
+
+    return ThicknessMaterial(
+        attenuation_distance=float(ext.get("attenuationDistance", 1.0)), distortion=float(ext.get("distortion", 0.2)),
+        power=float(ext.get("power", 4.0)), scale=float(ext.get("scale", 1.0)), ambient=float(ext.get("ambient", 0.0)),
+        subsurface_color=tuple(float(c) for c in ext.get("subsurfaceColor", (1.0, 0.45, 0.3))),
+        attribute=ext.get("attribute"), rays=optional("rays", int), distribution=ext.get("distribution"),
+        spread_angle=optional("spreadAngle", float), max_distance=optional("maxDistance", float),
+        bias=optional("bias", float), mean_thickness=optional("meanThickness", float),
+        has_texture=bool(ext.get("thicknessTexture", False)),
+        thickness_texture=int(info["index"]) if "index" in info else None,
+        thickness_texcoord=int(info.get("texCoord", 0)), thickness_factor=float(volume.get("thicknessFactor", 1.0)))

@@ -8,5 +8,6 @@ TECHNIQUE = Technique(
     options=ToonOptions,
     run="baker.techniques.toon.step:run",
     extensions=("baker.techniques.toon.extension",),
+    panels="baker.techniques.toon.panel:PANELS",
     commands=('baker.techniques.toon.command',),
 )

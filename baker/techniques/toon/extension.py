@@ -6,6 +6,8 @@ width x height (X-Toon, v = 1 - detail); the extension does not change the mater
 from __future__ import annotations
 
 import json
+
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -86,3 +88,31 @@ def check(doc: GltfDocument, places: list, issues) -> None:
         if isinstance(bands, int) and pixels.shape[1] < bands:
             issues.error("BAKER_TOON_RAMP_TOO_NARROW", f"{pixels.shape[1]} texels cannot hold {bands} bands",
                          ptr + "/rampTexture")
+
+
+# ---------------------------------------------------------------------------------------------------- reading back
+@dataclass(frozen=True)
+class ToonRamp:
+    """``BAKER_toon_ramp`` of one material as read back: the ramp (or X-Toon map) texture and how to index it."""
+
+    ramp_texture: int
+    xtoon: str = "none"  # "none" (1D ramp by N.L), "depth" or "orientation" (X-Toon detail on v)
+    bands: int | None = None
+    softness: float | None = None
+    shadow: float | None = None
+    depth_range: tuple = (1.0, 50.0)  # X-Toon depth detail: (z_min, z_max) in mesh units
+    orientation_power: float = 1.0
+    min_contrast: float | None = None
+
+
+def read(doc: GltfDocument, material: int) -> ToonRamp | None:
+    """What :func:`write_toon_ramp` wrote on ``material``, or None without ``BAKER_toon_ramp``."""
+    ext = (doc.json.get("materials", [])[material].get("extensions") or {}).get(NAME)
+    if ext is None:
+        return None
+    optional = lambda key, kind: kind(ext[key]) if key in ext else None  # noqa: E731
+    return ToonRamp(
+        ramp_texture=int(ext["rampTexture"]["index"]), xtoon=ext.get("xtoon", "none"), bands=optional("bands", int),
+        softness=optional("softness", float), shadow=optional("shadow", float),
+        depth_range=tuple(float(v) for v in ext.get("depthRange", (1.0, 50.0))),
+        orientation_power=float(ext.get("orientationPower", 1.0)), min_contrast=optional("minContrast", float))

@@ -1,0 +1,110 @@
+"""Preview panels of BAKER_edges (``runtime-shaders/baker_edges.glsl``): the shell outline along ``_OUTLINE_NORMAL``
+(a back-face pass, RTR4 15.2.2) plus the fin primitives (McGuire & Hughes 2004), and the single-pass wireframe with
+the baked wireframe mask (Baerentzen et al. 2006)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from baker.preview.core import (INK, LAMBERT, REFERENCE, Camera, DrawItem, Panel, Scene, draw_surfaces, module_text,
+                                program_source, set_uniforms, transform_points)
+from baker.techniques.edges.extension import FIN_ATTRIBUTES, OUTLINE_NORMAL, read
+
+DEFAULT_CREASE = math.radians(60)
+
+
+@dataclass
+class EdgeFins:
+    """A fin primitive in world space."""
+
+    attributes: dict  # _FIN_V0.._FIN_V3 (world), _FIN_CORNER, _FIN_FLAGS
+    faces: np.ndarray
+    crease_angle: float
+
+
+class OutlinePanel(Panel):
+    """Shell outline (back faces pushed out along _OUTLINE_NORMAL, front faces culled) and the edge fins."""
+
+    def gather(self, scene, asset, mesh, world, node):
+        prims = asset.meshes()[mesh].get("primitives", [])
+        for p in range(len(prims)):
+            edges = read(asset.doc, mesh, p)
+            if edges is None or edges.fins_of is None:
+                continue
+            attrs = {k: a.astype(np.float32) for k, a in edges.fin_attributes.items()}
+            for k in FIN_ATTRIBUTES[:4]:
+                attrs[k] = transform_points(attrs[k], world)
+            source = read(asset.doc, mesh, edges.fins_of)
+            crease = source.crease_angle if source is not None and source.crease_angle is not None else DEFAULT_CREASE
+            scene.add("edge-fins", EdgeFins(attrs, edges.fin_indices.astype(np.uint32).reshape(-1, 3), float(crease)))
+
+    def applies(self, item):
+        return OUTLINE_NORMAL in item.attributes
+
+    def available(self, scene) -> bool:
+        return super().available(scene) or bool(isinstance(scene, Scene) and scene.part("edge-fins"))
+
+    def draw(self, ctx, scene, camera, size):
+        draw_surfaces(ctx, REFERENCE, scene, camera, size)
+        shell = Panel("shell", "", (), "", "color = u_ink;", vertex_modules=("baker_edges.glsl",),
+                      vertex_body="float w = (u_viewProjection * vec4(POSITION, 1.0)).w;\n"
+                                  "    position = baker_shell_position(POSITION, a_outline, w, u_width, "
+                                  "u_viewportHeight, u_projectionScaleY);")
+        items = [i for i in scene.items if self.applies(i)]
+        if items:
+            ctx.enable(ctx.CULL_FACE)
+            ctx.front_face = "ccw"
+            ctx.cull_face = "front"
+            draw_surfaces(ctx, shell, scene.subset(items), camera, size,
+                          extra={"u_width": max(2.0, size / 96.0)}, fallback=False)
+            ctx.disable(ctx.CULL_FACE)
+        for fins in scene.part("edge-fins"):
+            draw_fins(ctx, fins, camera, size)
+
+
+def draw_fins(ctx, fins: EdgeFins, camera: Camera, size: int) -> None:
+    """McGuire & Hughes fins: contour, ridge, valley and boundary edges extruded to u_width pixels."""
+    program = ctx.program(vertex_shader=program_source("edges_fin.vert.glsl", modules=module_text(("baker_edges.glsl",))),
+                          fragment_shader=program_source("solid.frag.glsl"))
+    vp = (camera.projection @ camera.view).astype(np.float32)
+    set_uniforms(program, {"u_viewProjection": vp.T.tobytes(), "u_eye": tuple(camera.eye), "u_creaseCos":
+                           math.cos(fins.crease_angle), "u_width": max(1.0, size / 256.0), "u_viewport": (size, size),
+                           "u_show": 1 | 2 | 4 | 8, "u_depthOffset": 2e-3, "u_color": INK + (1.0,)})
+    content, buffers = [], []
+    for name, data in fins.attributes.items():
+        if name in program:
+            buf = ctx.buffer(np.ascontiguousarray(data, np.float32).tobytes())
+            buffers.append(buf)
+            content.append((buf, "3f" if data.ndim == 2 and data.shape[1] == 3 else "1f", name))
+    ibo = ctx.buffer(fins.faces.astype(np.uint32).tobytes())
+    vao = ctx.vertex_array(program, content, index_buffer=ibo, index_element_size=4)
+    vao.render()
+    for obj in [vao, ibo, program] + buffers:
+        obj.release()
+
+
+class WireframePanel(Panel):
+    """The wireframe of the primitives with a baked wireframe mask (one 3-bit mask per triangle)."""
+
+    def read_item(self, doc, item: DrawItem) -> None:
+        edges = read(doc, item.mesh, item.primitive_index) if item.mesh is not None else None
+        if edges is not None and edges.wireframe_mask is not None:
+            mask = edges.wireframe_mask.reshape(-1).astype(np.float32)
+            item.mask = mask if len(mask) == len(item.faces) else None
+
+    def applies(self, item):
+        return item.mask is not None
+
+
+PANELS = [
+    OutlinePanel("outline", "shell outline + fins", (), "", LAMBERT, order=60),
+    WireframePanel("wireframe", "wireframe (mask)", ("baker_edges.glsl",), "",
+                   "vec3 fill = vec3(0.8) * (0.15 + 0.85 * max(dot(N, u_light), 0.0));\n"
+                   "    vec2 wire = baker_wireframe(v_bary, fwidth(v_bary), v_mask, u_width, 0.0);\n"
+                   "    color = mix(fill, u_ink, wire.x);",
+                   inputs="in vec3 v_bary;\nflat in int v_mask;", vertex_modules=("baker_edges.glsl",),
+                   vertex_body="v_bary = baker_barycentric(gl_VertexID);\n    v_mask = int(a_mask + 0.5);",
+                   expand=True, order=70),
+]

@@ -1,0 +1,72 @@
+"""Preview panel of BAKER_fur: Lengyel's fur shells (``runtime-shaders/baker_fur.glsl``), the surface then
+``shellCount`` alpha-blended copies pushed out along the normal. Fur fin primitives (degenerate quads) are no
+surface of the preview."""
+from __future__ import annotations
+
+from baker.preview.core import LAMBERT, REFERENCE, DrawItem, Panel, draw_surfaces
+from baker.techniques.fur.extension import read, read_fin_source
+
+
+class FurPanel(Panel):
+    """The materials with BAKER_fur: a darkened skin, then one blended pass per shell texture."""
+
+    def read_item(self, doc, item: DrawItem) -> None:
+        if item.material_index is not None:
+            item.data["fur"] = read(doc, item.material_index)
+
+    def skips(self, asset, mesh, primitive) -> bool:
+        return read_fin_source(asset.doc, mesh, primitive) is not None
+
+    def applies(self, item):
+        return super().applies(item) and item.data.get("fur") is not None
+
+    def draw(self, ctx, scene, camera, size):
+        import moderngl
+
+        items = [i for i in scene.items if self.applies(i)]
+        others = scene.subset([i for i in scene.items if not self.applies(i)])
+        draw_surfaces(ctx, REFERENCE, others, camera, size)
+        for item in items:
+            fur = item.data["fur"]
+            shells = list(fur.shell_textures)
+            inner = scene.image(shells[0])
+            base = (inner[..., :3] * inner[..., 3:]).sum((0, 1)) / max(float(inner[..., 3].sum()), 1e-6)
+            one = scene.subset([item])
+            skin = Panel("fur-skin", "", (), "uniform vec3 u_base;",
+                         "color = u_base * 0.4 * (0.3 + 0.7 * max(dot(N, u_light), 0.0));")
+            draw_surfaces(ctx, skin, one, camera, size, extra={"u_base": tuple(float(c) for c in base)})
+            ctx.enable(ctx.BLEND)
+            ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
+            ctx.depth_mask = False
+            count = len(shells)
+            for i, texture in enumerate(shells):
+                shell = FurShellPanel(texture)
+                draw_surfaces(ctx, shell, one, camera, size, extra={
+                    "u_shell": float(i), "u_shellCount": float(count),
+                    "u_shellSpacing": fur.shell_spacing, "u_tiling": fur.tiling})
+            ctx.depth_mask = True
+            ctx.disable(ctx.BLEND)
+
+
+class FurShellPanel(Panel):
+    """One shell: the surface pushed out to its height, shaded with its texture."""
+
+    def __init__(self, texture: int):
+        super().__init__(
+            "fur-shell", "", ("baker_fur.glsl",),
+            "uniform sampler2D u_shellTexture; uniform float u_shell; uniform float u_shellCount; uniform float u_tiling;",
+            "vec4 texel = texture(u_shellTexture, baker_fur_shell_uv(v_uv, u_tiling));\n"
+            "    vec4 shaded = baker_fur_shell_shade(texel, baker_fur_shell_height(u_shell, u_shellCount), 0.4);\n"
+            "    color = shaded.rgb * (0.3 + 0.7 * max(dot(N, u_light), 0.0));\n"
+            "    alpha = shaded.a;",
+            inputs="in vec2 v_uv;", vertex_modules=("baker_fur.glsl",),
+            vertex_declarations="uniform float u_shell; uniform float u_shellCount; uniform float u_shellSpacing;",
+            vertex_body="position = baker_fur_shell_position(POSITION, normalize(NORMAL), u_shell, u_shellSpacing, "
+                        "u_shellCount, vec3(0.0));")
+        self.texture_index = texture
+
+    def textures(self, scene, ctx, item):
+        return {"u_shellTexture": scene.texture(ctx, self.texture_index, repeat=True)}
+
+
+PANELS = [FurPanel("fur", "fur shells", (), "", LAMBERT, order=80)]

@@ -1,0 +1,26 @@
+// BAKER_hair: each line vertex twice (a_side 0 / 1), opened into a view-facing ribbon at least a pixel wide, with
+// the pixel coverage as opacity. World-space strands; baker_hair.glsl at "@baker:modules".
+// @baker:modules
+uniform mat4 u_viewProjection;
+uniform vec3 u_eye;
+uniform float u_rootWidth;
+uniform float u_tipWidth;
+uniform float u_tanHalfFovY;
+uniform float u_viewportHeight;
+in vec3 POSITION;
+in vec3 a_tangent;
+in float a_param;
+in float a_widthScale;
+in float a_side;
+out vec3 v_position;
+out vec3 v_tangent;
+out float v_alpha;
+void main() {
+    float width = baker_hair_width(u_rootWidth, u_tipWidth, a_param, a_widthScale);
+    vec2 coverage = baker_hair_coverage(width, baker_hair_pixel_size(length(u_eye - POSITION), u_tanHalfFovY,
+                                                                       u_viewportHeight));
+    v_position = baker_hair_ribbon_position(POSITION, a_tangent, u_eye, coverage.x, a_side);
+    v_tangent = a_tangent;
+    v_alpha = coverage.y;
+    gl_Position = u_viewProjection * vec4(v_position, 1.0);
+}
