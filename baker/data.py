@@ -9,3 +9,4 @@ from pathlib import Path
 REPO_ROOT = Path(__file__).resolve().parents[1]
 SCHEMA_ROOT = REPO_ROOT / "schemas"
 SHADER_ROOT = REPO_ROOT / "runtime-shaders"
+RECIPE_SCHEMA = SCHEMA_ROOT / "recipe" / "recipe.schema.json"

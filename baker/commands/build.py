@@ -81,7 +81,10 @@ class Recipe:
 
 
 def _line_of(text: str, key: str) -> int | None:
-    pattern = re.compile(rf"^\s*{re.escape(key)}\s*=", re.M)
+    """The line of the first ``key = ...`` or ``[key]``/``[[key]]``/``[a.key]`` header, or None."""
+    if not key:
+        return None
+    pattern = re.compile(rf"^\s*(?:{re.escape(key)}\s*=|\[\[?(?:[\w.-]+\.)?{re.escape(key)}\]\]?)", re.M)
     match = pattern.search(text)
     return text.count("\n", 0, match.start()) + 1 if match else None
 
@@ -129,9 +132,53 @@ def _resolve_options(path, text, bakes, layers) -> dict:
     return resolved
 
 
+TOML_FORMS = {"object": "a table", "array": "an array", "string": "a string", "integer": "an integer",
+              "number": "a number", "boolean": "true or false"}
+
+
+def _toml_form(value) -> str:
+    if isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
+        return "an array of tables ([[...]])"
+    kinds = ((dict, "a table"), (list, "an array"), (str, "a string"), (bool, "true or false"), (int, "an integer"),
+             (float, "a number"))
+    return next((name for kind, name in kinds if isinstance(value, kind)), type(value).__name__)
+
+
+def check_recipe_shape(path: Path, text: str, data) -> None:
+    """Check the parsed recipe against ``schemas/recipe/recipe.schema.json`` before anything is read or baked;
+    the first problem is a BakerError naming the line, the JSON pointer and what was expected."""
+    from jsonschema import Draft202012Validator
+    from jsonschema.exceptions import best_match
+
+    from baker.data import RECIPE_SCHEMA
+
+    validator = Draft202012Validator(json.loads(RECIPE_SCHEMA.read_text("utf-8")))
+    error = best_match(validator.iter_errors(data))
+    if error is None:
+        return
+    parts = list(error.absolute_path)
+    where = "/" + "/".join(map(str, parts))
+    keys = [p for p in parts if isinstance(p, str)]
+    if error.validator == "additionalProperties":
+        extra = sorted(set(error.instance) - set(error.schema.get("properties", {})))
+        known = ", ".join(error.schema.get("properties", {}))
+        _fail(path, text, extra[0], f"{where.rstrip('/')}/{extra[0]}: unknown key (known: {known})")
+    if error.validator == "type":
+        expected = error.validator_value if isinstance(error.validator_value, list) else [error.validator_value]
+        wanted = " or ".join(TOML_FORMS.get(t, t) for t in expected)
+        hint = f"; write [{keys[-1]}]" if keys and expected == ["object"] and isinstance(error.instance, list) else ""
+        _fail(path, text, keys[-1] if keys else "", f"{where}: must be {wanted}, not {_toml_form(error.instance)}{hint}")
+    if error.validator == "required":
+        _fail(path, text, keys[-1] if keys else "", f"{where}: {error.message}")
+    _fail(path, text, keys[-1] if keys else "", f"{where}: {error.message}")
+
+
 def load_recipe(path) -> Recipe:
     path = Path(path)
-    text = path.read_text()
+    try:
+        text = path.read_text("utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise BakerError(path, f"cannot read recipe: {exc}") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -140,6 +187,7 @@ def load_recipe(path) -> Recipe:
         data = data.get("tool", {}).get("baker")
         if data is None:
             raise BakerError(path, "no [tool.baker] table")
+    check_recipe_shape(path, text, data)
     for key in data:
         if key not in ("build", "options", "assets", "commands"):
             _fail(path, text, key, f"unknown recipe key '{key}' (known: build, options, assets, commands)")
