@@ -59,3 +59,28 @@ def test_the_example_recipe_and_the_readme_recipe_fit_the_schema():
     recipe = build.__doc__.split("::", 1)[1].split("\n\n")[1]  # the recipe shown in the module's docstring
     assert not list(validator.iter_errors(tomllib.loads("\n".join(line.split("  #")[0] for line in
                                                                    recipe.splitlines()))))
+
+
+def test_an_unexpected_failure_keeps_its_traceback_in_the_report(tmp_path, monkeypatch):
+    """A bug (not bad input) in one task: the table gets one line, the JSON report the whole traceback, and the
+    other tasks still build."""
+    import baker.pipeline
+    from baker.commands.build import build, load_recipe
+
+    shutil.copy(SPOT, tmp_path / "spot.obj")
+    shutil.copy(SPOT, tmp_path / "cow.obj")
+    (tmp_path / "baker.toml").write_text('[build]\nbakes = ["edges"]\n[[assets]]\ninputs = ["*.obj"]\n')
+    real_bake = baker.pipeline.bake
+
+    def flaky_bake(path, **kwargs):
+        if Path(path).name == "cow.obj":
+            raise ZeroDivisionError("a bug deep inside a kernel")
+        return real_bake(path, **kwargs)
+
+    monkeypatch.setattr(baker.pipeline, "bake", flaky_bake)
+    report = build(load_recipe(tmp_path / "baker.toml"), jobs=1)
+    assert report["baked"] == ["baked/spot.glb"]
+    assert report["failed"] == [("baked/cow.glb", "ZeroDivisionError: a bug deep inside a kernel")]
+    trace = report["tracebacks"]["baked/cow.glb"]
+    assert trace.startswith("Traceback (most recent call last):") and "flaky_bake" in trace
+    assert "ZeroDivisionError: a bug deep inside a kernel" in trace
