@@ -17,6 +17,14 @@ def read_module(name: str) -> str:
     return (REPO / "runtime-shaders" / name).read_text()
 
 
+def read_host(name: str, **parts: str) -> str:
+    """A host wrapper of ``runtime-shaders/hosts/`` as ``baker preview`` reads it (placeholders filled, empty when
+    not given); the test puts the header and the module before it."""
+    from baker.preview.core import host_text
+
+    return host_text(name, **parts)
+
+
 def assert_compiles(validator: str, tmp_path: Path, version: str, name: str, stage: str, text: str) -> None:
     """Compile one stage (``vert``/``frag``, from the file suffix) with glslangValidator; fail with its log."""
     path = tmp_path / f"{name}.{stage}"

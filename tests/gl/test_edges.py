@@ -24,36 +24,14 @@ from baker.pipeline import save
 
 from . import twins_edges as twins
 
-from .glsl import HEADERS, assert_compiles
+from .glsl import HEADERS, assert_compiles, read_host
 
 REPO = Path(__file__).parents[2]
 MODULE = (REPO / "runtime-shaders" / "baker_edges.glsl").read_text()
 SIZE = 256
 
-FIN_VS = """
-in vec3 _FIN_V0;
-in vec3 _FIN_V1;
-in vec3 _FIN_V2;
-in vec3 _FIN_V3;
-in float _FIN_CORNER;
-in float _FIN_FLAGS;
-uniform mat4 u_viewProjection;
-uniform vec3 u_eye;
-uniform float u_creaseCos;
-uniform float u_width;
-uniform vec2 u_viewport;
-uniform int u_show;
-out vec4 v_clip;
-out float v_kind;
-void main() {
-    int kind = baker_fin_classify(_FIN_V0, _FIN_V1, _FIN_V2, _FIN_V3, _FIN_FLAGS, u_eye, u_creaseCos);
-    vec4 c0 = u_viewProjection * vec4(_FIN_V0, 1.0);
-    vec4 c1 = u_viewProjection * vec4(_FIN_V1, 1.0);
-    v_kind = float(kind);
-    v_clip = (kind & u_show) != 0 ? baker_fin_position(c0, c1, _FIN_CORNER, u_width, u_viewport) : baker_fin_culled();
-    gl_Position = v_clip;
-}
-"""
+# the preview's fin wrapper (runtime-shaders/hosts/edges_fin.vert.glsl; u_depthOffset unset: 0)
+FIN_VS = read_host("edges_fin.vert.glsl")
 
 # the fin shader's outputs, one point per vertex into a float texture (transform feedback is not reliable on
 # every EGL/llvmpipe build): the same function calls, with gl_Position moved to the vertex's texel
@@ -74,13 +52,7 @@ void main() {
 }
 """
 
-SOLID_FS = """
-uniform vec4 u_color;
-layout(location = 0) out vec4 o_color;
-void main() {
-    o_color = u_color;
-}
-"""
+SOLID_FS = read_host("solid.frag.glsl")
 
 OBJECT_VS = """
 in vec3 POSITION;
@@ -158,7 +130,7 @@ def split_cube() -> trimesh.Trimesh:
     import sys
 
     sys.path.insert(0, str(REPO / "tests"))
-    from test_edges import split_cube as make
+    from techniques.test_edges import split_cube as make
 
     return make()
 

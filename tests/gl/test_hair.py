@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from . import twins_fur as fur_twins
 from . import twins_hair as twins
 
 from .glsl import HEADERS, assert_compiles
@@ -163,12 +164,12 @@ def _twin(mode, inputs):
     elif mode == 2:
         c = 0.6 * twins.baker_hair_marschner(t, v, l, (0.55, 0.35, 0.2), 0.45, 0.05)
     elif mode == 3:
-        n0, n1 = twins.baker_fur_fin_face_normals(np.zeros_like(t), t, l, v)
-        c = np.stack([twins.baker_fur_fin_weight(n0, n1, n, 0.5), 0.5 + 0.5 * n0[..., 0], 0.5 + 0.5 * n1[..., 1]],
+        n0, n1 = fur_twins.baker_fur_fin_face_normals(np.zeros_like(t), t, l, v)
+        c = np.stack([fur_twins.baker_fur_fin_weight(n0, n1, n, 0.5), 0.5 + 0.5 * n0[..., 0], 0.5 + 0.5 * n1[..., 1]],
                      axis=-1)
     else:
-        h = twins.baker_fur_shell_height(np.floor(s * 16.0), 16.0)
-        c = twins.baker_fur_shell_shade(np.concatenate([0.5 + 0.5 * t, s[..., None]], axis=-1), h, 0.3)[..., :3]
+        h = fur_twins.baker_fur_shell_height(np.floor(s * 16.0), 16.0)
+        c = fur_twins.baker_fur_shell_shade(np.concatenate([0.5 + 0.5 * t, s[..., None]], axis=-1), h, 0.3)[..., :3]
     return np.clip(c, 0.0, 1.0)
 
 
@@ -270,9 +271,9 @@ def test_fur_vertex_functions_match_twin(gl_context):
         gpu = _transform(gl_context, FUR_VS, ["o_shell", "o_fin"], {"V0": v0, "V1": v1, "NORMAL": normal,
                                                                      "CORNER": corner},
                          {"u_shell": shell, "u_spacing": 0.01, "u_displacement": displacement})
-        shell_pos = twins.baker_fur_shell_position(v0, normal, np.full(n, shell, np.float32), 0.01, 16.0,
+        shell_pos = fur_twins.baker_fur_shell_position(v0, normal, np.full(n, shell, np.float32), 0.01, 16.0,
                                                    displacement)
-        fin_pos = twins.baker_fur_fin_position(v0, v1, normal, corner, 0.25)
+        fin_pos = fur_twins.baker_fur_fin_position(v0, v1, normal, corner, 0.25)
         assert np.abs(gpu["o_shell"] - shell_pos).max() < 1e-5
         assert np.abs(gpu["o_fin"] - fin_pos).max() < 1e-5
     # fin corners: 0, 1 on the edge; 2, 3 raised by the length over v1, v0

@@ -23,6 +23,7 @@ from baker.gltf.images import decode_image
 from baker.pipeline import save
 
 from . import twins_hatching as twins
+from . import twins_toon as toon_twins
 from .test_translucency import look_at, perspective
 
 from .glsl import HEADERS, assert_compiles
@@ -442,18 +443,18 @@ def test_toon_functions_match_twins(gl_context):
     ramp = ramp_u8[..., None].astype(np.float32) / 255.0
     xmap = xtoon_u8[..., None].astype(np.float32) / 255.0
     ndl, detail, z, u = (inputs[..., k] for k in range(4))
-    assert np.abs(shades[..., 0] - twins.baker_toon_ramp(ramp, ndl)).max() <= TOLERANCE
-    assert np.abs(shades[..., 1] - twins.baker_xtoon(xmap, ndl, detail)).max() <= TOLERANCE
-    np.testing.assert_allclose(shades[..., 2], twins.baker_toon_bands(u, bands, softness, shadow), atol=1e-5)
-    np.testing.assert_allclose(shades[..., 3], twins.baker_xtoon_detail_depth(z, 1.0, 50.0), atol=1e-5)
+    assert np.abs(shades[..., 0] - toon_twins.baker_toon_ramp(ramp, ndl)).max() <= TOLERANCE
+    assert np.abs(shades[..., 1] - toon_twins.baker_xtoon(xmap, ndl, detail)).max() <= TOLERANCE
+    np.testing.assert_allclose(shades[..., 2], toon_twins.baker_toon_bands(u, bands, softness, shadow), atol=1e-5)
+    np.testing.assert_allclose(shades[..., 3], toon_twins.baker_xtoon_detail_depth(z, 1.0, 50.0), atol=1e-5)
     rgb = colors[..., :3]
-    np.testing.assert_allclose(hsv[..., :3], twins.baker_posterize_hsv(rgb, levels), atol=1e-5)
-    np.testing.assert_allclose(ycc[..., :3], twins.baker_posterize_ycbcr(rgb, levels), atol=1e-5)
+    np.testing.assert_allclose(hsv[..., :3], toon_twins.baker_posterize_hsv(rgb, levels), atol=1e-5)
+    np.testing.assert_allclose(ycc[..., :3], toon_twins.baker_posterize_ycbcr(rgb, levels), atol=1e-5)
     centred = rgb - np.float32(0.37)
     normal = centred / np.linalg.norm(centred, axis=-1, keepdims=True)
-    np.testing.assert_allclose(hsv[..., 3], twins.baker_xtoon_detail_orientation(normal, [0, 0, 1], 2.0), atol=1e-5)
+    np.testing.assert_allclose(hsv[..., 3], toon_twins.baker_xtoon_detail_orientation(normal, [0, 0, 1], 2.0), atol=1e-5)
     # hue-preserving: posterized colours keep their hue (where saturated enough to have one)
-    before, after = twins.baker_rgb_to_hsv(rgb), twins.baker_rgb_to_hsv(hsv[..., :3])
+    before, after = toon_twins.baker_rgb_to_hsv(rgb), toon_twins.baker_rgb_to_hsv(hsv[..., :3])
     sel = (before[..., 1] > 0.1) & (after[..., 2] > 0.05)
     hue_shift = np.abs(((before[..., 0] - after[..., 0]) + 0.5) % 1.0 - 0.5)[sel]
     assert hue_shift.max() < 1e-4

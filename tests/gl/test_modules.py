@@ -5,24 +5,27 @@ import re
 
 import pytest
 
-from . import twins, twins_edges, twins_hair, twins_hatching, twins_skin, twins_text
+from . import (twins_edges, twins_fur, twins_hair, twins_hatching, twins_skin, twins_text, twins_toon,
+               twins_translucency)
 from .glsl import REPO, read_module
 
-TWINS = {
-    "baker_translucency.glsl": twins,
-    "baker_skin.glsl": twins_skin,
+TWINS = {  # one twin module per runtime module: baker_<name>.glsl -> twins_<name>.py
     "baker_edges.glsl": twins_edges,
-    "baker_text.glsl": twins_text,
-    "baker_hatching.glsl": twins_hatching,
-    "baker_toon.glsl": twins_hatching,
+    "baker_fur.glsl": twins_fur,
     "baker_hair.glsl": twins_hair,
-    "baker_fur.glsl": twins_hair,
+    "baker_hatching.glsl": twins_hatching,
+    "baker_skin.glsl": twins_skin,
+    "baker_text.glsl": twins_text,
+    "baker_toon.glsl": twins_toon,
+    "baker_translucency.glsl": twins_translucency,
 }
 
 
 def test_every_module_has_twins():
     modules = sorted(p.name for p in (REPO / "runtime-shaders").glob("*.glsl"))
     assert modules == sorted(TWINS), "a new runtime module needs its numpy twins (tests/gl/twins_*.py)"
+    for name, twins in TWINS.items():
+        assert twins.__name__.rsplit(".", 1)[-1] == "twins_" + name[len("baker_"):-len(".glsl")], name
 
 
 @pytest.mark.parametrize("name", sorted(TWINS))

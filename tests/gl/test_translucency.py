@@ -20,7 +20,7 @@ from baker.gltf.document import GltfDocument
 from baker.gltf.images import decode_image
 from baker.pipeline import save
 
-from . import twins
+from . import twins_translucency as twins
 
 from .glsl import HEADERS, assert_compiles
 
