@@ -1,5 +1,5 @@
 """``runtime-shaders/baker_hair.glsl`` and ``baker_fur.glsl``: compile as GLSL ES 3.00 and 3.30 core, and compute
-what their numpy twins (``tests/gl/twins_hair.py``) say, on the GPU (moderngl, EGL, llvmpipe).
+what their numpy twins (``tests/gl/twins_hair.py``, ``twins_fur.py``) say, on the GPU (moderngl, EGL, llvmpipe).
 
 - shading functions: a full-screen pass reads per-pixel inputs (random unit T, L, V, N) from float textures and
   writes RGBA8; the twin shades the same inputs; every pixel must agree within 2/255;

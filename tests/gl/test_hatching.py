@@ -1,5 +1,5 @@
 """``runtime-shaders/baker_hatching.glsl`` and ``baker_toon.glsl``: compile as GLSL ES 3.00 and 3.30 core, and render
-what their numpy twins (``tests/gl/twins_hatching.py``) say.
+what their numpy twins (``tests/gl/twins_hatching.py``, ``twins_toon.py``) say.
 
 The sphere test goes through the whole data path: a sphere with planar UVs is baked with ``--bakes tam``, written to
 .glb, and read back; the TAM's level PNGs are uploaded as the custom mip chains of two RGBA8 textures, exactly as a
