@@ -1,12 +1,17 @@
-"""Where baker's data lives: the JSON schemas (``schemas/``) and the runtime GLSL (``runtime-shaders/``).
+"""Where baker's data lives: the JSON schemas and the runtime GLSL, found through :mod:`importlib.resources`.
 
-One place to find them, so validation, the preview and the tests agree (today both sit at the top of the checkout).
+``schemas/`` and ``runtime-shaders/`` sit at the top of the repository, for people and other tools; the package
+reaches them as ``baker/schemas`` and ``baker/runtime_shaders`` (links in a checkout, copies in a wheel, see
+``[tool.setuptools.package-data]``), so a checkout, an editable install and a wheel installed anywhere all find the
+same files, and none of them looks outside the installed package.
 """
 from __future__ import annotations
 
+from importlib.resources import files
 from pathlib import Path
 
-REPO_ROOT = Path(__file__).resolve().parents[1]
-SCHEMA_ROOT = REPO_ROOT / "schemas"
-SHADER_ROOT = REPO_ROOT / "runtime-shaders"
+PACKAGE_ROOT = Path(str(files("baker")))
+SCHEMA_ROOT = PACKAGE_ROOT / "schemas"
+SHADER_ROOT = PACKAGE_ROOT / "runtime_shaders"
+JS_ROOT = PACKAGE_ROOT / "js"
 RECIPE_SCHEMA = SCHEMA_ROOT / "recipe" / "recipe.schema.json"

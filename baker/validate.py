@@ -32,12 +32,14 @@ import numpy as np
 
 from baker.version import __version__
 from baker import registry
-from baker.data import REPO_ROOT
+from baker.data import JS_ROOT
 from baker.errors import BakerError
 from baker.gltf.document import COMPONENT_DTYPES, TYPE_SIZES, GltfDocument, parse_glb
 from baker.checks import ERROR, SEVERITY_NAMES, Issues, is_count, is_index, pointer
 
-KHRONOS_SCRIPT = Path(__file__).resolve().parent / "js" / "khronos_validate.mjs"
+KHRONOS_SCRIPT = JS_ROOT / "khronos_validate.mjs"
+# a development checkout: scripts/install-node-tools puts the pinned node tools in <checkout>/.cache/node
+CHECKOUT_NODE_MODULES = Path(__file__).resolve().parents[1] / ".cache" / "node" / "node_modules"
 KHRONOS_TIMEOUT = 300.0  # seconds; the validator decodes every accessor and image
 
 TRIANGLE_MODES = (4, 5, 6)
@@ -141,7 +143,8 @@ def check_extensions(gltf: dict, issues: Issues) -> dict:
         found.setdefault(name, []).append((owner, value))
         ptr = pointer(*owner, "extensions", name)
         if name not in known:
-            issues.warning("BAKER_UNKNOWN_EXTENSION", f"baker has no schema for extension '{name}'", ptr)
+            # an error, not a warning: a gate that cannot check an extension must not pass it
+            issues.error("BAKER_UNKNOWN_EXTENSION", f"baker has no schema for extension '{name}'", ptr)
             continue
         kind = _object_kind(owner)
         schema_path = schema_files.get((name, kind))
@@ -445,7 +448,7 @@ def semantic_checks() -> dict:
 def node_modules() -> Path:
     """Where ``gltf-validator`` is looked for: $BAKER_NODE_MODULES, else ``<repo>/.cache/node/node_modules``."""
     env = os.environ.get("BAKER_NODE_MODULES")
-    return Path(env) if env else REPO_ROOT / ".cache" / "node" / "node_modules"
+    return Path(env) if env else CHECKOUT_NODE_MODULES
 
 
 def khronos_unavailable() -> str | None:

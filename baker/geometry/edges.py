@@ -32,7 +32,6 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from baker.techniques.edges.options import EdgesOptions
 
 # per-edge flags (the BAKER_edges ``flags`` accessor, UNSIGNED_SHORT)
 BOUNDARY = 1 << 0  # exactly one face
@@ -61,6 +60,19 @@ QUAD_MIN_OPPOSITE_ANGLE = math.radians(80.0)
 
 
 # ----------------------------------------------------------------------------------------------------------- weld
+@dataclass(frozen=True)
+class EdgeSettings:
+    """How edges are welded and classified. The edges technique's options (``EdgesOptions``) carry the same names and
+    defaults and can be passed wherever these are (any object with these attributes is accepted)."""
+
+    weld_tolerance: float = 1e-6  # x the bounding-box diagonal
+    crease_angle: float = 60.0  # degrees
+    planar_angle: float = 0.01  # degrees
+    quad_angle: float = 30.0  # degrees
+    hard_uv_seams: bool = False
+    wireframe: str = "quad-diagonals"  # quad-diagonals | planar | none | off
+
+
 def weld_positions(positions: np.ndarray, tolerance: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
     """Merge vertices that round to the same cell of a grid of ``tolerance`` x the bounding-box diagonal.
 
@@ -449,7 +461,7 @@ class MeshEdges:
 
 def analyze_mesh(positions: np.ndarray, faces: np.ndarray, *, face_group: np.ndarray | None = None,
                  corner_uv: np.ndarray | None = None, corner_normals: np.ndarray | None = None,
-                 options: EdgesOptions = EdgesOptions()) -> MeshEdges:
+                 options: EdgeSettings = EdgeSettings()) -> MeshEdges:
     """Weld, build the edge list and classify every edge of one mesh.
 
     Parameters
@@ -533,7 +545,7 @@ def hard_mask(flags: np.ndarray, hard_uv_seams: bool = False) -> np.ndarray:
 
 
 def primitive_edges(mesh: MeshEdges, face_range: tuple[int, int], vertex_range: tuple[int, int],
-                    options: EdgesOptions = EdgesOptions()) -> PrimitiveEdges:
+                    options: EdgeSettings = EdgeSettings()) -> PrimitiveEdges:
     """Per-primitive data for the faces ``face_range`` and vertices ``vertex_range`` of ``mesh``'s input arrays."""
     f_lo, f_hi = face_range
     v_lo, v_hi = vertex_range

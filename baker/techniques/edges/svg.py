@@ -163,7 +163,7 @@ def run(args) -> int:
     asset = Asset.load(args.input)
     positions, faces, groups = scene_triangles(asset)
     camera = make_camera(args, asset, positions)
-    options = E.EdgesOptions(crease_angle=args.crease_angle)
+    options = E.EdgeSettings(crease_angle=args.crease_angle)
     mesh = E.analyze_mesh(positions, faces, face_group=groups, options=options)
     scene = RayScene(mesh.welded, mesh.faces_welded)
     lines = L.trace_lines(mesh, camera, scene, step=args.step, creases=not args.no_creases)

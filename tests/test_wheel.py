@@ -1,0 +1,111 @@
+"""The built wheel carries its schemas and shaders and works with no checkout: installed into a fresh virtual
+environment in a temporary folder, run from another folder, `baker bake`, `validate`, `preview` and `glyphs` work,
+and validation fails an asset whose BAKER_thickness breaks its schema."""
+from __future__ import annotations
+
+import json
+import os
+import site
+import struct
+import subprocess
+import sys
+import sysconfig
+import zipfile
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).parents[1]
+SPOT = REPO / "examples" / "spot" / "spot.obj"
+FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
+
+
+@pytest.fixture(scope="module")
+def wheel(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("wheel")
+    result = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q",
+                             "-w", str(out), str(REPO)], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    [path] = out.glob("baker-*.whl")
+    return path
+
+
+@pytest.fixture(scope="module")
+def venv(wheel, tmp_path_factory) -> Path:
+    """A fresh virtual environment holding only the wheel; the dependencies (numpy, usd-core, ...) come from this
+    interpreter's site-packages through a .pth file, which adds paths but runs none of their .pth hooks (so an
+    editable install of the checkout there stays invisible)."""
+    root = tmp_path_factory.mktemp("venv")
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(root)], check=True)
+    python = root / "bin" / "python"
+    result = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "--no-deps", "-q",
+                             str(wheel)], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    purelib = Path(subprocess.check_output([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()"
+                                                             "['purelib'])"], text=True).strip())
+    ours = {sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"], *site.getsitepackages()}
+    (purelib / "zz_dependencies.pth").write_text("\n".join(sorted(p for p in ours if Path(p).is_dir())) + "\n")
+    return root
+
+
+def run(venv: Path, cwd: Path, *args):
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    return subprocess.run([str(venv / "bin" / "baker"), *map(str, args)], cwd=cwd, env=env, capture_output=True,
+                          text=True, timeout=600)
+
+
+def test_wheel_lists_every_schema_and_shader(wheel):
+    names = set(zipfile.ZipFile(wheel).namelist())
+    schemas = {f"baker/schemas/{p.relative_to(REPO / 'schemas').as_posix()}" for p in (REPO / "schemas").rglob("*.json")}
+    shaders = {f"baker/runtime_shaders/{p.relative_to(REPO / 'runtime-shaders').as_posix()}"
+               for p in [*(REPO / "runtime-shaders").glob("*.glsl"), *(REPO / "runtime-shaders" / "hosts").glob("*")]}
+    assert schemas and shaders
+    assert schemas <= names, sorted(schemas - names)
+    assert shaders <= names, sorted(shaders - names)
+    assert "baker/js/khronos_validate.mjs" in names
+    assert not [n for n in names if "node_modules" in n or n.startswith("tests/")]
+
+
+def test_installed_wheel_bakes_validates_previews_and_makes_glyphs(venv, tmp_path):
+    work = tmp_path / "elsewhere"
+    work.mkdir()
+    where = subprocess.run([str(venv / "bin" / "python"), "-c", "import baker, baker.data as d; "
+                            "print(baker.__file__); print(d.SCHEMA_ROOT)"], cwd=work, capture_output=True, text=True,
+                           env={k: v for k, v in os.environ.items() if k != "PYTHONPATH"})
+    module, schemas = where.stdout.split()
+    assert Path(module).is_relative_to(venv) and Path(schemas).is_relative_to(venv), where.stdout
+    assert not Path(module).is_relative_to(REPO)
+
+    baked = work / "spot.glb"
+    result = run(venv, work, "bake", SPOT, "-o", baked, "--bakes", "thickness", "--thickness-rays", "8",
+                 "--thickness-texture-size", "64", "-q")
+    assert result.returncode == 0, result.stderr
+    result = run(venv, work, "validate", baked, "--no-khronos")
+    assert result.returncode == 0, result.stdout + result.stderr
+
+    # corrupt BAKER_thickness: a string where the schema wants an integer ray count
+    data = bytearray(baked.read_bytes())
+    length = struct.unpack_from("<I", data, 12)[0]
+    gltf = json.loads(data[20: 20 + length])
+    gltf["materials"][0]["extensions"]["BAKER_thickness"]["rays"] = "many"
+    text = json.dumps(gltf, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    rest = data[20 + length:]
+    broken = work / "broken.glb"
+    broken.write_bytes(b"glTF" + struct.pack("<II", 2, 20 + len(text) + len(rest)) +
+                       struct.pack("<I", len(text)) + b"JSON" + text + rest)
+    result = run(venv, work, "validate", broken, "--no-khronos", "--format", "json")
+    assert result.returncode == 1, result.stdout + result.stderr
+    report = json.loads(result.stdout)
+    errors = [m for m in report["issues"]["messages"] if m["severity"] == 0]
+    assert any("BAKER_thickness" in m.get("pointer", "") and "rays" in m.get("pointer", "") for m in errors), errors
+
+    sheet = work / "sheet.png"
+    result = run(venv, work, "preview", baked, "-o", sheet, "--size", "96", "-q")
+    assert result.returncode == 0, result.stderr
+    assert sheet.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+    assert FONT.is_file(), f"{FONT} is missing: scripts/test installs fonts-dejavu-core"
+    result = run(venv, work, "glyphs", FONT, "-o", work / "atlas", "--charset", "str:baker", "--size", "24", "-q")
+    assert result.returncode == 0, result.stderr
+    assert json.loads((work / "atlas.json").read_text())["glyphs"]
