@@ -2,9 +2,11 @@
 done here one by one on a throw-away technique in a temporary folder, then shown to the real CLI.
 
 The technique, ``height``, writes each vertex's height above the lowest point of its mesh (``_HEIGHT``, scaled by
-``--height-scale`` along ``--height-axis``) and ``BAKER_height`` on the material. Its truth is analytic: the height
-is the vertex coordinate minus the mesh's smallest one, so the test checks it against the OBJ's own ``v`` lines and
-against the GLB read back with plain ``struct`` parsing, not through baker.
+``--height-scale`` along ``--height-axis``) and ``BAKER_height`` on the material, and has a preview panel colouring
+the surface by that height. Its truth is analytic: the height is the vertex coordinate minus the mesh's smallest one,
+so the test checks it against the OBJ's own ``v`` lines and against the GLB read back with plain ``struct`` parsing,
+not through baker; and the panel, unlit, must put every pixel on its colour ramp, higher up the screen where the
+mesh is higher (a front view), inside the Lambert reference's silhouette (the sheet read back with Pillow).
 
 Every step of the docs list is a ``STEP_*`` constant or a fixture below, named by its number; when the list changes,
 this test changes with it.
@@ -22,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.ndimage import binary_erosion
 
 REPO = Path(__file__).resolve().parents[1]
 SPOT = REPO / "examples" / "spot" / "spot.obj"
@@ -181,8 +184,48 @@ def run(args) -> int:
     return 0
 '''
 
-# 6. the Technique object, every heavy part named by a "module:attribute" string
-STEP_6_INIT = '''
+# 6. a preview panel (optional): Panel objects of baker.preview.core, drawn by ``baker preview`` in ``order``
+STEP_6_PANEL = '''
+"""Preview panel of BAKER_height: the surface coloured by its baked height alone (unlit), from dark blue at height 0
+to pale yellow at the material's ``maxHeight``."""
+from __future__ import annotations
+
+from baker.preview.core import DrawItem, Panel
+
+from baker_height.extension import ATTRIBUTE, read
+
+LOW, HIGH = (0.1, 0.15, 0.5), (1.0, 0.95, 0.6)  # the colours of height 0 and of maxHeight
+
+# a technique from outside the repo has no module in runtime-shaders/, so its GLSL sits in the declarations
+DECLARATIONS = f"""
+uniform float u_maxHeight;
+vec3 baker_height_color(float height, float maxHeight) {{
+    float t = clamp(height / max(maxHeight, 1e-12), 0.0, 1.0);
+    return mix(vec3{LOW}, vec3{HIGH}, t);
+}}
+"""
+
+
+class HeightPanel(Panel):
+    """``_HEIGHT`` normalized by the ``maxHeight`` of the item's material; items without BAKER_height get Lambert."""
+
+    def read_item(self, doc, item: DrawItem) -> None:
+        item.data["height"] = next((e for e in read(doc) if e.material == item.material_index), None)
+
+    def applies(self, item: DrawItem) -> bool:
+        return super().applies(item) and item.data.get("height") is not None
+
+    def uniforms(self, item: DrawItem) -> dict:
+        return {"u_maxHeight": item.data["height"].max_height}
+
+
+PANELS = [HeightPanel("height", f"height ({ATTRIBUTE})", (), DECLARATIONS,
+                      "color = baker_height_color(scalar, u_maxHeight);",
+                      attribute=ATTRIBUTE, needs=(ATTRIBUTE,), order=15)]  # between thickness (10) and translucency (20)
+'''
+
+# 7. the Technique object, every heavy part named by a "module:attribute" string
+STEP_7_INIT = '''
 """Height above the lowest point of the mesh, per vertex (a throw-away technique of tests/test_add_technique.py)."""
 from baker.technique import Technique
 
@@ -194,14 +237,14 @@ TECHNIQUE = Technique(
     options=HeightOptions,
     run="baker_height.step:run",
     extensions=("baker_height.extension",),
+    panels="baker_height.panel:PANELS",
     commands=("baker_height.command",),
     schemas="baker_height:schemas",
 )
-# TODO: a preview panel (Technique.panels) once baker/preview/core.py draws registry.panels()
 '''
 
-# 7. its schema, laid out like the repo's schemas/: <EXT>/schema/<kind>.<EXT>.schema.json (+ files it $refs)
-STEP_7_SCHEMA = {
+# 8. its schema, laid out like the repo's schemas/: <EXT>/schema/<kind>.<EXT>.schema.json (+ files it $refs)
+STEP_8_SCHEMA = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",
     "$id": "material.BAKER_height.schema.json",
     "title": "BAKER_height glTF Material Extension",
@@ -216,20 +259,21 @@ STEP_7_SCHEMA = {
     "required": ["attribute", "axis", "maxHeight"],
     "additionalProperties": False,
 }
-STEP_7_SCHEMA_REF = {
+STEP_8_SCHEMA_REF = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",
     "$id": "axis.schema.json",
     "type": "string", "enum": ["x", "y", "z"], "description": "The up axis of the mesh.",
 }
 
-# 8. the distribution's metadata: an entry point in the group baker.techniques names the TECHNIQUE object
-STEP_8_METADATA = "Metadata-Version: 2.1\nName: baker-height\nVersion: 0.1\n"
-STEP_8_ENTRY_POINTS = "[baker.techniques]\nheight = baker_height:TECHNIQUE\n"
+# 9. the distribution's metadata: an entry point in the group baker.techniques names the TECHNIQUE object
+STEP_9_METADATA = "Metadata-Version: 2.1\nName: baker-height\nVersion: 0.1\n"
+STEP_9_ENTRY_POINTS = "[baker.techniques]\nheight = baker_height:TECHNIQUE\n"
 
 
 # what each numbered step of the docs list must name, in order
-DOCS_STEPS = {1: "options.py", 2: "kernel.py", 3: "extension.py", 4: "step.py", 5: "command.py", 6: "__init__.py",
-              7: ".schema.json", 8: "entry_points.txt", 9: "baker inspect"}
+DOCS_STEPS = {1: ("options.py",), 2: ("kernel.py",), 3: ("extension.py",), 4: ("step.py",), 5: ("command.py",),
+              6: ("panel.py", "baker.preview.core"), 7: ("__init__.py", "panels="), 8: (".schema.json",),
+              9: ("entry_points.txt",), 10: ("baker validate", "baker inspect", "baker preview")}
 
 
 def test_the_docs_list_is_these_steps():
@@ -246,34 +290,35 @@ def test_the_docs_list_is_these_steps():
         else:
             current = None
     assert sorted(items) == sorted(DOCS_STEPS) and "tests/test_add_technique.py" in section
-    for number, name in DOCS_STEPS.items():
-        assert name in items[number], f"step {number} of docs/ARCHITECTURE.md does not name {name}"
-    assert all(f"STEP_{n}_" in Path(__file__).read_text() for n in range(1, 9))
+    for number, names in DOCS_STEPS.items():
+        for name in names:
+            assert name in items[number], f"step {number} of docs/ARCHITECTURE.md does not name {name}"
+    assert all(f"STEP_{n}_" in Path(__file__).read_text() for n in range(1, 10))
 
 
 @pytest.fixture(scope="module")
 def plugin(tmp_path_factory) -> Path:
-    """Steps 1-8 written into a temporary folder that is on no path of the repo."""
+    """Steps 1-9 written into a temporary folder that is on no path of the repo."""
     root = tmp_path_factory.mktemp("site")
     package = root / PACKAGE
     package.mkdir()
     for name, text in [("options.py", STEP_1_OPTIONS), ("kernel.py", STEP_2_KERNEL),
                        ("extension.py", STEP_3_EXTENSION), ("step.py", STEP_4_STEP), ("command.py", STEP_5_COMMAND),
-                       ("__init__.py", STEP_6_INIT)]:
+                       ("panel.py", STEP_6_PANEL), ("__init__.py", STEP_7_INIT)]:
         (package / name).write_text(textwrap.dedent(text).lstrip())
     schema = package / "schemas" / "BAKER_height" / "schema"
     schema.mkdir(parents=True)
-    (schema / "material.BAKER_height.schema.json").write_text(json.dumps(STEP_7_SCHEMA, indent=2))
-    (schema / "axis.schema.json").write_text(json.dumps(STEP_7_SCHEMA_REF, indent=2))
+    (schema / "material.BAKER_height.schema.json").write_text(json.dumps(STEP_8_SCHEMA, indent=2))
+    (schema / "axis.schema.json").write_text(json.dumps(STEP_8_SCHEMA_REF, indent=2))
     info = root / f"{PACKAGE}-0.1.dist-info"
     info.mkdir()
-    (info / "METADATA").write_text(STEP_8_METADATA)
-    (info / "entry_points.txt").write_text(STEP_8_ENTRY_POINTS)
+    (info / "METADATA").write_text(STEP_9_METADATA)
+    (info / "entry_points.txt").write_text(STEP_9_ENTRY_POINTS)
     return root
 
 
 def baker(plugin: Path, *args, check: bool = True) -> subprocess.CompletedProcess:
-    """Step 9: the real CLI in a fresh interpreter, with the plugin's folder on PYTHONPATH (as ``pip install`` would
+    """Step 10: the real CLI in a fresh interpreter, with the plugin's folder on PYTHONPATH (as ``pip install`` would
     put it on sys.path)."""
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(plugin), str(REPO)]))
     proc = subprocess.run([sys.executable, "-m", "baker.cli", *map(str, args)], capture_output=True, text=True,
@@ -402,3 +447,82 @@ def test_without_the_plugin_baker_does_not_know_it(plugin, baked, tmp_path):
     proc = baker(bare, "validate", bare / "out.glb", "--no-khronos", "--format", "json", check=False)
     assert proc.returncode == 1  # an extension without its schema fails validation
     assert "BAKER_UNKNOWN_EXTENSION" in {m["code"] for m in json.loads(proc.stdout)["issues"]["messages"]}
+
+
+# -------------------------------------------------------------------------------------------------------- the preview
+VIEW, SIZE = "0,0", 160  # from +z at the mesh's mid-height: up the screen is up the y axis
+LOW, HIGH = np.array([0.1, 0.15, 0.5]), np.array([1.0, 0.95, 0.6])  # the panel's colours of height 0 and maxHeight
+
+
+def preview_sheet(plugin: Path, baked: Path, name: str, *panels: str) -> tuple[list[str], np.ndarray]:
+    """(the panel names ``baker preview`` reports, in sheet order; the sheet as (H, W, 3) floats in [0, 1]), read back
+    with Pillow."""
+    from PIL import Image
+
+    out = plugin / name
+    args = ["--panels", ",".join(panels)] if panels else []
+    proc = baker(plugin, "preview", baked, "-o", out, "--view", VIEW, "--size", SIZE, *args)
+    line = proc.stderr.strip().splitlines()[-1]
+    assert line.startswith("preview: ") and line.endswith(f" -> {out}"), proc.stderr
+    names = line[len("preview: "): -len(f" -> {out}")].split(", ")
+    return names, np.asarray(Image.open(out).convert("RGB"), np.float64) / 255.0
+
+
+def sheet_panel(sheet: np.ndarray, names: list[str], name: str) -> np.ndarray:
+    """The panel ``name`` of a contact sheet: up to three SIZE x SIZE panels a row, each under a label strip."""
+    rows = -(-len(names) // 3)
+    assert sheet.shape[1] == min(len(names), 3) * SIZE and sheet.shape[0] % rows == 0
+    label = sheet.shape[0] // rows - SIZE
+    r, c = divmod(names.index(name), 3)
+    y = r * (SIZE + label) + label
+    return sheet[y: y + SIZE, c * SIZE: (c + 1) * SIZE]
+
+
+def covered(panel: np.ndarray) -> np.ndarray:
+    """Pixels that are not the panel's background (its corner pixel)."""
+    return np.abs(panel - panel[0, 0]).max(axis=2) > 0.02
+
+
+@pytest.fixture(scope="module")
+def height_panels(plugin, baked) -> tuple[np.ndarray, np.ndarray]:
+    names, sheet = preview_sheet(plugin, baked, "pair.png", "lambert", "height")
+    assert names == ["lambert", "height"]
+    return sheet_panel(sheet, names, "lambert"), sheet_panel(sheet, names, "height")
+
+
+def test_preview_draws_the_panel_alone_and_in_the_default_sheet(plugin, baked, height_panels):
+    names, alone = preview_sheet(plugin, baked, "sheet.png", "height")
+    assert names == ["height"] and alone.shape[1] == SIZE
+    names, every = preview_sheet(plugin, baked, "every.png")
+    # every panel with data, by Panel.order: height (15) between thickness (10) and translucency (20), although the
+    # technique order (by name) puts height first
+    assert names == ["lambert", "thickness", "height", "translucency"]
+    # the camera frames the whole scene whichever panels are drawn: the same pixels in all three sheets
+    for sheet, sheet_names in [(alone, ["height"]), (every, names)]:
+        np.testing.assert_allclose(sheet_panel(sheet, sheet_names, "height"), height_panels[1], atol=2 / 255)
+
+
+def test_preview_colours_the_surface_by_its_height(height_panels):
+    lambert, height = height_panels
+    mask = covered(lambert)
+    assert 0.05 < mask.mean() < 0.8  # the mesh fills a sensible part of the frame
+    # the same silhouette as the reference (up to its anti-aliased rim): the panel draws the surface and nothing else
+    inside, near = binary_erosion(mask, iterations=2), ~binary_erosion(~mask, iterations=2)
+    assert not (covered(height) & ~near).any() and covered(height)[inside].all()
+    # unlit: every covered pixel lies on the LOW -> HIGH ramp; t is its height over maxHeight
+    t = ((height - LOW) @ (HIGH - LOW)) / ((HIGH - LOW) @ (HIGH - LOW))
+    ramp = LOW + np.clip(t, 0, 1)[..., None] * (HIGH - LOW)
+    assert np.abs(height - ramp)[inside].max() < 0.02
+    assert t[inside].min() > -0.02 and t[inside].max() < 1.02
+    # higher on the mesh is higher on the screen at this view: the top half is brighter, t falls down the rows
+    rows = np.broadcast_to(np.arange(SIZE)[:, None], mask.shape)
+    top, bottom = inside & (rows < SIZE // 2), inside & (rows >= SIZE // 2)
+    assert top.sum() > 100 and bottom.sum() > 100
+    brightness = height.mean(axis=2)
+    assert brightness[top].mean() > brightness[bottom].mean() + 0.15
+    assert np.corrcoef(rows[inside], t[inside])[0, 1] < -0.95
+    # the extremes: the topmost rows of the silhouette are near maxHeight, the lowest near 0
+    covered_rows = np.flatnonzero(inside.any(axis=1))
+    assert t[covered_rows[0]][inside[covered_rows[0]]].mean() > 0.9
+    assert t[covered_rows[-1]][inside[covered_rows[-1]]].mean() < 0.1
+
