@@ -90,3 +90,20 @@ def test_edge_settings_match_the_edges_options():
     settings, options = EdgeSettings(), EdgesOptions()
     for f in dataclasses.fields(EdgeSettings):
         assert getattr(settings, f.name) == getattr(options, f.name), f.name
+
+
+def test_validate_and_inspect_import_no_kernel(tmp_path):
+    """`baker validate` and `baker inspect` read and check; they never need a numba kernel (fast start)."""
+    spot = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
+    baked = tmp_path / "all.glb"
+    subprocess.run([sys.executable, "-m", "baker.cli", "bake", str(spot), "-o", str(baked), "-q", "--bakes",
+                    "thickness,curvature,skin,edges,tam,toon,fur", "--thickness-rays", "4", "--thickness-per-texel",
+                    "false", "--curvature-per-texel", "false", "--tam-size", "32", "--tam-levels", "1",
+                    "--fur-texture-size", "32", "--fur-shells", "2", "--edges-fins", "true"], check=True)
+    probe = ("import sys, io, contextlib\nfrom baker.validate import validate_file\nfrom baker.commands.inspect import "
+             f"main\nassert validate_file({str(baked)!r}, khronos=False)['issues']['numErrors'] == 0\n"
+             f"with contextlib.redirect_stdout(io.StringIO()):\n    main({str(baked)!r})\n"
+             "print(sorted({m.split('.')[0] for m in sys.modules} & {'numba', 'scipy', 'trimesh', 'pxr', 'moderngl'}))")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[]"

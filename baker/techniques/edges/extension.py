@@ -14,11 +14,15 @@ from __future__ import annotations
 import math
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from baker.geometry import edges as kernel
+from baker.geometry import edge_codes
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
+
+if TYPE_CHECKING:  # the writers take the kernel's results; validation must not import the numba kernels
+    from baker.geometry.edges import PrimitiveEdges
 
 NAME = "BAKER_edges"
 EXT_VISIBILITY = "EXT_mesh_primitive_edge_visibility"
@@ -41,7 +45,7 @@ def write_edge_visibility(doc: GltfDocument, mesh: int, primitive: int, codes: n
     extension forbids."""
     if not np.any(codes):
         return None
-    packed = kernel.pack_visibility(codes)
+    packed = edge_codes.pack_visibility(codes)
     ext = {"visibility": doc.add_accessor(packed, target=None, name="edge visibility")}
     if len(mates):
         ext["silhouetteMates"] = doc.add_accessor(mates.astype(index_dtype(vertex_count)), target=None,
@@ -57,7 +61,7 @@ def write_outline_normals(doc: GltfDocument, mesh: int, primitive: int, normals:
     return acc
 
 
-def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: kernel.PrimitiveEdges) -> int:
+def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: PrimitiveEdges) -> int:
     """Append the fin primitive of ``primitive``: per edge a degenerate quad (v0, v1, v1, v0) whose vertices all
     carry the edge's four positions, their corner number (0-3) and the edge flags. Returns its index."""
     prims = doc.json["meshes"][mesh]["primitives"]
@@ -87,12 +91,12 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: kernel
     return len(prims) - 1
 
 
-def write_primitive_edges(doc: GltfDocument, mesh: int, primitive: int, pe: kernel.PrimitiveEdges, *, options,
+def write_primitive_edges(doc: GltfDocument, mesh: int, primitive: int, pe: PrimitiveEdges, *, options,
                           vertex_count: int, fins: int | None, outline: bool,
                           visibility: bool) -> dict:
     """Write ``BAKER_edges`` on a triangle primitive (accessors only when ``options.edge_list``)."""
     counts = {"edges": int(len(pe.flags))}
-    for bit, name in kernel.FLAG_NAMES.items():
+    for bit, name in edge_codes.FLAG_NAMES.items():
         counts[name] = int(np.count_nonzero(pe.flags & bit))
     ext = {
         "creaseAngle": math.radians(options.crease_angle),
@@ -125,7 +129,8 @@ def write_primitive_edges(doc: GltfDocument, mesh: int, primitive: int, pe: kern
 
 # =========================================================================================================== USD
 def usd_basis_curves(stage, path: str, doc: GltfDocument, mesh: int, primitive: int,
-                     mask: int = kernel.CREASE | kernel.BOUNDARY | kernel.MATERIAL | kernel.NON_MANIFOLD):
+                     mask: int = edge_codes.CREASE | edge_codes.BOUNDARY | edge_codes.MATERIAL
+                     | edge_codes.NON_MANIFOLD):
     """Define a linear ``UsdGeom.BasisCurves`` at ``path`` holding the primitive's edges whose flags match ``mask``
     (crease, boundary, material, non-manifold by default), one 2-point curve per edge, with the uniform primvars
     ``baker:edgeFlags`` (int) and ``baker:dihedralAngle`` (float, radians). Returns the prim, or None when the
@@ -237,10 +242,10 @@ def check_edge_visibility(doc: GltfDocument, mesh: int, primitive: int, issues) 
         last = int(data[-1]) >> (used_bits % 8)
         _want(issues, "EDGE_VISIBILITY_PADDING", last == 0, "unused bits of the last visibility byte are not zero",
               acc_ptr)
-    codes = kernel.unpack_visibility(data, n_tris)
+    codes = edge_codes.unpack_visibility(data, n_tris)
     _want(issues, "EDGE_VISIBILITY_ALL_HIDDEN", bool(codes.any()), "every edge is hidden (0): the bitfield must "
           "contain at least one non-zero value", acc_ptr)
-    n_sil = int(np.count_nonzero(codes == kernel.VIS_SILHOUETTE))
+    n_sil = int(np.count_nonzero(codes == edge_codes.VIS_SILHOUETTE))
     mates = ext.get("silhouetteMates")
     if n_sil == 0:
         _want(issues, "EDGE_VISIBILITY_MATES_UNEXPECTED", mates is None,
@@ -267,19 +272,19 @@ def check_edge_visibility(doc: GltfDocument, mesh: int, primitive: int, issues) 
     if len(faces) != n_tris:
         return
     tolerance = ((prim.get("extensions") or {}).get(NAME) or {}).get("weldTolerance", 1e-6)
-    _, inverse = kernel.weld_positions(positions, float(tolerance) if isinstance(tolerance, (int, float)) else 1e-6)
+    _, inverse = edge_codes.weld_positions(positions, float(tolerance) if isinstance(tolerance, (int, float)) else 1e-6)
     w = inverse[faces]
     a = w.reshape(-1)
     b = w[:, [1, 2, 0]].reshape(-1)
     key = np.minimum(a, b) * (int(inverse.max(initial=0)) + 1) + np.maximum(a, b)
     flat = codes.reshape(-1)
-    for value, name in ((kernel.VIS_HARD, "hard (2)"), (kernel.VIS_SILHOUETTE, "silhouette (1)")):
+    for value, name in ((edge_codes.VIS_HARD, "hard (2)"), (edge_codes.VIS_SILHOUETTE, "silhouette (1)")):
         k = key[flat == value]
         dup = len(k) - len(np.unique(k))
         _want(issues, "EDGE_VISIBILITY_REPEATED", dup == 0, f"{dup} edges are encoded as {name} more than once",
               acc_ptr)
-    hard_keys = np.unique(key[flat == kernel.VIS_HARD])
-    repeated = np.unique(key[flat == kernel.VIS_REPEATED_HARD])
+    hard_keys = np.unique(key[flat == edge_codes.VIS_HARD])
+    repeated = np.unique(key[flat == edge_codes.VIS_REPEATED_HARD])
     orphans = int(np.count_nonzero(~np.isin(repeated, hard_keys)))
     _want(issues, "EDGE_VISIBILITY_REPEATED_WITHOUT_HARD", orphans == 0,
           f"{orphans} edges are encoded as repeated hard (3) but never as hard (2)", acc_ptr)
@@ -383,7 +388,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                              pointer("accessors", ext["oppositeVertices"]))
         flags = _check_edge_accessor(doc, ext, "flags", ptr, issues, types=("SCALAR",), component_types=(USHORT,),
                                      count=n_edges)
-        if flags is not None and len(flags) and int(flags.max()) >= (1 << len(kernel.FLAG_NAMES)):
+        if flags is not None and len(flags) and int(flags.max()) >= (1 << len(edge_codes.FLAG_NAMES)):
             issues.error("BAKER_EDGES_FLAGS", "flags use undefined bits", pointer("accessors", ext["flags"]))
         angles = _check_edge_accessor(doc, ext, "dihedralAngles", ptr, issues, types=("SCALAR",),
                                       component_types=(FLOAT,), count=n_edges)
@@ -392,7 +397,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             issues.error("BAKER_EDGES_ANGLE_RANGE", "dihedral angles must be finite and within [-pi, pi]",
                          pointer("accessors", ext["dihedralAngles"]))
         if flags is not None and angles is not None and opposite is not None and "creaseAngle" in ext:
-            crease = (flags & kernel.CREASE) != 0
+            crease = (flags & edge_codes.CREASE) != 0
             if np.any(np.abs(angles[crease]) < float(ext["creaseAngle"]) - 1e-4):
                 issues.warning("BAKER_EDGES_CREASE_ANGLE", "some crease edges have a dihedral angle below "
                                "creaseAngle", pointer("accessors", ext["flags"]))

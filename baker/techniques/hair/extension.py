@@ -12,11 +12,14 @@ Where the data goes (see ``schemas/BAKER_hair/README.md``):
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from baker.techniques.hair.kernel import HairResult, StrandSet, ribbon_indices, strand_tangents
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
+
+if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
+    from baker.techniques.hair.kernel import HairResult, StrandSet
 
 NAME = "BAKER_hair"
 TANGENT = "_STRAND_TANGENT"
@@ -44,6 +47,8 @@ def _add_node(doc: GltfDocument, mesh: int, emitter_mesh: int, name: str) -> int
 def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set: str, result: HairResult,
                            material: int, guide_primitive: int | None = None) -> dict:
     """The primitive dict (not yet attached to a mesh) for one strand set."""
+    from baker.techniques.hair.kernel import ribbon_indices, strand_tangents
+
     s, v = strands.count, strands.vertices
     positions = strands.positions.reshape(-1, 3).astype(np.float32)
     tangents = strand_tangents(strands.positions).reshape(-1, 3).astype(np.float32)

@@ -10,13 +10,16 @@ no mipmaps.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from baker.techniques.skin.options import SkinOptions
-from baker.techniques.skin.kernel import SkinTables, quantize
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import encode_image
+
+if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
+    from baker.techniques.skin.kernel import SkinTables
 
 NAME = "BAKER_skin_lut"
 CLAMP_LINEAR = {"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 33071}
@@ -24,6 +27,8 @@ CLAMP_LINEAR = {"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 3
 
 def encode_lut(values: np.ndarray, bits: int, encoding: str) -> bytes:
     """(H, W, 3) linear [0, 1] -> RGB PNG, row 0 at the top (v = 0)."""
+    from baker.techniques.skin.kernel import quantize
+
     return encode_image(quantize(values, bits, encoding), ".png")
 
 

@@ -19,15 +19,18 @@ import math
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from baker.techniques.tam.kernel import TonalArtMap, pack_rgb, pack_volume
 from baker.gltf.atomic import write_bytes_atomic
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import encode_image
 from baker.gltf.ktx2 import encode_ktx2
 from baker.gltf.images import decoded_texture
+
+if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
+    from baker.techniques.tam.kernel import TonalArtMap
 
 NAME = "BAKER_tonal_art_map"
 LEVEL_ORDER = "finestFirst"
@@ -38,6 +41,8 @@ TAM_SAMPLER = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10
 # ---------------------------------------------------------------------------------------------------------- images
 def level_images(tam: TonalArtMap) -> list[list[np.ndarray]]:
     """Per level (finest first), the uint8 images of the layout: [A (R,R,3), B (R,R,3)] or [stack (T*R, R)]."""
+    from baker.techniques.tam.kernel import pack_rgb, pack_volume
+
     if tam.options.layout == "packed":
         return [pack_rgb(tam, i) for i in range(len(tam.darkness))]
     return [[pack_volume(tam, i)] for i in range(len(tam.darkness))]

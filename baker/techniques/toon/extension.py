@@ -13,7 +13,6 @@ from pathlib import Path
 import numpy as np
 
 from baker.techniques.toon.options import ToonOptions
-from baker.techniques.toon.kernel import encode_u8, toon_ramp, xtoon_map
 from baker.gltf.atomic import write_bytes_atomic
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import encode_image
@@ -36,6 +35,8 @@ def toon_parameters(options: ToonOptions) -> dict:
 
 def toon_pixels(options: ToonOptions) -> np.ndarray:
     """The ramp (1, width) or X-Toon map (height, width) as uint8 gray."""
+    from baker.techniques.toon.kernel import encode_u8, toon_ramp, xtoon_map
+
     values = toon_ramp(options)[None, :] if options.xtoon == "none" else xtoon_map(options)
     return encode_u8(values)
 
