@@ -4,7 +4,16 @@ The Python API is :mod:`baker.api`; ``baker.bake`` is its :func:`~baker.api.bake
 """
 from __future__ import annotations
 
+import os
+
 from baker.version import __version__
+
+# numba caches compiled kernels (cache=True) beside their source by default, which fails silently for a package
+# folder that is read-only (a wheel installed by root, a container image) and recompiles on every run; a user cache
+# folder works for every install. Set before numba is imported; an explicit NUMBA_CACHE_DIR wins.
+if "NUMBA_CACHE_DIR" not in os.environ:
+    os.environ["NUMBA_CACHE_DIR"] = os.path.join(
+        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"), "baker", "numba")
 
 
 def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None):

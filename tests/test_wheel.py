@@ -109,3 +109,27 @@ def test_installed_wheel_bakes_validates_previews_and_makes_glyphs(venv, tmp_pat
     result = run(venv, work, "glyphs", FONT, "-o", work / "atlas", "--charset", "str:baker", "--size", "24", "-q")
     assert result.returncode == 0, result.stderr
     assert json.loads((work / "atlas.json").read_text())["glyphs"]
+
+
+def test_kernels_are_cached_in_the_user_cache_not_the_package(venv, tmp_path):
+    """numba's compiled kernels go to $XDG_CACHE_HOME/baker/numba (a package folder may be read-only), and a second
+    run compiles nothing: the cache files are neither added nor rewritten."""
+    cache = tmp_path / "cache"
+    env = {**{k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NUMBA_CACHE_DIR")},
+           "XDG_CACHE_HOME": str(cache)}
+    package = Path(subprocess.check_output([str(venv / "bin" / "python"), "-c", "import baker, os; "
+                                            "print(os.path.dirname(baker.__file__))"], text=True, env=env,
+                                           cwd=tmp_path).strip())
+    assert package.is_relative_to(venv)
+
+    def glyphs():
+        result = subprocess.run([str(venv / "bin" / "baker"), "glyphs", str(FONT), "-o", str(tmp_path / "a"),
+                                 "--charset", "str:cache", "--size", "16", "-q"], cwd=tmp_path, env=env,
+                                capture_output=True, text=True, timeout=600)
+        assert result.returncode == 0, result.stderr
+        return {p: p.stat().st_mtime_ns for p in (cache / "baker" / "numba").rglob("*.nb*")}
+
+    first = glyphs()
+    assert any(p.suffix == ".nbc" for p in first), "no compiled kernel was cached"
+    assert glyphs() == first
+    assert not list(package.rglob("*.nbc")) and not list(package.rglob("*.nbi"))
