@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from baker.errors import BakerError
+from baker.gltf.compression import NOT_DECODED, decompress
 from baker.gltf.document import GltfDocument
 from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, faces_from_indices, is_derived_fins, to_float
 from baker.geometry.welding import weld
@@ -69,6 +70,7 @@ class Asset:
             raise BakerError(path, f"unsupported input type '{suffix}' (use one of {', '.join(sorted(INPUT_SUFFIXES))})")
         if suffix in GLTF_SUFFIXES:
             doc = GltfDocument.load(path)
+            decompress(doc)  # Draco / meshopt geometry into plain accessors (asset.extras.baker.decompressed)
         elif suffix in USD_SUFFIXES:
             from baker.gltf.usd import read_usd
 
@@ -80,14 +82,17 @@ class Asset:
         asset.check_has_triangles()
         return asset
 
-    # compressed geometry keeps its vertices inside the extension: reading the accessors would give zeros
-    UNSUPPORTED = {"KHR_draco_mesh_compression": "Draco-compressed", "EXT_meshopt_compression": "meshopt-compressed"}
+    # compressed geometry keeps its vertices inside the extension: reading the accessors would give zeros.
+    # KHR_draco_mesh_compression and EXT_meshopt_compression are decoded at load (baker.gltf.compression); what is
+    # left here is refused
+    UNSUPPORTED = NOT_DECODED
 
     def check_supported(self) -> None:
+        used = self.doc.json.get("extensionsUsed") or []
         for name, what in self.UNSUPPORTED.items():
-            if name in self.doc.json.get("extensionsUsed", []):
-                raise BakerError(self.source, f"{what} geometry ({name}) is not supported: decompress it first "
-                                              "(e.g. gltf-transform copy --decompress) and bake the result")
+            if name in used:
+                raise BakerError(self.source, f"{what} geometry is not supported: decompress it first "
+                                              "(e.g. gltf-transform copy) and bake the result")
 
     # ------------------------------------------------------------------ geometry
     def meshes(self) -> list:

@@ -20,6 +20,7 @@ import numpy as np
 
 from baker.geometry import edge_codes
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
+from baker.gltf.derived import match_morph_targets
 
 if TYPE_CHECKING:  # the writers take the kernel's results; validation must not import the numba kernels
     from baker.geometry.edges import PrimitiveEdges
@@ -87,6 +88,7 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: Primit
     }
     # no material: fins are drawn by baker_edges.glsl with the source primitive's material (found through finsOf);
     # copying it would bind its textures to a primitive without their TEXCOORD sets (invalid glTF)
+    match_morph_targets(doc, mesh, fin, len(position))
     prims.append(fin)
     return len(prims) - 1
 

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
+from baker.gltf.derived import match_morph_targets
 from baker.gltf.images import encode_image
 
 NAME = "BAKER_fur"
@@ -69,6 +70,7 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: n
     }
     # no material: the fur runtime takes BAKER_fur from the source primitive's material (through finsOf); binding it
     # here would ask for TEXCOORD sets the fin lacks (invalid glTF when the material has textures)
+    match_morph_targets(doc, mesh, fin, len(position))
     prims.append(fin)
     return len(prims) - 1
 
