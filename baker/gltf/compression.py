@@ -22,8 +22,13 @@ import numpy as np
 
 from baker.checks import pointer
 from baker.errors import BakerError
-from baker.gltf.document import (COMPONENT_DTYPES, TARGET_ARRAY_BUFFER, TARGET_ELEMENT_ARRAY_BUFFER, TYPE_SIZES,
-                                 GltfDocument)
+
+# no import of baker.gltf.document: GltfDocument.load may call decompress() (``doc`` is any GltfDocument)
+COMPONENT_DTYPES = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32,
+                    5126: np.float32}
+TYPE_SIZES = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9, "MAT4": 16}
+TARGET_ARRAY_BUFFER = 34962
+TARGET_ELEMENT_ARRAY_BUFFER = 34963
 
 DRACO = "KHR_draco_mesh_compression"
 MESHOPT = "EXT_meshopt_compression"
@@ -46,7 +51,7 @@ def is_fallback_buffer(buffer: dict) -> bool:
     return isinstance(ext, dict) and bool(ext.get("fallback"))
 
 
-def decompress(doc: GltfDocument) -> list[dict]:
+def decompress(doc) -> list[dict]:
     """Decode every Draco primitive and meshopt bufferView of ``doc`` in place (see the module docstring).
 
     Returns the entries added to ``asset.extras.baker.decompressed`` (empty when nothing was compressed)."""
@@ -76,7 +81,7 @@ def decompress(doc: GltfDocument) -> list[dict]:
 
 
 # ---------------------------------------------------------------------------------------------- meshopt
-def _decode_meshopt(doc: GltfDocument) -> list[int]:
+def _decode_meshopt(doc) -> list[int]:
     decoded = []
     for i, view in enumerate(doc.json.get("bufferViews") or []):
         ext = (view.get("extensions") or {}).get(MESHOPT)
@@ -107,7 +112,7 @@ def _decode_meshopt(doc: GltfDocument) -> list[int]:
 
 
 # ---------------------------------------------------------------------------------------------- Draco
-def _decode_draco(doc: GltfDocument) -> list[str]:
+def _decode_draco(doc) -> list[str]:
     gltf = doc.json
     decoded, done = [], {}  # done: (bufferView, attribute ids) -> decoded mesh, for primitives sharing one
     reusable = set()  # compressed bufferViews whose slot the next decoded array may take
@@ -154,7 +159,7 @@ def _decode_draco(doc: GltfDocument) -> list[str]:
     return decoded
 
 
-def _fill_accessor(doc: GltfDocument, index: int, values: np.ndarray, target: int, reusable: set, filled: set,
+def _fill_accessor(doc, index: int, values: np.ndarray, target: int, reusable: set, filled: set,
                    ptr: str) -> None:
     """Write ``values`` into accessor ``index`` (its componentType and type kept) as a tightly packed bufferView:
     the slot of a compressed one when one is free, else a new one."""
@@ -209,7 +214,7 @@ def _fill_accessor(doc: GltfDocument, index: int, values: np.ndarray, target: in
 
 
 # ---------------------------------------------------------------------------------------------- helpers
-def _import(doc: GltfDocument, module: str, extension: str):
+def _import(doc, module: str, extension: str):
     try:
         return __import__(module)
     except ImportError:
@@ -226,7 +231,7 @@ def _version(module: str) -> str:
         return module
 
 
-def _view_bytes(doc: GltfDocument, index, ptr: str) -> bytes:
+def _view_bytes(doc, index, ptr: str) -> bytes:
     views = doc.json.get("bufferViews") or []
     if not isinstance(index, int) or not 0 <= index < len(views):
         raise BakerError(doc.path, f"{ptr}/bufferView: no bufferView {index!r}")
@@ -238,7 +243,7 @@ def _view_bytes(doc: GltfDocument, index, ptr: str) -> bytes:
     return bytes(doc.bin[start:end])
 
 
-def _append(doc: GltfDocument, data: bytes) -> int:
+def _append(doc, data: bytes) -> int:
     doc.bin.extend(b"\0" * (-len(doc.bin) % 16))
     offset = len(doc.bin)
     doc.bin.extend(data)
@@ -262,7 +267,7 @@ def _unuse(gltf: dict, name: str) -> None:
                 del gltf[key]
 
 
-def _compact(doc: GltfDocument) -> None:
+def _compact(doc) -> None:
     """Drop the bytes of ``doc.bin`` no bufferView covers; each kept run keeps its offset modulo 16 (so every
     accessor stays aligned). Only bufferViews point into the merged buffer once nothing is compressed."""
     views = doc.json.get("bufferViews") or []
