@@ -11,11 +11,11 @@ from __future__ import annotations
 from baker.pipeline import bake, save
 
 
-def validate(path, khronos: bool = True) -> dict:
+def validate(path, khronos: bool = True, allow_outside=None) -> dict:
     """The validation report of one glTF/GLB file (the shape of Khronos glTF-Validator's JSON)."""
     from baker.validate import validate_file
 
-    return validate_file(path, khronos=khronos)
+    return validate_file(path, khronos=khronos, allow_outside=allow_outside)
 
 
 def build(recipe_path=None, *, jobs: int = 1, scheduler: str | None = None, fail_fast: bool = False,

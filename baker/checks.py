@@ -8,8 +8,6 @@ import math
 
 import numpy as np
 
-from baker.gltf.document import GltfDocument
-
 ERROR, WARNING, INFO, HINT = 0, 1, 2, 3
 TRIANGLE_MODES = (4, 5, 6)
 
@@ -60,11 +58,17 @@ def is_count(value, minimum=0) -> bool:
 
 
 # ---------------------------------------------------------------------------------------------------- semantics
+def is_derived_fins(prim: dict) -> bool:
+    """True for fin primitives baker derives from a mesh (BAKER_edges / BAKER_fur ``finsOf``): zero-area quads that
+    bakes must not sample."""
+    exts = prim.get("extensions") or {}
+    return isinstance(exts, dict) and any(isinstance(exts.get(name), dict) and "finsOf" in exts[name]
+                                          for name in ("BAKER_edges", "BAKER_fur"))
+
+
 def primitives_using(gltf: dict, material: int):
     """(mesh, primitive, primitive dict) of every triangle primitive drawn with ``material``, without the fin
     primitives baker derives from a mesh (they carry no baked surface data)."""
-    from baker.gltf.accessors import is_derived_fins
-
     for m, mesh in enumerate(gltf.get("meshes") or []):
         for p, prim in enumerate(mesh.get("primitives") or []):
             if prim.get("material") == material and prim.get("mode", 4) in TRIANGLE_MODES \
@@ -76,7 +80,7 @@ def is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def check_vertex_attribute(doc: GltfDocument, mesh: int, primitive: int, name: str, issues: Issues, *,
+def check_vertex_attribute(doc: "GltfDocument", mesh: int, primitive: int, name: str, issues: Issues, *,
                            code: str, types: tuple = ("SCALAR",), component_type: int = 5126) -> np.ndarray | None:
     """Shared rules for a baked per-vertex attribute: present, FLOAT of an allowed type, one value per vertex,
     finite. Returns the values (float64, non-finite ones included and reported) when the accessor can be read,

@@ -22,10 +22,12 @@ def resolve_options(name: str, value):
     return from_mapping(options, dict(value))
 
 
-def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None) -> Asset:
-    """Load (or take) an asset and run ``bakes`` on it; each technique runs after those it ``requires``."""
+def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None,
+         allow_outside=None) -> Asset:
+    """Load (or take) an asset and run ``bakes`` on it; each technique runs after those it ``requires``.
+    ``allow_outside``: folders (beside the asset's own) its buffer and image URIs may point into."""
     order = registry.bake_order(bakes)
-    asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset)
+    asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset, allow_outside=allow_outside)
     options = options or {}
     techniques = registry.bakes()
     for name in order:

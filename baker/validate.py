@@ -22,6 +22,7 @@ Three layers, each skipped when the one before found errors it cannot read past:
 """
 from __future__ import annotations
 
+import copy
 import json
 import os
 import shutil
@@ -38,7 +39,7 @@ from baker.data import JS_ROOT
 from baker.errors import BakerError
 from baker.gltf.document import GltfDocument
 from baker.checks import ERROR, SEVERITY_NAMES, Issues, pointer
-from baker.gltf.structure import COLLECTION_KINDS, NON_BLOCKING, check_indices, check_structure, read_container
+from baker.gltf.structure import COLLECTION_KINDS, NON_BLOCKING, check_data, check_structure, read_container
 
 KHRONOS_SCRIPT = JS_ROOT / "khronos_validate.mjs"
 # a development checkout: scripts/install-node-tools puts the pinned node tools in <checkout>/.cache/node
@@ -404,7 +405,7 @@ def _merge_khronos(report: dict, issues: Issues, validated: set, referenced: set
 
 
 
-def validate_file(path, khronos: bool = True) -> dict:
+def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
     """Validate one .gltf/.glb file; return a report shaped like Khronos glTF-Validator's.
 
     ``khronos`` (default) also runs Khronos glTF-Validator and merges its messages; the report's ``khronos`` says
@@ -425,7 +426,7 @@ def validate_file(path, khronos: bool = True) -> dict:
     gltf, glb_bin, mime = read_container(path, issues)
     validated: set = set()
     if gltf is not None:
-        check_structure(gltf, path, glb_bin, issues)
+        check_structure(gltf, path, glb_bin, issues, allow_outside)
         # only errors that make reading unsafe stop the data checks (schema errors below do not)
         readable = not any(m["severity"] == ERROR and m["code"] not in NON_BLOCKING for m in issues.messages)
         found = check_extensions(gltf, issues)
@@ -435,11 +436,12 @@ def validate_file(path, khronos: bool = True) -> dict:
         referenced = extension_references(gltf, found)
         if readable:
             try:
-                doc = GltfDocument.load(path)
+                # the structure is checked above: read the data under the same URI policy, without a second check
+                doc = GltfDocument.from_checked(path, copy.deepcopy(gltf), glb_bin, allow_outside)
             except BakerError as exc:
                 issues.error("BAKER_LOAD_FAILED", exc.message)
             else:
-                check_indices(doc, issues)
+                check_data(doc, issues)
                 for name, places in sorted(found.items()):
                     check = semantic_checks().get(name)
                     if check is not None:
@@ -491,7 +493,7 @@ def format_text(path, report: dict, quiet: bool = False) -> str:
     return "\n".join(lines)
 
 
-def main(files, fmt: str = "text", khronos: bool = True, quiet: bool = False) -> int:
+def main(files, fmt: str = "text", khronos: bool = True, quiet: bool = False, allow_outside=None) -> int:
     """Validate ``files``; print text or JSON Lines (one report per line). Returns 1 if any file has errors, else 0.
 
     A missing file raises :class:`~baker.errors.BakerError`, and so does a Khronos validator that cannot run while
@@ -503,7 +505,7 @@ def main(files, fmt: str = "text", khronos: bool = True, quiet: bool = False) ->
             raise KhronosUnavailable(reason)
     status = 0
     for f in files:
-        report = validate_file(f, khronos=khronos)
+        report = validate_file(f, khronos=khronos, allow_outside=allow_outside)
         if report["issues"]["numErrors"]:
             status = 1
         if fmt == "json":

@@ -16,6 +16,8 @@ def add_parser(sub) -> None:
     p.add_argument("--bakes", default="thickness", help=f"comma-separated bakes to run (known: {', '.join(bakes)})")
     p.add_argument("--seed", type=int, default=0, help="random seed; the same seed gives byte-identical output")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars or summary")
+    p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
+                   "(default: only inside the asset's folder); repeatable")
     for name, technique in bakes.items():
         add_arguments(p, technique.options, name)
     p.set_defaults(func=run)
@@ -37,7 +39,8 @@ def run(args) -> int:
     except ValueError as exc:
         raise BakerError(None, str(exc)) from None
     progress = Progress(enabled=False if args.quiet else None)
-    asset = bake(args.input, bakes=names, options=options, seed=args.seed, progress=progress)
+    asset = bake(args.input, bakes=names, options=options, seed=args.seed, progress=progress,
+                 allow_outside=args.allow_outside)
     save(asset, args.output)
     if not args.quiet:
         print(f"baked {', '.join(names)} -> {args.output}", file=sys.stderr)

@@ -4,12 +4,12 @@ from __future__ import annotations
 import json
 
 
-def describe(path) -> dict:
+def describe(path, allow_outside=None) -> dict:
     import numpy as np
 
     from baker.geometry.asset import Asset
 
-    asset = Asset.load(path)
+    asset = Asset.load(path, allow_outside=allow_outside)
     doc = asset.doc
     meshes = []
     for m, mesh in enumerate(asset.meshes()):
@@ -60,15 +60,17 @@ def add_parser(sub) -> None:
     p = sub.add_parser("inspect", help="print a table of what is in an asset")
     p.add_argument("file")
     p.add_argument("--format", choices=("text", "json"), default="text")
+    p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
+                   "(default: only inside the asset's folder); repeatable")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    return main(args.file, fmt=args.format)
+    return main(args.file, fmt=args.format, allow_outside=args.allow_outside)
 
 
-def main(path, fmt: str = "text") -> int:
-    info = describe(path)
+def main(path, fmt: str = "text", allow_outside=None) -> int:
+    info = describe(path, allow_outside)
     if fmt == "json":
         print(json.dumps(info, indent=2))
         return 0

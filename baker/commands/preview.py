@@ -12,6 +12,8 @@ def add_parser(sub) -> None:
     p.add_argument("--panels", default=None, help="comma-separated panels (default: every one the asset has data for; "
                                                   "the names are listed in the README)")
     p.add_argument("-q", "--quiet", action="store_true")
+    p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
+                   "(default: only inside the asset's folder); repeatable")
     p.set_defaults(func=run)
 
 
@@ -19,4 +21,8 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     from baker.preview.core import main
 
+    if args.allow_outside:  # preview() takes an Asset as well as a path
+        from baker.geometry.asset import Asset
+
+        args.input = Asset.load(args.input, allow_outside=args.allow_outside)
     return main(args)

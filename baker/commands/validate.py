@@ -15,6 +15,8 @@ def add_parser(sub) -> None:
                    help="install the pinned Khronos glTF-Validator (npm gltf-validator) into "
                         "$XDG_CACHE_HOME/baker/node, then validate FILEs if any")
     v.add_argument("-q", "--quiet", action="store_true", help="print only errors")
+    v.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
+                   "(default: only inside the asset's folder); repeatable")
     v.set_defaults(func=run, parser=v)
 
 
@@ -27,4 +29,5 @@ def run(args) -> int:
         install_khronos()
         if not args.files:
             return 0
-    return main(args.files, fmt=args.format, khronos=not args.no_khronos, quiet=args.quiet)
+    return main(args.files, fmt=args.format, khronos=not args.no_khronos, quiet=args.quiet,
+                allow_outside=args.allow_outside)

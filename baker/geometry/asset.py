@@ -61,7 +61,7 @@ class Asset:
     cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @classmethod
-    def load(cls, path) -> "Asset":
+    def load(cls, path, allow_outside=None) -> "Asset":
         path = Path(path)
         suffix = path.suffix.lower()
         if not path.exists():
@@ -69,7 +69,7 @@ class Asset:
         if suffix not in INPUT_SUFFIXES:
             raise BakerError(path, f"unsupported input type '{suffix}' (use one of {', '.join(sorted(INPUT_SUFFIXES))})")
         if suffix in GLTF_SUFFIXES:
-            doc = GltfDocument.load(path)
+            doc = GltfDocument.load(path, allow_outside=allow_outside)
             decompress(doc)  # Draco / meshopt geometry into plain accessors (asset.extras.baker.decompressed)
         elif suffix in USD_SUFFIXES:
             from baker.gltf.usd import read_usd

@@ -4,17 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from baker.checks import is_derived_fins  # noqa: F401 (defined with the checks that skip fins; read here too)
 from baker.gltf.document import GltfDocument
 
 
 MODE_TRIANGLES, MODE_STRIP, MODE_FAN = 4, 5, 6
-
-
-def is_derived_fins(prim: dict) -> bool:
-    """True for fin primitives baker derives from a mesh (BAKER_edges / BAKER_fur ``finsOf``): zero-area quads that
-    bakes must not sample."""
-    exts = prim.get("extensions") or {}
-    return any("finsOf" in (exts.get(name) or {}) for name in ("BAKER_edges", "BAKER_fur"))
 
 
 def to_float(doc: GltfDocument, accessor: int) -> np.ndarray:

@@ -8,7 +8,6 @@ anyway and makes appending new accessors trivial.
 """
 from __future__ import annotations
 
-import base64
 import copy
 import json
 import mimetypes
@@ -19,39 +18,24 @@ from pathlib import Path
 
 import numpy as np
 
+from baker.checks import Issues, pointer
 from baker.errors import BakerError
-from baker.gltf.atomic import atomic_path
+from baker.gltf.atomic import write_files_atomic
+from baker.gltf.structure import (CHUNK_BIN, CHUNK_JSON, COMPONENT_DTYPES, GLB_MAGIC, TYPE_SIZES, align,
+                                  check_data, check_structure, decode_data_uri, first_error, local_file, parse_glb,
+                                  read_container)
 
-GLB_MAGIC = 0x46546C67  # b"glTF"
-CHUNK_JSON = 0x4E4F534A
-CHUNK_BIN = 0x004E4942
+__all__ = ["GltfDocument", "node_matrix", "world_nodes", "sniff_mime", "parse_glb", "COMPONENT_DTYPES", "TYPE_SIZES",
+           "DTYPE_COMPONENTS", "SIZE_TYPES", "GLB_MAGIC", "CHUNK_JSON", "CHUNK_BIN", "TARGET_ARRAY_BUFFER",
+           "TARGET_ELEMENT_ARRAY_BUFFER"]
 
-COMPONENT_DTYPES = {
-    5120: np.int8,
-    5121: np.uint8,
-    5122: np.int16,
-    5123: np.uint16,
-    5125: np.uint32,
-    5126: np.float32,
-}
 DTYPE_COMPONENTS = {np.dtype(v): k for k, v in COMPONENT_DTYPES.items()}
-TYPE_SIZES = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9, "MAT4": 16}
 SIZE_TYPES = {1: "SCALAR", 2: "VEC2", 3: "VEC3", 4: "VEC4"}
 
 TARGET_ARRAY_BUFFER = 34962
 TARGET_ELEMENT_ARRAY_BUFFER = 34963
 
-
-def _align(n: int, a: int = 4) -> int:
-    return (n + a - 1) // a * a
-
-
-def _decode_data_uri(uri: str) -> tuple[bytes, str | None]:
-    header, _, payload = uri.partition(",")
-    mime = header[5:].split(";")[0] or None
-    if ";base64" in header:
-        return base64.b64decode(payload), mime
-    return urllib.parse.unquote_to_bytes(payload), mime
+_align = align
 
 
 @dataclass
@@ -76,39 +60,54 @@ class GltfDocument:
     image_files: dict = field(default_factory=dict)
     # images baker adds: index -> (bytes, mimeType, file stem); written as bufferViews (GLB) or files (.gltf)
     new_images: dict = field(default_factory=dict)
+    # extra folders external URIs may resolve into (see baker.gltf.structure.local_file)
+    allow_outside: object = field(default=None, repr=False, compare=False)
 
     # ------------------------------------------------------------------ reading
     @classmethod
-    def load(cls, path) -> "GltfDocument":
+    def load(cls, path, allow_outside=None) -> "GltfDocument":
+        """Read a .gltf/.glb after the structural check of :mod:`baker.gltf.structure` (the one ``baker validate``
+        reports): the first problem raises ``BakerError(path, "<JSON pointer>: <problem>")`` before any buffer is
+        read. URIs resolve only inside the file's folder (or an ``allow_outside`` path, or a list of them)."""
         path = Path(path)
         if not path.is_file():
             raise BakerError(path, "file not found")
-        data = path.read_bytes()
-        if path.suffix.lower() == ".glb" or data[:4] == b"glTF":
-            gltf, bin_chunk = parse_glb(path, data)
-        else:
-            try:
-                gltf = json.loads(data.decode("utf-8"))
-            except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-                raise BakerError(path, f"broken JSON: {exc}") from None
-            bin_chunk = None
-        if not isinstance(gltf, dict) or "asset" not in gltf:
-            raise BakerError(path, "not a glTF document (no 'asset' object)")
-        version = str(gltf.get("asset", {}).get("version", ""))
-        if not version.startswith("2."):
-            raise BakerError(path, f"unsupported glTF version {version!r} (baker reads glTF 2.x)")
-        doc = cls(json=gltf, path=path)
-        doc._merge_buffers(bin_chunk)
+        issues = Issues()
+        gltf, glb_bin, _ = read_container(path, issues)
+        if gltf is not None:
+            check_structure(gltf, path, glb_bin, issues, allow_outside)
+        problem = first_error(issues)
+        if problem:
+            raise BakerError(path, problem)
+        doc = cls.from_checked(path, gltf, glb_bin, allow_outside)
+        check_data(doc, issues)
+        problem = first_error(issues)
+        if problem:
+            raise BakerError(path, problem)
+        return doc
+
+    @classmethod
+    def from_checked(cls, path, gltf: dict, glb_bin: bytes | None, allow_outside=None) -> "GltfDocument":
+        """A document from JSON that passed :func:`~baker.gltf.structure.check_structure` (``gltf`` is taken over,
+        not copied) and the GLB BIN chunk; buffers and images are read here, under the same URI policy."""
+        doc = cls(json=gltf, path=Path(path), allow_outside=allow_outside)
+        doc._merge_buffers(glb_bin)
         doc._read_external_images()
         return doc
 
-    def _resolve_uri(self, uri: str) -> bytes:
-        if uri.startswith("data:"):
-            return _decode_data_uri(uri)[0]
+    def _resolve_uri(self, uri: str, ptr: str) -> bytes:
+        if uri[:5].lower() == "data:":
+            try:
+                return decode_data_uri(uri)[0]
+            except ValueError as exc:
+                raise BakerError(self.path, f"{ptr}: broken data URI: {exc}") from None
         base = self.path.parent if self.path else Path(".")
-        target = base / urllib.parse.unquote(uri)
+        try:
+            target = local_file(uri, base, self.allow_outside)
+        except ValueError as exc:
+            raise BakerError(self.path, f"{ptr}: {exc}") from None
         if not target.is_file():
-            raise BakerError(self.path, f"referenced file '{uri}' not found")
+            raise BakerError(self.path, f"{ptr}: referenced file '{uri}' not found")
         return target.read_bytes()
 
     def _merge_buffers(self, bin_chunk: bytes | None) -> None:
@@ -116,26 +115,26 @@ class GltfDocument:
         merged = bytearray()
         offsets = []
         for i, buf in enumerate(buffers):
+            length = int(buf.get("byteLength", 0))
             if "uri" in buf:
-                data = self._resolve_uri(buf["uri"])
+                data = self._resolve_uri(buf["uri"], pointer("buffers", i, "uri"))
             elif i == 0 and bin_chunk is not None:
                 data = bin_chunk
             else:
-                # e.g. an EXT_meshopt_compression fallback buffer: no data, only a size
-                data = b"\0" * int(buf.get("byteLength", 0))
-            length = int(buf.get("byteLength", len(data)))
+                # nothing reads it (check_structure refuses a buffer without data that is read), e.g. the fallback
+                # buffer of EXT_meshopt_compression views: only a size
+                data = b"\0" * length
             if len(data) < length:
-                raise BakerError(self.path, f"buffer {i} is truncated ({len(data)} of {length} bytes)")
+                raise BakerError(self.path, f"{pointer('buffers', i)}: buffer is truncated ({len(data)} of {length} "
+                                            "bytes)")
             merged.extend(b"\0" * (_align(len(merged), 16) - len(merged)))
             offsets.append(len(merged))
             merged.extend(data[:length])
         for view in self.json.get("bufferViews", []):
             b = view.get("buffer", 0)
-            if not (0 <= b < len(offsets)):
-                raise BakerError(self.path, f"bufferView refers to missing buffer {b}")
             view["buffer"] = 0
             view["byteOffset"] = view.get("byteOffset", 0) + offsets[b]
-            meshopt = view.get("extensions", {}).get("EXT_meshopt_compression")
+            meshopt = (view.get("extensions") or {}).get("EXT_meshopt_compression")
             if isinstance(meshopt, dict) and "buffer" in meshopt:
                 meshopt["byteOffset"] = meshopt.get("byteOffset", 0) + offsets[meshopt["buffer"]]
                 meshopt["buffer"] = 0
@@ -148,8 +147,8 @@ class GltfDocument:
     def _read_external_images(self) -> None:
         for i, image in enumerate(self.json.get("images", [])):
             uri = image.get("uri")
-            if uri is not None and not uri.startswith("data:"):
-                self.image_files[i] = self._resolve_uri(uri)
+            if uri is not None and uri[:5].lower() != "data:":
+                self.image_files[i] = self._resolve_uri(uri, pointer("images", i, "uri"))
 
     # ------------------------------------------------------------------ accessors
     def accessor(self, index: int) -> np.ndarray:
@@ -184,6 +183,9 @@ class GltfDocument:
             iview = self.json["bufferViews"][idx_info["bufferView"]]
             idx = np.frombuffer(self.bin, dtype=COMPONENT_DTYPES[idx_info["componentType"]], count=n,
                                 offset=iview.get("byteOffset", 0) + idx_info.get("byteOffset", 0))
+            if n and int(idx.max()) >= count:
+                raise BakerError(self.path, f"{pointer('accessors', index, 'sparse', 'indices')}: sparse index "
+                                            f"{int(idx.max())} is >= the accessor's count {count}")
             vview = self.json["bufferViews"][val_info["bufferView"]]
             vals = np.frombuffer(self.bin, dtype=dtype, count=n * ncomp,
                                  offset=vview.get("byteOffset", 0) + val_info.get("byteOffset", 0))
@@ -276,8 +278,8 @@ class GltfDocument:
             off = view.get("byteOffset", 0)
             return bytes(self.bin[off: off + view["byteLength"]])
         uri = image.get("uri", "")
-        if uri.startswith("data:"):
-            return _decode_data_uri(uri)[0]
+        if uri[:5].lower() == "data:":
+            return self._resolve_uri(uri, pointer("images", index, "uri"))
         return self.image_files[index]
 
     # ------------------------------------------------------------------ extensions
@@ -325,7 +327,7 @@ class GltfDocument:
                 del image["uri"]
                 image["bufferView"] = append_view(data)
                 image["mimeType"] = mime
-            elif "uri" in image and not image["uri"].startswith("data:"):
+            elif "uri" in image and image["uri"][:5].lower() != "data:":
                 uri = image["uri"]
                 rel = Path(urllib.parse.unquote(uri))
                 if rel.is_absolute() or ".." in rel.parts:
@@ -354,13 +356,10 @@ class GltfDocument:
         else:
             blob = (json.dumps(gltf, indent=2, ensure_ascii=False) + "\n").encode("utf-8")
 
-        # side files first, the main file last: a reader never sees a .gltf whose .bin is missing
-        for rel, data in sorted(side_files.items()):
-            with atomic_path(path.parent / rel) as tmp:
-                tmp.write_bytes(data)
-        with atomic_path(path) as tmp:
-            tmp.write_bytes(blob)
-        return [path.parent / rel for rel in sorted(side_files)] + [path]
+        # one atomic group, side files renamed first and the main file last: a reader never sees a .gltf whose .bin
+        # is missing, and a failed or killed run keeps every earlier file (never a new .bin beside the old .gltf)
+        return write_files_atomic([(path.parent / rel, data) for rel, data in sorted(side_files.items())]
+                                  + [(path, blob)])
 
 
 
@@ -411,35 +410,3 @@ def sniff_mime(data: bytes) -> str:
     if data[:12] == b"\xabKTX 20\xbb\r\n\x1a\n":
         return "image/ktx2"
     return "application/octet-stream"
-
-
-def parse_glb(path: Path, data: bytes) -> tuple[dict, bytes | None]:
-    if len(data) < 20:
-        raise BakerError(path, f"truncated GLB ({len(data)} bytes)")
-    magic, version, length = struct.unpack_from("<III", data, 0)
-    if magic != GLB_MAGIC:
-        raise BakerError(path, "not a GLB file (bad magic)")
-    if version != 2:
-        raise BakerError(path, f"unsupported GLB container version {version}")
-    if length > len(data):
-        raise BakerError(path, f"truncated GLB: header says {length} bytes, file has {len(data)}")
-    offset = 12
-    gltf = None
-    bin_chunk = None
-    while offset + 8 <= length:
-        chunk_len, chunk_type = struct.unpack_from("<II", data, offset)
-        offset += 8
-        if offset + chunk_len > length:
-            raise BakerError(path, "truncated GLB: a chunk runs past the end of the file")
-        chunk = data[offset: offset + chunk_len]
-        if chunk_type == CHUNK_JSON and gltf is None:
-            try:
-                gltf = json.loads(chunk.decode("utf-8"))
-            except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-                raise BakerError(path, f"broken JSON chunk: {exc}") from None
-        elif chunk_type == CHUNK_BIN and bin_chunk is None:
-            bin_chunk = chunk
-        offset += _align(chunk_len)
-    if gltf is None:
-        raise BakerError(path, "GLB has no JSON chunk")
-    return gltf, bin_chunk
