@@ -1,16 +1,35 @@
 """The ``baker`` command: parse, run, report. No algorithm lives here.
 
-Exit codes: 0 success, 1 validation errors found, 2 bad input or usage.
+Exit codes: 0 success, 1 validation errors found, 2 bad input or usage, 130 interrupted (SIGINT, Ctrl-C), 143
+terminated (SIGTERM). An interrupted or terminated run unwinds like an error: every output is written to a
+temporary file beside its target and renamed only when complete (baker.gltf.atomic), so the unwinding removes the
+temporary files and leaves any earlier output as it was.
 """
 from __future__ import annotations
 
+import signal
 import sys
 
 from baker import commands
 from baker.errors import BakerError
 
 
+class Terminated(BaseException):
+    """Raised in the main thread by the SIGTERM handler, so that ``finally`` blocks and context managers (the atomic
+    writers' clean-up) run as they do for Ctrl-C. A BaseException, as KeyboardInterrupt is: ``except Exception``
+    handlers around a reader do not swallow it."""
+
+
+def _terminate(signum, frame):
+    raise Terminated()
+
+
 def main(argv=None) -> int:
+    previous = None
+    try:
+        previous = signal.signal(signal.SIGTERM, _terminate)
+    except ValueError:  # not the main thread (main() called from a thread): leave signals alone
+        pass
     try:
         return commands.run(sys.argv[1:] if argv is None else argv)
     except BakerError as exc:
@@ -19,11 +38,17 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("baker: interrupted", file=sys.stderr)
         return 130
+    except Terminated:
+        print("baker: terminated", file=sys.stderr)
+        return 143
     except BrokenPipeError:  # the reader of our output went away (`baker inspect x.glb | head`): not an error of ours
         import os
 
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error when Python flushes at exit
         return 141
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":
