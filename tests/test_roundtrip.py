@@ -4,12 +4,15 @@ from __future__ import annotations
 import base64
 import json
 import struct
+import urllib.parse
 
 import numpy as np
 import pytest
 import trimesh
 
 import baker
+import baker.api
+import baker.pipeline
 from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 from conftest import assert_khronos_clean
@@ -177,3 +180,77 @@ def test_glb_container_is_well_formed(tmp_path):
     assert json_type == 0x4E4F534A and json_len % 4 == 0
     bin_len, bin_type = struct.unpack_from("<II", data, 20 + json_len)
     assert bin_type == 0x004E4942 and 28 + json_len + bin_len == len(data)
+
+
+# ---------------------------------------------------------------------------------------------------- input policy
+def _triangle_files(folder, uri):
+    """A one-triangle .gltf in ``folder`` whose buffer URI is ``uri``; returns (gltf path, buffer bytes)."""
+    positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32)
+    data = positions.tobytes()
+    gltf = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 1, 0]}],
+            "bufferViews": [{"buffer": 0, "byteLength": len(data)}],
+            "buffers": [{"uri": uri, "byteLength": len(data)}]}
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / "tri.gltf"
+    path.write_text(json.dumps(gltf))
+    return path, data
+
+
+def test_allow_outside_widens_the_root(tmp_path, capsys):
+    from baker.cli import main as cli
+    from baker.errors import BakerError
+
+    path, data = _triangle_files(tmp_path / "asset", "../shared/tri.bin")
+    (tmp_path / "shared").mkdir()
+    (tmp_path / "shared" / "tri.bin").write_bytes(data)
+    out = tmp_path / "out.glb"
+    assert cli(["bake", str(path), "-o", str(out), "--bakes", "edges", "-q"]) == 2
+    assert "/buffers/0/uri" in capsys.readouterr().err and not out.exists()
+    with pytest.raises(BakerError, match="leaves the asset's folder"):
+        GltfDocument.load(path)
+
+    shared = str(tmp_path / "shared")
+    assert cli(["bake", str(path), "-o", str(out), "--bakes", "edges", "-q", "--allow-outside", shared]) == 0
+    assert bytes(GltfDocument.load(out).bin[:len(data)]) == data
+    assert cli(["inspect", str(path), "--allow-outside", shared]) == 0
+    assert cli(["validate", "--no-khronos", str(path), "--allow-outside", shared]) == 0
+    assert cli(["validate", "--no-khronos", str(path)]) == 1
+    assert "URI_REFUSED" in capsys.readouterr().out
+    # the Python API takes the same root, one path or a list
+    asset = baker.api.bake(path, bakes=["edges"], allow_outside=[tmp_path / "shared"])
+    assert bytes(asset.doc.bin[:len(data)]) == data
+    assert baker.api.validate(path, khronos=False, allow_outside=shared)["issues"]["numErrors"] == 0
+    # a root other than the one the URI points into does not help
+    (tmp_path / "elsewhere").mkdir()
+    with pytest.raises(BakerError, match="/buffers/0/uri"):
+        GltfDocument.load(path, allow_outside=tmp_path / "elsewhere")
+
+
+@pytest.mark.parametrize("uri", ["sub/tri.bin", "sub%2Ftri.bin", "./sub/../sub/tri.bin", "tri%20copy.bin"])
+def test_relative_uris_inside_the_folder_are_read(tmp_path, uri):
+    path, data = _triangle_files(tmp_path, uri)
+    target = tmp_path / urllib.parse.unquote(uri)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_bytes(data)
+    assert bytes(GltfDocument.load(path).bin[:len(data)]) == data
+
+
+def test_integral_floats_are_read_as_integers(tmp_path):
+    path, data = _triangle_files(tmp_path, "tri.bin")
+    (tmp_path / "tri.bin").write_bytes(data)
+    text = path.read_text().replace('"bufferView": 0', '"bufferView": 0.0').replace('"POSITION": 0', '"POSITION": 0e0')
+    text = text.replace('"count": 3', '"count": 3.0').replace('"componentType": 5126', '"componentType": 5126.0')
+    path.write_text(text)
+    doc = GltfDocument.load(path)
+    acc = doc.json["accessors"][0]
+    assert all(type(acc[k]) is int for k in ("bufferView", "componentType", "count"))
+    assert type(doc.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"]) is int
+    assert acc["min"] == [0, 0, 0]  # other numbers are left as written
+    out = tmp_path / "out.gltf"
+    baker.pipeline.save(baker.bake(path, bakes=["edges"]), out)
+    written = json.loads(out.read_text())
+    assert written["accessors"][0]["count"] == 3 and isinstance(written["accessors"][0]["count"], int)
+    assert_khronos_clean(out)

@@ -354,3 +354,70 @@ def test_thickness_values_are_read_as_written(baked):
     values = doc.accessor(prim["attributes"]["_THICKNESS"])
     ext = doc.json["materials"][0]["extensions"]["BAKER_thickness"]
     assert np.all(values >= 0) and values.max() <= ext["maxDistance"]
+
+
+# ---------------------------------------------------------------------------------------------------- one reader
+def _gltf_corpus(tmp_path):
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from corpus import cases_gltf
+
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "secret.bin").write_bytes(b"secret" * 16)
+    env = {"outside": outside, "http": "http://127.0.0.1:9/"}
+    for case in cases_gltf.CASES:
+        folder = tmp_path / "cases" / case.name
+        folder.mkdir(parents=True)
+        yield case, case.make(folder, env)
+
+
+def test_load_and_validate_report_the_same_first_problem(tmp_path):
+    """``GltfDocument.load`` (bake, inspect, preview, build) and ``baker validate`` share one structural check: the
+    one line a bake fails with is validate's first error, pointer and message."""
+    from baker.errors import BakerError
+
+    checked = 0
+    for case, path in _gltf_corpus(tmp_path):
+        report = validate.validate_file(path, khronos=False)
+        errors = [m for m in report["issues"]["messages"] if m["severity"] == 0]
+        if case.expect["validate"].exit == 0:
+            assert not errors, (case.name, errors)
+            GltfDocument.load(path)
+            continue
+        with pytest.raises(BakerError) as raised:
+            GltfDocument.load(path)
+        first = f"{errors[0]['pointer']}: {errors[0]['message']}" if errors[0].get("pointer") else errors[0]["message"]
+        assert raised.value.message == first, case.name
+        checked += 1
+    assert checked > 40
+
+
+@pytest.mark.parametrize("edit, code, ptr", [
+    (lambda j: j["meshes"][0]["primitives"][0]["attributes"].update(POSITION="0"), "TYPE_MISMATCH",
+     "/meshes/0/primitives/0/attributes/POSITION"),
+    (lambda j: j["nodes"].append({"children": [len(j["nodes"])]}), "NODE_LOOP", None),
+    (lambda j: j["buffers"][0].pop("uri"), "BUFFER_DATA_MISSING", "/buffers/0"),
+    (lambda j: j["buffers"][0].update(uri="../elsewhere.bin"), "URI_REFUSED", "/buffers/0/uri"),
+    (lambda j: j["buffers"][0].update(uri="https://example.com/x.bin"), "URI_REFUSED", "/buffers/0/uri"),
+    (lambda j: j["images"][0].update(uri="/etc/passwd"), "URI_REFUSED", "/images/0/uri"),
+    (lambda j: j["accessors"][j["meshes"][0]["primitives"][0]["attributes"]["POSITION"]].update(type="VEC2"),
+     "MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT", "/meshes/0/primitives/0/attributes/POSITION"),
+])
+def test_input_policy_errors(copy, edit, code, ptr):
+    edit(copy.json)
+    report = validate.validate_file(copy.save(), khronos=False)
+    found = find(report, code)
+    assert found and found[0]["severity"] == 0, report["issues"]["messages"]
+    if ptr:
+        assert found[0]["pointer"] == ptr
+
+
+def test_nan_position_is_an_error_naming_the_accessor(copy):
+    a = copy.primitive["attributes"]["POSITION"]
+    struct.pack_into("<f", copy.bin, copy.accessor_offset(a) + 4, float("nan"))
+    report = validate.validate_file(copy.save(), khronos=False)
+    [msg] = find(report, "ACCESSOR_INVALID_FLOAT")
+    assert msg["pointer"] == f"/accessors/{a}" and msg["severity"] == 0
