@@ -39,7 +39,8 @@ from baker.data import JS_ROOT
 from baker.errors import BakerError
 from baker.gltf.document import GltfDocument
 from baker.checks import ERROR, SEVERITY_NAMES, Issues, pointer
-from baker.gltf.structure import COLLECTION_KINDS, NON_BLOCKING, check_data, check_structure, read_container
+from baker.gltf.structure import (COLLECTION_KINDS, NON_BLOCKING, check_data, check_structure, read_container,
+                                  uri_roots)
 
 KHRONOS_SCRIPT = JS_ROOT / "khronos_validate.mjs"
 # a development checkout: scripts/install-node-tools puts the pinned node tools in <checkout>/.cache/node
@@ -336,13 +337,16 @@ def install_khronos(log=None) -> Path:
     return modules
 
 
-def khronos_report(path) -> dict:
-    """Run Khronos glTF-Validator on ``path`` and return its report as is. Raises RuntimeError when it cannot run."""
+def khronos_report(path, allow_outside=None) -> dict:
+    """Run Khronos glTF-Validator on ``path`` and return its report as is. Raises RuntimeError when it cannot run.
+    External resources are read under baker's URI policy (inside the asset's folder or an ``allow_outside`` root)."""
     reason = khronos_unavailable()
     if reason:
         raise RuntimeError(reason)
+    roots = os.pathsep.join(str(Path(p).resolve()) for p in uri_roots(Path(path).parent, allow_outside)[1:])
     proc = subprocess.run([node_executable(), str(KHRONOS_SCRIPT), str(Path(path).resolve()), str(node_modules())],
-                          capture_output=True, text=True, timeout=KHRONOS_TIMEOUT)
+                          capture_output=True, text=True, timeout=KHRONOS_TIMEOUT,
+                          env={**os.environ, "BAKER_ALLOW_OUTSIDE": roots})
     if proc.returncode != 0:
         raise RuntimeError(f"gltf-validator failed: {proc.stderr.strip() or proc.returncode}")
     return json.loads(proc.stdout)
@@ -452,7 +456,7 @@ def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
     report = {"uri": path.name, "mimeType": mime, "validatorVersion": f"baker {__version__}"}
     if khronos:
         try:
-            k = khronos_report(path)
+            k = khronos_report(path, allow_outside)
         except (RuntimeError, OSError, subprocess.TimeoutExpired, json.JSONDecodeError) as exc:
             # fails closed: a gate that could not run its validator has not passed the file
             khronos_state["reason"] = f"it failed on this file: {exc}"
