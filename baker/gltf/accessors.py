@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from baker.checks import is_derived_fins  # noqa: F401 (defined with the checks that skip fins; read here too)
+from baker.checks import is_derived_fins  # defined with the checks that skip fins; geometry reads it from here
 from baker.gltf.document import GltfDocument
 
 
 MODE_TRIANGLES, MODE_STRIP, MODE_FAN = 4, 5, 6
+
+__all__ = ["MODE_TRIANGLES", "MODE_STRIP", "MODE_FAN", "is_derived_fins", "to_float", "faces_from_indices"]
 
 
 def to_float(doc: GltfDocument, accessor: int) -> np.ndarray:
