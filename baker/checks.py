@@ -83,8 +83,9 @@ def is_number(value) -> bool:
 def check_vertex_attribute(doc, mesh: int, primitive: int, name: str, issues: Issues, *,
                            code: str, types: tuple = ("SCALAR",), component_type: int = 5126) -> np.ndarray | None:
     """Shared rules for a baked per-vertex attribute of ``doc`` (a :class:`~baker.gltf.document.GltfDocument`):
-    present, FLOAT of an allowed type, one value per vertex, finite. Returns the values (float64, non-finite ones included and reported) when the accessor can be read,
-    else None (errors reported)."""
+    present, FLOAT of an allowed type, one value per vertex, finite. Returns the values (float64, non-finite ones
+    included and reported) when the accessor can be read, else None (errors reported).
+    """
     gltf = doc.json
     accessors = gltf.get("accessors") or []
     prim = gltf["meshes"][mesh]["primitives"][primitive]
