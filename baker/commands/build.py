@@ -48,7 +48,7 @@ from pathlib import Path
 
 from baker.version import __version__
 from baker.errors import BakerError
-from baker.gltf.atomic import write_bytes_atomic
+from baker.gltf.atomic import write_bytes_atomic, write_files_atomic
 from baker.options import coerce
 from baker import registry
 
@@ -441,10 +441,11 @@ def build(recipe: Recipe, *, jobs: int = 1, scheduler: str | None = None, fail_f
             else:
                 out_dir = (root / task.output).parent
                 written = {}
-                # side files first, the main output last (as a single bake writes them)
+                # one atomic group, side files first, the main output last (as a single bake writes them)
                 main_name = Path(task.output).name
-                for rel in sorted(result["files"], key=lambda r: (r == main_name, r)):
-                    write_bytes_atomic(out_dir / rel, result["files"][rel])
+                ordered = sorted(result["files"], key=lambda r: (r == main_name, r))
+                write_files_atomic([(out_dir / rel, result["files"][rel]) for rel in ordered])
+                for rel in ordered:
                     written[(Path(task.output).parent / rel).as_posix()] = \
                         hashlib.sha256(result["files"][rel]).hexdigest()
                 lock[task.output] = {"output": task.output, "key": task.key, "kind": task.kind,

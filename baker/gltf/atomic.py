@@ -27,16 +27,36 @@ _SIGNALS = {signal.SIGINT, signal.SIGTERM}
 
 @contextlib.contextmanager
 def deferred_signals():
-    """Hold SIGINT and SIGTERM back for the duration of the block (main thread only, where Python runs handlers);
-    a signal that arrives meanwhile is delivered when the block ends."""
-    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+    """Hold SIGINT and SIGTERM back for the duration of the block; a signal that arrives meanwhile is handled (by the
+    handler that was installed) when the block ends. Python runs signal handlers in the main thread only, whichever
+    thread the OS delivered the signal to, so the handlers are swapped for a recorder rather than the signal masked;
+    outside the main thread this does nothing (no handler would run there anyway)."""
+    if threading.current_thread() is not threading.main_thread():
         yield
         return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, _SIGNALS)
+    pending: list[int] = []
+
+    def hold(signum, frame):
+        pending.append(signum)
+
+    previous = {}
     try:
+        for signum in _SIGNALS:
+            previous[signum] = signal.signal(signum, hold)
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        for signum, handler in previous.items():
+            signal.signal(signum, signal.SIG_DFL if handler is None else handler)
+        if pending:
+            _deliver(pending[0], previous[pending[0]])
+
+
+def _deliver(signum: int, handler) -> None:
+    if callable(handler):
+        handler(signum, None)  # Python's SIGINT handler raises KeyboardInterrupt; baker's SIGTERM one Terminated
+    elif handler == signal.SIG_DFL:
+        signal.raise_signal(signum)  # the default action (terminate), now that the files are in place
+    # SIG_IGN, or None (a handler not installed from Python): dropped, as it would have been
 
 
 def _make_parents(folder: Path) -> list[Path]:

@@ -61,7 +61,7 @@ from pathlib import Path
 import numpy as np
 
 from baker.errors import BakerError
-from baker.gltf.atomic import atomic_path, write_bytes_atomic
+from baker.gltf.atomic import atomic_files, atomic_path
 from baker.gltf.document import node_matrix
 
 UV_NAMES = ("st", "uv", "st0", "UVMap")
@@ -294,14 +294,19 @@ def write_usd(doc, path, primitive_hooks=None) -> list[Path]:
         return [path]
     folder = f"{path.stem}_textures"
     layer, images = build_layer(doc, folder, primitive_hooks)
-    # textures first, the stage last: a reader never sees a stage whose textures are missing
-    written = []
-    for name, data in images:
-        write_bytes_atomic(path.parent / folder / name, data)
-        written.append(path.parent / folder / name)
-    with atomic_path(path) as tmp:
-        export_layer(layer, tmp, path)
-    return written + [path]
+    # one atomic group, textures renamed first and the stage last: a reader never sees a stage whose textures are
+    # missing, and a failed or killed run keeps every earlier file
+    return write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])
+
+
+def write_stage_and_textures(layer, path: Path, textures) -> list[Path]:
+    """Export ``layer`` to ``path`` and write ``textures`` ((path, bytes) pairs) as one atomic group."""
+    targets = [p for p, _ in textures] + [path]
+    with atomic_files(targets) as temps:
+        for tmp, (_, data) in zip(temps, textures):
+            tmp.write_bytes(data)
+        export_layer(layer, temps[-1], path)
+    return targets
 
 
 def _write_usdz(doc, path: Path, primitive_hooks=None) -> None:

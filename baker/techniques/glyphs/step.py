@@ -14,21 +14,23 @@ from baker.techniques.glyphs.layout import layout_text
 from baker.techniques.glyphs.outline import load_font
 from baker.errors import BakerError
 from baker.techniques.glyphs import extension as ext
-from baker.gltf.atomic import atomic_path, write_bytes_atomic
+from baker.gltf.atomic import write_files_atomic
 from baker.gltf.document import GltfDocument
-from baker.gltf.images import write_image
+from baker.gltf.images import encode_image
 
 
 def font_atlas(font_path, options: GlyphOptions, charset=None, warn=True) -> GlyphAtlas:
     """Read the font and bake its atlas; characters without a glyph are reported on stderr (``warn``)."""
     font = load_font(font_path, options.charset if charset is None else charset, font_number=options.font_number,
                      instance=options.instance, kerning=options.kerning)
+    if not font.glyphs:  # before the warning: a failed run says one line
+        shown = ", ".join(f"U+{c:04X}" for c in font.missing[:5]) + (" ..." if len(font.missing) > 5 else "")
+        raise BakerError(font_path, f"none of the {len(font.missing)} requested characters has a glyph in this font "
+                                    f"({shown})")
     if font.missing and warn:
         listed = ", ".join(f"U+{c:04X}" for c in font.missing[:20]) + (" ..." if len(font.missing) > 20 else "")
         print(f"baker: warning: {font_path}: {len(font.missing)} character(s) have no glyph: {listed}",
               file=sys.stderr)
-    if not font.glyphs:
-        raise BakerError(font_path, "none of the requested characters has a glyph in this font")
     return bake_atlas(font, options)
 
 
@@ -43,9 +45,9 @@ def write_atlas_files(atlas: GlyphAtlas, basename, fmt: str = "msdf-atlas-gen") 
         layout = atlas.layout_json()
     else:
         raise BakerError(None, f"unknown metrics format {fmt!r} (use msdf-atlas-gen or bmfont)")
-    with atomic_path(png) as tmp:
-        write_image(tmp, atlas.image)
-    write_bytes_atomic(meta, (json.dumps(layout, indent=1, ensure_ascii=False) + "\n").encode("utf-8"))
+    # one atomic group: a failed or killed run keeps the earlier pair, never a new image beside old metrics
+    write_files_atomic([(png, encode_image(atlas.image, ".png")),
+                        (meta, (json.dumps(layout, indent=1, ensure_ascii=False) + "\n").encode("utf-8"))])
     return png, meta
 
 

@@ -21,7 +21,6 @@ import numpy as np
 
 from baker.techniques.hair.kernel import HairResult, StrandSet
 from baker.errors import BakerError
-from baker.gltf.atomic import atomic_path, write_bytes_atomic
 
 
 def _emitter_world_matrix(gltf: dict, emitter_mesh: int) -> np.ndarray:
@@ -80,7 +79,7 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     hair curves, atomically."""
     from pxr import Gf, Usd, UsdGeom
 
-    from baker.gltf.usd import build_layer, custom_attributes, export_layer
+    from baker.gltf.usd import build_layer, custom_attributes, write_stage_and_textures
 
     path = Path(path)
     if path.suffix.lower() not in (".usda", ".usdc", ".usd"):
@@ -99,7 +98,4 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     _curves(stage, "/Root/Hair/guides", result.guides, result, curve_type)
     if result.children.count:
         _curves(stage, "/Root/Hair/children", result.children, result, curve_type)
-    for name, data in images:
-        write_bytes_atomic(path.parent / folder / name, data)
-    with atomic_path(path) as tmp:
-        export_layer(layer, tmp, path)
+    write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])

@@ -15,8 +15,8 @@ import numpy as np
 from baker.techniques.skin.options import SkinOptions
 from baker.techniques.skin.kernel import quantize, skin_tables
 from baker.errors import BakerError
-from baker.gltf.atomic import atomic_path, write_bytes_atomic
-from baker.gltf.images import write_image
+from baker.gltf.atomic import write_files_atomic
+from baker.gltf.images import encode_image
 from baker.options import from_args
 
 SUFFIXES = (".exr", ".png")
@@ -28,11 +28,6 @@ def _pixels(values: np.ndarray, suffix: str, options: SkinOptions) -> np.ndarray
     if suffix == ".exr":
         return np.ascontiguousarray(values, np.float32)
     return quantize(values, options.bits, options.encoding)
-
-
-def _write(path: Path, pixels: np.ndarray) -> None:
-    with atomic_path(path) as tmp:
-        write_image(tmp, pixels)
 
 
 def sidecar(tables, options: SkinOptions, lut_file: str, penumbra_file: str | None, fmt: str) -> dict:
@@ -101,11 +96,12 @@ def run(args) -> int:
     penumbra_path = out.with_name(f"{out.stem}_penumbra{out.suffix}") if tables.penumbra is not None else None
     json_path = out.with_suffix(".json")
     fmt = "exr-float32" if suffix == ".exr" else f"png-{options.bits}bit"
-    _write(out, _pixels(tables.lut, suffix, options))
+    files = [(out, encode_image(_pixels(tables.lut, suffix, options), suffix))]
     if penumbra_path is not None:
-        _write(penumbra_path, _pixels(tables.penumbra, suffix, options))
+        files.append((penumbra_path, encode_image(_pixels(tables.penumbra, suffix, options), suffix)))
     doc = sidecar(tables, options, out.name, penumbra_path.name if penumbra_path else None, fmt)
-    write_bytes_atomic(json_path, (json.dumps(doc, indent=2) + "\n").encode("utf-8"))
+    files.append((json_path, (json.dumps(doc, indent=2) + "\n").encode("utf-8")))
+    write_files_atomic(files)  # one atomic group, the sidecar last: all new files or all earlier ones
     if not args.quiet:
         extra = f", {penumbra_path}" if penumbra_path else ""
         print(f"skin LUT {tables.axes.width}x{tables.axes.height} -> {out}{extra}, {json_path}", file=sys.stderr)

@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from baker.gltf.atomic import write_bytes_atomic
+from baker.gltf.atomic import write_files_atomic
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import encode_image
 from baker.gltf.ktx2 import encode_ktx2
@@ -112,17 +112,19 @@ def write_tam(doc: GltfDocument, material: int, tam: TonalArtMap, textures: list
 def write_tam_directory(tam: TonalArtMap, folder, ktx2: bool = False) -> dict:
     """Write the per-level PNGs, ``tam.json`` (and KTX2 files) into ``folder``; returns the manifest.
 
-    Every file is written atomically; the manifest last, so a reader never sees it before its images.
+    The files are written as one atomic group, the manifest renamed last: a reader never sees it before its images,
+    and a failed or killed run leaves every earlier file as it was.
     """
     folder = Path(folder)
     images = level_images(tam)
     manifest = {"generator": "baker", **tam_parameters(tam), "size": tam.sizes[0],
                 "measuredTones": measured_tones(tam), "levels": []}
     packed = tam.options.layout == "packed"
+    outputs = []  # (path, bytes), written as one atomic group at the end
     for i, (size, level) in enumerate(zip(tam.sizes, images)):
         names = [f"tam_level{i}_tones012.png", f"tam_level{i}_tones345.png"] if packed else [f"tam_level{i}.png"]
         for name, pixels in zip(names, level):
-            write_bytes_atomic(folder / name, encode_image(pixels, ".png"))
+            outputs.append((folder / name, encode_image(pixels, ".png")))
         entry = {"level": i, "size": size}
         if packed:
             entry["files"] = names
@@ -139,17 +141,18 @@ def write_tam_directory(tam: TonalArtMap, folder, ktx2: bool = False) -> dict:
                     a = np.full(level[j].shape[:2] + (4,), 255, np.uint8)
                     a[..., :3] = level[j]
                     rgba.append(a)
-                write_bytes_atomic(folder / name, encode_ktx2(rgba))
+                outputs.append((folder / name, encode_ktx2(rgba)))
                 files.append(name)
             manifest["ktx2"] = {"files": files, "vkFormat": "VK_FORMAT_R8G8B8A8_UNORM", "levelCount": len(images),
                                 "layerCount": 0}
         else:
             tones = len(tam.targets)
             chain = [level[0].reshape(tones, -1, level[0].shape[1], 1) for level in images]
-            write_bytes_atomic(folder / "tam.ktx2", encode_ktx2(chain))
+            outputs.append((folder / "tam.ktx2", encode_ktx2(chain)))
             manifest["ktx2"] = {"file": "tam.ktx2", "vkFormat": "VK_FORMAT_R8_UNORM", "levelCount": len(images),
                                 "layerCount": tones}
-    write_bytes_atomic(folder / "tam.json", (json.dumps(manifest, indent=2) + "\n").encode("utf-8"))
+    outputs.append((folder / "tam.json", (json.dumps(manifest, indent=2) + "\n").encode("utf-8")))
+    write_files_atomic(outputs)
     return manifest
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from baker.techniques.toon.options import ToonOptions
-from baker.gltf.atomic import write_bytes_atomic
+from baker.gltf.atomic import write_files_atomic
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import encode_image
 
@@ -57,10 +57,11 @@ def write_toon_directory(options: ToonOptions, folder) -> dict:
     folder = Path(folder)
     pixels = toon_pixels(options)
     name = "toon_ramp.png" if options.xtoon == "none" else "xtoon_map.png"
-    write_bytes_atomic(folder / name, encode_image(pixels, ".png"))
+    image = encode_image(pixels, ".png")
     manifest = {"generator": "baker", **toon_parameters(options), "file": name, "width": int(pixels.shape[1]),
                 "height": int(pixels.shape[0])}
-    write_bytes_atomic(folder / "toon.json", (json.dumps(manifest, indent=2) + "\n").encode("utf-8"))
+    write_files_atomic([(folder / name, image),  # one atomic group, the manifest last
+                        (folder / "toon.json", (json.dumps(manifest, indent=2) + "\n").encode("utf-8"))])
     return manifest
 
 

@@ -1,0 +1,151 @@
+"""A killed or interrupted run loses nothing and leaves nothing behind (issue 15, item 3).
+
+SIGTERM and SIGINT sent to a long bake end it with one line (``baker: terminated`` / ``baker: interrupted``) and exit
+143 / 130; the earlier file at the ``-o`` path is byte-identical and no temporary file is left in the folder. The
+atomic writers (baker/gltf/atomic.py) are checked directly too: a group of files that fails half way keeps every
+earlier file, and a signal that arrives while temporaries are renamed is held until all are in place. ``-o`` naming
+the input works for GLB and for glTF + .bin.
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from baker.cli import Terminated, main
+from baker.gltf.atomic import atomic_files, deferred_signals, write_files_atomic
+
+REPO = Path(__file__).parents[1]
+SPOT = REPO / "examples" / "spot" / "spot.obj"
+EARLIER = b"an earlier output that an interrupted run must leave as it was\n"
+
+
+def _cpu_seconds(pid: int) -> float:
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _wait_until_working(proc: subprocess.Popen, folder: Path, cpu: float = 4.0, timeout: float = 120.0) -> None:
+    """Until the child has spent ``cpu`` seconds of CPU (imports and loading take about 2 s; the bake with many rays
+    runs for minutes) or a temporary file appears in ``folder``."""
+    start = time.monotonic()
+    while time.monotonic() - start < timeout:
+        assert proc.poll() is None, f"the bake ended before it was signalled: {proc.communicate()}"
+        if any(p.name.startswith(".") and ".tmp" in p.name for p in folder.iterdir()):
+            return
+        if Path(f"/proc/{proc.pid}/stat").exists() and _cpu_seconds(proc.pid) >= cpu:
+            return
+        time.sleep(0.05)
+    raise AssertionError("the bake did not start working in time")
+
+
+@pytest.mark.parametrize("signum, code, line", [(signal.SIGTERM, 143, "baker: terminated"),
+                                                (signal.SIGINT, 130, "baker: interrupted")],
+                         ids=["SIGTERM", "SIGINT"])
+@pytest.mark.parametrize("suffix", [".glb", ".gltf"])
+def test_signal_mid_bake(tmp_path, signum, code, line, suffix):
+    shutil.copy(SPOT, tmp_path / "spot.obj")
+    out = tmp_path / f"out{suffix}"
+    out.write_bytes(EARLIER)
+    side = tmp_path / "out.bin"
+    if suffix == ".gltf":
+        side.write_bytes(EARLIER)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    proc = subprocess.Popen([sys.executable, "-m", "baker.cli", "bake", "spot.obj", "-o", out.name, "--bakes",
+                             "thickness", "--thickness-rays", "4096"], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        _wait_until_working(proc, tmp_path)
+        proc.send_signal(signum)
+        stdout, stderr = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == code, stderr
+    assert stderr.strip().splitlines() == [line], stderr
+    assert out.read_bytes() == EARLIER
+    if suffix == ".gltf":
+        assert side.read_bytes() == EARLIER
+    assert sorted(p.name for p in tmp_path.iterdir()) == before, "temporary files left behind"
+
+
+def test_terminated_in_process_is_one_line(capsys, monkeypatch):
+    """main() maps Terminated (what its SIGTERM handler raises) to one line and 143, and restores the handler."""
+    from baker import commands
+
+    def boom(argv):
+        raise Terminated()
+
+    monkeypatch.setattr(commands, "run", boom)
+    previous = signal.getsignal(signal.SIGTERM)
+    assert main(["--version"]) == 143
+    assert capsys.readouterr().err.strip().splitlines() == ["baker: terminated"]
+    assert signal.getsignal(signal.SIGTERM) == previous
+
+
+def test_group_failing_half_way_keeps_every_earlier_file(tmp_path):
+    a, b, c = tmp_path / "a.bin", tmp_path / "sub" / "b.png", tmp_path / "a.gltf"
+    a.write_bytes(b"old a")
+    c.write_bytes(b"old c")
+    with pytest.raises(KeyboardInterrupt):
+        with atomic_files([a, b, c]) as temps:
+            temps[0].write_bytes(b"new a")
+            temps[1].write_bytes(b"new b")
+            raise KeyboardInterrupt  # Ctrl-C before the main file was written
+    assert a.read_bytes() == b"old a" and c.read_bytes() == b"old c"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.bin", "a.gltf"], "temporaries or the new folder left"
+    write_files_atomic([(a, b"new a"), (b, b"new b"), (c, b"new c")])
+    assert (a.read_bytes(), b.read_bytes(), c.read_bytes()) == (b"new a", b"new b", b"new c")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.bin", "a.gltf", "sub"]
+    assert [p.name for p in (tmp_path / "sub").iterdir()] == ["b.png"]
+
+
+def test_signal_during_renames_waits_until_all_are_in_place(tmp_path):
+    """A SIGTERM that arrives while the group is renamed is delivered after the last rename: the files agree."""
+    got = []
+
+    def handler(signum, frame):
+        got.append([p.read_bytes() for p in (tmp_path / "x.bin", tmp_path / "x.gltf")])
+        raise Terminated()
+
+    previous = signal.signal(signal.SIGTERM, handler)
+    try:
+        with pytest.raises(Terminated):
+            with deferred_signals():
+                os.kill(os.getpid(), signal.SIGTERM)
+                (tmp_path / "x.bin").write_bytes(b"1")
+                (tmp_path / "x.gltf").write_bytes(b"2")
+        assert got == [[b"1", b"2"]]
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _glb_json(path: Path) -> dict:
+    data = path.read_bytes()
+    assert data[:4] == b"glTF"
+    length = struct.unpack_from("<I", data, 12)[0]
+    return json.loads(data[20:20 + length])
+
+
+@pytest.mark.parametrize("suffix", [".glb", ".gltf"])
+def test_output_equal_to_input(tmp_path, suffix):
+    shutil.copy(SPOT, tmp_path / "spot.obj")
+    asset = tmp_path / f"spot{suffix}"
+    assert main(["bake", str(tmp_path / "spot.obj"), "-o", str(asset), "--bakes", "edges", "-q"]) == 0
+    assert main(["bake", str(asset), "-o", str(asset), "--bakes", "toon", "-q"]) == 0
+    gltf = _glb_json(asset) if suffix == ".glb" else json.loads(asset.read_text())
+    assert {"BAKER_edges", "BAKER_toon_ramp"} <= set(gltf["extensionsUsed"])
+    if suffix == ".gltf":
+        assert (tmp_path / "spot.bin").stat().st_size == gltf["buffers"][0]["byteLength"]
+    assert main(["validate", str(asset), "--no-khronos", "-q"]) == 0
+    assert not [p.name for p in tmp_path.iterdir() if ".tmp" in p.name]
