@@ -23,15 +23,23 @@ def resolve_options(name: str, value):
 
 
 def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None,
-         allow_outside=None) -> Asset:
+         allow_outside=None, max_memory: int | None = None) -> Asset:
     """Load (or take) an asset and run ``bakes`` on it; each technique runs after those it ``requires``.
-    ``allow_outside``: folders (beside the asset's own) its buffer and image URIs may point into."""
+    ``allow_outside``: folders (beside the asset's own) its buffer and image URIs may point into. ``max_memory``:
+    bytes; a job whose estimated working memory (:mod:`baker.memory`) exceeds it is refused before it starts (None:
+    no limit; ``baker bake`` defaults to 75% of RAM)."""
+    from baker import memory
+
     order = registry.bake_order(bakes)
+    if not isinstance(path_or_asset, Asset):
+        memory.check_file(path_or_asset, max_memory)
     asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset, allow_outside=allow_outside)
     options = options or {}
+    resolved = {name: resolve_options(name, options.get(name)) for name in order}
+    memory.check_bake(asset, order, resolved, max_memory)
     techniques = registry.bakes()
     for name in order:
-        techniques[name].bake(asset, resolve_options(name, options.get(name)), seed=seed, progress=progress or QUIET)
+        techniques[name].bake(asset, resolved[name], seed=seed, progress=progress or QUIET)
     return asset
 
 

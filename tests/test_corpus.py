@@ -64,7 +64,9 @@ def test_case(corpus, name, command, tmp_path):
     case, source = made[name]
     folder = source.parent
     output = folder / f"out-{command}.glb"
-    output.write_bytes(EARLIER)
+    outputs = [output] + [folder / f"{output.name}{suffix}" for suffix in case.side_outputs]
+    for path in outputs:
+        path.write_bytes(EARLIER)
     before = sorted(p.name for p in folder.iterdir())
     log = tmp_path / "opened.txt"
     argv = [a.format(input=source, output=output, http=case) for a in case.commands[command]]
@@ -85,11 +87,13 @@ def test_case(corpus, name, command, tmp_path):
         for word in expect.words:
             assert word in result.stdout, shown
     if result.returncode != 0 or command != "bake":
-        assert output.read_bytes() == EARLIER, "a failed or read-only run changed an earlier output"
+        for path in outputs:
+            assert path.read_bytes() == EARLIER, f"a failed or read-only run changed an earlier output: {path.name}"
     after = sorted(p.name for p in folder.iterdir())
     assert after == before, f"files left behind: {sorted(set(after) - set(before))}"
     assert Counter.requests == requests, "baker made an HTTP request"
     outside = [line for line in log.read_text().splitlines() if Path(line).is_relative_to(root)
                and not Path(line).is_relative_to(folder) and not Path(line).is_relative_to(audit)]
     assert not outside, f"opened outside the asset's folder: {outside}"
-    output.unlink()
+    for path in outputs:
+        path.unlink()

@@ -16,6 +16,8 @@ def add_parser(sub) -> None:
     p.add_argument("--bakes", default="thickness", help=f"comma-separated bakes to run (known: {', '.join(bakes)})")
     p.add_argument("--seed", type=int, default=0, help="random seed; the same seed gives byte-identical output")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars or summary")
+    p.add_argument("--max-memory", metavar="SIZE", help="refuse a job whose estimated working memory is larger: bytes "
+                   "(512M, 2G), a share of RAM (50%%) or 'none' (default: 75%% of RAM)")
     p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
                    "(default: only inside the asset's folder); repeatable")
     for name, technique in bakes.items():
@@ -38,9 +40,12 @@ def run(args) -> int:
         options = {name: from_args(registry.bakes()[name].options, name, args) for name in names}
     except ValueError as exc:
         raise BakerError(None, str(exc)) from None
+    from baker.memory import parse_limit
+
+    max_memory = parse_limit(args.max_memory)
     progress = Progress(enabled=False if args.quiet else None)
     asset = bake(args.input, bakes=names, options=options, seed=args.seed, progress=progress,
-                 allow_outside=args.allow_outside)
+                 allow_outside=args.allow_outside, max_memory=max_memory)
     save(asset, args.output)
     if not args.quiet:
         print(f"baked {', '.join(names)} -> {args.output}", file=sys.stderr)

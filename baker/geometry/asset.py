@@ -5,6 +5,7 @@ usd-core, then converted to a glTF document, so every bake and writer deals with
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -199,6 +200,9 @@ def _read_only(array: np.ndarray) -> np.ndarray:
 def _load_trimesh(path: Path):
     import trimesh
 
+    from baker.geometry.mesh_files import check_mesh_file
+
+    check_mesh_file(path)  # header counts against the file size, before trimesh allocates anything
     try:
         # process=False keeps the file's vertices (no merging); OBJ vertices are split where UVs differ
         loaded = trimesh.load(str(path), process=False)
@@ -258,9 +262,16 @@ def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
 
     with tempfile.TemporaryDirectory() as d:
         glb = Path(d) / "converted.glb"
-        # trimesh writes vertex normals only when it has them; keep what the file had
-        glb.write_bytes(trimesh.exchange.gltf.export_glb(scene, include_normals=True))
-        doc = GltfDocument.load(glb)
+        # trimesh writes vertex normals only when it has them; keep what the file had. NaN or float32 overflow in
+        # the input would warn here: _check_finite refuses such a file first
+        _check_finite(path, meshes)
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            glb.write_bytes(trimesh.exchange.gltf.export_glb(scene, include_normals=True))
+        try:
+            doc = GltfDocument.load(glb)
+        except BakerError as exc:  # name the input, not the converted file
+            raise BakerError(path, exc.message) from None
     doc.path = path
     # trimesh leaves bufferView.target unset; say which views are vertex data and which are indices
     for mesh in doc.json.get("meshes", []):
@@ -271,6 +282,29 @@ def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
                 _set_view_target(doc, prim["indices"], 34963)
     doc.json["asset"]["generator"] = "baker (converted from " + path.suffix.lower().lstrip(".") + ")"
     return doc
+
+
+def _check_finite(path: Path, meshes: list) -> None:
+    """Refuse NaN, infinite (or beyond float32, which glTF stores) positions, normals or UVs read from a mesh file,
+    naming the OBJ line / PLY element / STL triangle where it can. Normals are checked only when the file had them
+    (trimesh keeps them in its cache; computing them here would cost time)."""
+    for m, g in enumerate(meshes):
+        named = {"POSITION": g.vertices, "TEXCOORD_0": getattr(g.visual, "uv", None)}
+        cache = getattr(getattr(g, "_cache", None), "cache", {})
+        named["NORMAL"] = cache.get("vertex_normals")
+        for name, values in named.items():
+            if values is None:
+                continue
+            values = np.asarray(values)
+            if values.dtype.kind != "f":
+                continue
+            with np.errstate(invalid="ignore"):
+                bad = not np.isfinite(values).all() or bool((np.abs(values) > 3.4028234663852886e38).any())
+            if bad:
+                from baker.geometry.mesh_files import non_finite_location
+
+                where = non_finite_location(path) or f"mesh {m} {name}: NaN, infinite or beyond float32"
+                raise BakerError(path, f"{where} (NaN and infinite coordinates, normals and UVs are refused)")
 
 
 def _set_view_target(doc: GltfDocument, accessor: int, target: int) -> None:

@@ -127,8 +127,11 @@ def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding
     pack.bilinear = True
     pack.bruteForce = False
     atlas.generate(chart, pack)
-    return [(np.asarray(v, np.int64), np.asarray(f, np.int64), np.asarray(u, np.float64)) for v, f, u in
-            (atlas[i] for i in range(len(meshes)))]
+    # xatlas gives NaN UVs to the vertices of zero-area triangles (a flat or degenerate mesh); such triangles cover
+    # no texel, so any UV serves: 0 keeps NaN out of TEXCOORD_0
+    return [(np.asarray(v, np.int64), np.asarray(f, np.int64), np.nan_to_num(np.asarray(u, np.float64), nan=0.0,
+                                                                              posinf=0.0, neginf=0.0))
+            for v, f, u in (atlas[i] for i in range(len(meshes)))]
 
 
 def dilate(image: np.ndarray, mask: np.ndarray) -> np.ndarray:

@@ -35,6 +35,9 @@ class Case:
     make: Callable[[Path, dict], Path]
     expect: dict = field(default_factory=lambda: {"bake": Expect(2), "inspect": Expect(2), "validate": Expect(1)})
     commands: dict = field(default_factory=lambda: {"bake": BAKE, "inspect": INSPECT, "validate": VALIDATE})
+    # more files a command writes beside {output}, as suffixes added to it (``glyphs -o NAME`` writes NAME.png and
+    # NAME.json): each is pre-created like {output} and must be unchanged after a failed run
+    side_outputs: tuple = ()
 
 
 def triangle_gltf(*, uri: str | None = None, positions=None, extra: dict | None = None) -> tuple[dict, bytes]:

@@ -2,6 +2,8 @@
 primitives have TEXCOORD_0, and build fin primitives from the edge adjacency (:mod:`baker.geometry.edges`)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from baker.geometry.asset import Asset
@@ -67,6 +69,8 @@ def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = Q
             e1, e2 = t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]
             uv_area += 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]).sum()
         tile_size = float(np.sqrt(area / max(uv_area, 1e-30)) / options.tiling)
+        if not (math.isfinite(tile_size) and tile_size > 0):  # zero-area surface or UVs: one tile per bbox diagonal
+            tile_size = (diag if diag > 0 else 1.0) / options.tiling
         fins = []
         if options.fins:
             by_mesh = {}

@@ -124,7 +124,11 @@ def open_font(path, font_number: int = 0, instance: str | None = None):
     location = None
     if instance:
         location = _instance_location(font, instance, path)
-    glyph_set = font.getGlyphSet(location=location) if location else font.getGlyphSet()
+    try:
+        glyph_set = font.getGlyphSet(location=location) if location else font.getGlyphSet()
+    except Exception as exc:  # noqa: BLE001 (a truncated glyf/CFF table fails here, as TTLibError, struct.error, ...)
+        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise BakerError(path, f"damaged or truncated font: {detail}") from None
     return font, glyph_set
 
 
@@ -223,21 +227,30 @@ def load_font(path, charset=None, *, font_number: int = 0, instance: str | None 
               kerning: bool = True) -> Font:
     """Read the glyphs of ``charset`` (a spec string or a list of code points) from a font file."""
     codepoints = parse_charset(charset) if charset is None or isinstance(charset, str) else list(charset)
+    if not codepoints:
+        raise BakerError(None, f"empty charset {charset!r}: no characters to bake")
     font, glyph_set = open_font(path, font_number, instance)
-    cmap = font.getBestCmap() or {}
-    glyph_ids = {name: i for i, name in enumerate(font.getGlyphOrder())}
-    glyphs, missing = [], []
-    for cp in codepoints:
-        name = cmap.get(cp)
-        if name is None or name not in glyph_set:
-            missing.append(cp)
-            continue
-        g = glyph_set[name]
-        glyphs.append(Glyph(cp, name, glyph_ids.get(name, 0), float(g.width), glyph_shape(glyph_set, name)))
-    family = font["name"].getDebugName(1) or Path(path).stem if "name" in font else Path(path).stem
-    result = Font(str(path), family, font_metrics(font), glyphs, missing=missing)
-    if kerning and glyphs:
-        result.kerning = kerning_pairs(font, [(g.codepoint, g.name) for g in glyphs])
+    try:
+        # fontTools reads tables lazily: a truncated or damaged glyf, cmap, name or kerning table fails only here
+        cmap = font.getBestCmap() or {}
+        glyph_ids = {name: i for i, name in enumerate(font.getGlyphOrder())}
+        glyphs, missing = [], []
+        for cp in codepoints:
+            name = cmap.get(cp)
+            if name is None or name not in glyph_set:
+                missing.append(cp)
+                continue
+            g = glyph_set[name]
+            glyphs.append(Glyph(cp, name, glyph_ids.get(name, 0), float(g.width), glyph_shape(glyph_set, name)))
+        family = font["name"].getDebugName(1) or Path(path).stem if "name" in font else Path(path).stem
+        result = Font(str(path), family, font_metrics(font), glyphs, missing=missing)
+        if kerning and glyphs:
+            result.kerning = kerning_pairs(font, [(g.codepoint, g.name) for g in glyphs])
+    except BakerError:
+        raise
+    except Exception as exc:  # noqa: BLE001 (fontTools raises struct.error, TTLibError, IndexError, KeyError, ...)
+        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise BakerError(path, f"damaged or truncated font: {detail}") from None
     return result
 
 
