@@ -269,7 +269,11 @@ def test_index_out_of_range(copy):
     (lambda j: j["meshes"][0]["primitives"][0].update(material=5), "UNRESOLVED_REFERENCE"),
     (lambda j: j["nodes"][0].update(mesh=3), "UNRESOLVED_REFERENCE"),
     (lambda j: j["accessors"][0].update(componentType=5130), "VALUE_NOT_IN_LIST"),
-    (lambda j: j["accessors"][0].update(type="VEC5"), "VALUE_NOT_IN_LIST"),
+    # an unknown type is a warning on the accessor (as in Khronos' validator), an error where a mesh reads it
+    (lambda j: j["accessors"][j["meshes"][0]["primitives"][0]["attributes"]["POSITION"]].update(type="VEC5"),
+     "MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT"),
+    (lambda j: j["accessors"][j["meshes"][0]["primitives"][0]["indices"]].update(type="VEC5"),
+     "MESH_PRIMITIVE_INDICES_ACCESSOR_INVALID_FORMAT"),
 ])
 def test_structure_rules(copy, edit, code):
     edit(copy.json)

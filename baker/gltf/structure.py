@@ -114,8 +114,6 @@ def parse_glb(path: Path, data: bytes) -> tuple[dict, bytes | None]:
         raise BakerError(path, f"unsupported GLB container version {version}")
     if length > len(data):
         raise BakerError(path, f"truncated GLB: header says {length} bytes, file has {len(data)}")
-    if length < len(data):
-        raise BakerError(path, f"GLB header says {length} bytes but the file has {len(data)}")
     offset = 12
     gltf = None
     bin_chunk = None
@@ -175,6 +173,9 @@ def read_container(path: Path, issues: Issues) -> tuple[dict | None, bytes | Non
         issues.error("UNSUPPORTED_VERSION", f"unsupported glTF version {version!r} (baker reads glTF 2.x)",
                      "/asset/version")
         return None, None, mime
+    if is_glb and struct.unpack_from("<I", data, 8)[0] < len(data):
+        issues.warning("GLB_EXTRA_DATA", f"{len(data) - struct.unpack_from('<I', data, 8)[0]} bytes after the "
+                       "length the GLB header gives are ignored")
     normalise_integers(gltf)
     return gltf, glb_bin, mime
 
@@ -334,8 +335,8 @@ def local_file(uri: str, base: Path, allow_outside=None) -> Path:
 class _Checker:
     """One walk over the JSON, reporting into ``issues``; the methods run in the order of :func:`check_structure`."""
 
-    def __init__(self, gltf: dict, path: Path, issues: Issues, allow_outside=None):
-        self.gltf, self.path, self.issues, self.allow_outside = gltf, path, issues, allow_outside
+    def __init__(self, gltf: dict, path: Path, issues: Issues, allow_outside=None, glb: bool = False):
+        self.gltf, self.path, self.issues, self.allow_outside, self.glb = gltf, path, issues, allow_outside, glb
 
     # ------------------------------------------------------------------ helpers
     def error(self, code, message, ptr):
@@ -472,7 +473,7 @@ class _Checker:
                 if i == 0 and glb_bin is not None:
                     available = len(glb_bin)
                 else:
-                    empty[i] = "has no uri" + (" and there is no GLB BIN chunk" if i == 0 else "")
+                    empty[i] = "has no uri" + (" and the GLB has no BIN chunk" if i == 0 and self.glb else "")
                     sizes.append(declared)
                     continue
             elif not isinstance(uri, str):
@@ -562,8 +563,9 @@ class _Checker:
                            f"{', '.join(map(str, COMPONENT_DTYPES))}", ptr + "/componentType")
                 ok = False
             if not isinstance(atype, str) or atype not in TYPE_SIZES:
-                self.error("VALUE_NOT_IN_LIST", f"type {atype!r} is not one of {', '.join(TYPE_SIZES)}",
-                           ptr + "/type")
+                # a warning, as in Khronos' validator (a later glTF may add types); an error where baker reads it
+                report = self.issues.warning if isinstance(atype, str) else self.issues.error
+                report("VALUE_NOT_IN_LIST", f"type {atype!r} is not one of {', '.join(TYPE_SIZES)}", ptr + "/type")
                 ok = False
             if not is_count(count, 1):
                 self.error("VALUE_NOT_IN_RANGE", f"count must be an integer >= 1, got {count!r}", ptr + "/count")
@@ -720,9 +722,8 @@ class _Checker:
                         self.attribute_format(name, a, accessors[a], aptr)
                 if "indices" in prim and self.ref(prim["indices"], accessors, ptr + "/indices", "accessor"):
                     acc = accessors[prim["indices"]]
-                    if acc.get("type") in TYPE_SIZES and acc.get("componentType") in COMPONENT_DTYPES and (
-                            acc.get("type") != "SCALAR" or acc.get("componentType") not in INDEX_COMPONENTS
-                            or acc.get("normalized")):
+                    if acc.get("type") != "SCALAR" or acc.get("componentType") not in INDEX_COMPONENTS \
+                            or isinstance(acc.get("componentType"), bool) or acc.get("normalized"):
                         self.error("MESH_PRIMITIVE_INDICES_ACCESSOR_INVALID_FORMAT",
                                    f"indices must be SCALAR 5121/5123/5125, not {acc.get('type')} "
                                    f"{acc.get('componentType')}" + (" normalized" * bool(acc.get("normalized"))),
@@ -753,7 +754,9 @@ class _Checker:
         types, components = ATTRIBUTE_FORMATS[semantic]
         atype, ctype = acc.get("type"), acc.get("componentType")
         if atype not in TYPE_SIZES or ctype not in COMPONENT_DTYPES:
-            return  # reported on the accessor
+            self.error("MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT", f"{name} names accessor {a}, whose type "
+                       f"{atype!r} / componentType {ctype!r} baker cannot read", ptr)
+            return
         if atype not in types or ctype not in components:
             self.error("MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT",
                        f"{name} must be {' or '.join(types)} with componentType "
@@ -815,8 +818,8 @@ class _Checker:
                 continue
             if self.obj(camera.get(kind), f"{ptr}/{kind}", kind):
                 for key, value in camera[kind].items():
-                    if key not in ("extensions", "extras") and (not isinstance(value, (int, float))
-                                                                 or isinstance(value, bool)):
+                    if key in ("yfov", "znear", "zfar", "aspectRatio", "xmag", "ymag") and (
+                            not isinstance(value, (int, float)) or isinstance(value, bool)):
                         self.error("TYPE_MISMATCH", f"{key} must be a number, not {json_type(value)}",
                                    f"{ptr}/{kind}/{key}")
 
@@ -888,7 +891,8 @@ class _Checker:
 def check_structure(gltf: dict, path: Path, glb_bin: bytes | None, issues: Issues, allow_outside=None) -> None:
     """Everything baker relies on before it reads a byte: JSON types, references, buffer sizes, byte ranges, the
     formats of the attributes it decodes, and external resources under the URI policy (:func:`local_file`)."""
-    c = _Checker(gltf, Path(path), issues, allow_outside)
+    glb = glb_bin is not None or Path(path).suffix.lower() == ".glb"
+    c = _Checker(gltf, Path(path), issues, allow_outside, glb=glb)
     c.root()
     sizes, empty = c.buffers(glb_bin)
     ranges = c.buffer_views(sizes)
@@ -912,7 +916,7 @@ def check_data(doc, issues: Issues) -> None:
     accessors = doc.json.get("accessors") or []
     finite_checked = set()
     for a, acc in enumerate(accessors):
-        if isinstance(acc.get("sparse"), dict):
+        if isinstance(acc.get("sparse"), dict) and acc.get("type") in TYPE_SIZES:
             try:
                 doc.accessor(a)
             except BakerError as exc:
