@@ -158,8 +158,8 @@ def check_extensions(gltf: dict, issues: Issues) -> dict:
         except Exception as exc:  # an unresolvable $ref is a bug in baker's schemas, not in the asset
             issues.warning("BAKER_SCHEMA_UNUSABLE", f"cannot apply {schema_path.name}: {exc}", ptr)
 
-    used = gltf.get("extensionsUsed") or []
-    required = gltf.get("extensionsRequired") or []
+    used = gltf.get("extensionsUsed") if isinstance(gltf.get("extensionsUsed"), list) else []  # else reported
+    required = gltf.get("extensionsRequired") if isinstance(gltf.get("extensionsRequired"), list) else []
     for name in found:
         if name not in used:
             issues.warning("BAKER_EXTENSION_NOT_DECLARED", f"'{name}' is used but missing from extensionsUsed",
@@ -386,7 +386,7 @@ def extension_references(gltf: dict, found: dict) -> set:
             for field_name in also[name]:
                 if isinstance(value.get(field_name), int) and not isinstance(value.get(field_name), bool):
                     pointers.add(f"/accessors/{value[field_name]}")
-    textures = gltf.get("textures") or []
+    textures = gltf.get("textures") if isinstance(gltf.get("textures"), list) else []  # a type error is reported
     for ptr in list(pointers):
         if ptr.startswith("/textures/"):
             i = int(ptr.rsplit("/", 1)[1])
@@ -445,11 +445,20 @@ def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
             except BakerError as exc:
                 issues.error("BAKER_LOAD_FAILED", exc.message)
             else:
+                before = len(issues.messages)
                 check_data(doc, issues)
-                for name, places in sorted(found.items()):
-                    check = semantic_checks().get(name)
-                    if check is not None:
-                        check(doc, places, issues)
+                if any(m["severity"] == ERROR for m in issues.messages[before:]):
+                    # extension checks index vertex data with the indices: not past indices out of range
+                    issues.info("BAKER_DATA_NOT_CHECKED", "extension semantics were not checked because of the data "
+                                "errors above")
+                else:
+                    # an extension that fails its schema is not handed to its semantic check (which trusts the shape)
+                    misshapen = {m["pointer"].split("/extensions/", 1)[1].split("/", 1)[0] for m in issues.messages
+                                 if m["code"] == "BAKER_SCHEMA" and "/extensions/" in (m.get("pointer") or "")}
+                    for name, places in sorted(found.items()):
+                        check = semantic_checks().get(name)
+                        if check is not None and name not in misshapen:
+                            check(doc, places, issues)
         else:
             issues.info("BAKER_DATA_NOT_CHECKED", "accessor data and extension semantics were not checked because "
                         "of the structural errors above")

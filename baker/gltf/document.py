@@ -106,9 +106,13 @@ class GltfDocument:
             target = local_file(uri, base, self.allow_outside)
         except ValueError as exc:
             raise BakerError(self.path, f"{ptr}: {exc}") from None
-        if not target.is_file():
-            raise BakerError(self.path, f"{ptr}: referenced file '{uri}' not found")
-        return target.read_bytes()
+        try:
+            if not target.is_file():
+                raise BakerError(self.path, f"{ptr}: referenced file '{uri}' not found")
+            return target.read_bytes()
+        except OSError as exc:
+            raise BakerError(self.path, f"{ptr}: referenced file '{uri}' cannot be read: {exc.strerror or exc}") \
+                from None
 
     def _merge_buffers(self, bin_chunk: bytes | None) -> None:
         buffers = self.json.get("buffers", [])

@@ -82,6 +82,18 @@ def attribute_semantic(name: str) -> str:
     return name
 
 
+def extension(obj, name: str):
+    """``obj["extensions"][name]`` when both are objects, else None."""
+    exts = obj.get("extensions") if isinstance(obj, dict) else None
+    value = exts.get(name) if isinstance(exts, dict) else None
+    return value if isinstance(value, dict) else None
+
+
+def one_of(value, allowed) -> bool:
+    """``value in allowed`` for JSON values (a list or an object is never in it; true/false are not 1/0)."""
+    return isinstance(value, (int, str)) and not isinstance(value, bool) and value in allowed
+
+
 def json_type(value) -> str:
     """The JSON name of a Python value's type, for messages."""
     if isinstance(value, bool):
@@ -435,7 +447,7 @@ class _Checker:
         """Every ``extensions`` property is an object of objects (code reads ``obj["extensions"].get(name)``)."""
         if isinstance(node, dict):
             exts = node.get("extensions")
-            if exts is not None:
+            if "extensions" in node:
                 ptr = pointer(*parts, "extensions")
                 if not isinstance(exts, dict):
                     self.error("TYPE_MISMATCH", f"extensions must be an object, not {json_type(exts)}", ptr)
@@ -503,10 +515,14 @@ class _Checker:
         except ValueError as exc:
             self.error("URI_REFUSED", str(exc), ptr)
             return None
-        if not target.is_file():
-            self.error("IO_ERROR", f"{what} file '{uri}' not found", ptr)
+        try:
+            if not target.is_file():
+                self.error("IO_ERROR", f"{what} file '{uri}' not found", ptr)
+                return None
+            return target.stat().st_size
+        except OSError as exc:
+            self.error("IO_ERROR", f"{what} file '{uri}' cannot be read: {exc.strerror or exc}", ptr)
             return None
-        return target.stat().st_size
 
     def buffer_views(self, sizes: list) -> list:
         """Checks every bufferView; returns per view (byteLength, byteStride or 0), None for a broken view."""
@@ -534,7 +550,7 @@ class _Checker:
                 self.error("BUFFER_VIEW_TOO_LONG", f"bytes {offset}..{offset + length} run past the end of buffer "
                            f"{b} ({sizes[b]} bytes)", ptr)
                 continue
-            meshopt = (view.get("extensions") or {}).get("EXT_meshopt_compression")
+            meshopt = extension(view, "EXT_meshopt_compression")
             if isinstance(meshopt, dict):
                 mp = ptr + "/extensions/EXT_meshopt_compression"
                 mb = meshopt.get("buffer")
@@ -558,11 +574,11 @@ class _Checker:
                 continue
             ctype, atype, count = acc.get("componentType"), acc.get("type"), acc.get("count")
             ok = True
-            if ctype not in COMPONENT_DTYPES or isinstance(ctype, bool):
+            if not one_of(ctype, COMPONENT_DTYPES):
                 self.error("VALUE_NOT_IN_LIST", f"componentType {ctype!r} is not one of "
                            f"{', '.join(map(str, COMPONENT_DTYPES))}", ptr + "/componentType")
                 ok = False
-            if not isinstance(atype, str) or atype not in TYPE_SIZES:
+            if not one_of(atype, TYPE_SIZES):
                 # a warning, as in Khronos' validator (a later glTF may add types); an error where baker reads it
                 report = self.issues.warning if isinstance(atype, str) else self.issues.error
                 report("VALUE_NOT_IN_LIST", f"type {atype!r} is not one of {', '.join(TYPE_SIZES)}", ptr + "/type")
@@ -658,7 +674,7 @@ class _Checker:
                 self.ref(tex["source"], "images", ptr + "/source")
             if "sampler" in tex:
                 self.ref(tex["sampler"], "samplers", ptr + "/sampler")
-            for name, ext in (tex.get("extensions") or {}).items() if isinstance(tex.get("extensions"), dict) else ():
+            for name, ext in (tex["extensions"].items() if isinstance(tex.get("extensions"), dict) else ()):
                 if isinstance(ext, dict) and "source" in ext:
                     self.ref(ext["source"], "images", f"{ptr}/extensions/{name}/source")
         for s, sampler in self.items("samplers"):
@@ -739,7 +755,9 @@ class _Checker:
                         tptr = f"{ptr}/targets/{t}"
                         if self.obj(target, tptr, "a morph target"):
                             for name, a in target.items():
-                                self.ref(a, accessors, f"{tptr}/{name}", "accessor")
+                                if self.ref(a, accessors, f"{tptr}/{name}", "accessor") and \
+                                        isinstance(accessors[a], dict):
+                                    self.attribute_format(name, a, accessors[a], f"{tptr}/{name}")
                 if len(set(map(str, counts.values()))) > 1:
                     self.error("MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT", "attributes have different counts: "
                                + ", ".join(f"{k} {v}" for k, v in counts.items()), ptr + "/attributes")
@@ -748,15 +766,15 @@ class _Checker:
                 self.error("TYPE_MISMATCH", "weights must be an array of numbers", mptr + "/weights")
 
     def attribute_format(self, name: str, a: int, acc: dict, ptr: str) -> None:
+        atype, ctype = acc.get("type"), acc.get("componentType")
+        if not one_of(atype, TYPE_SIZES) or not one_of(ctype, COMPONENT_DTYPES):
+            self.error("MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT", f"{name} names accessor {a}, whose type "
+                       f"{atype!r} / componentType {ctype!r} baker cannot read", ptr)
+            return
         semantic = attribute_semantic(name)
         if semantic not in ATTRIBUTE_FORMATS:
             return
         types, components = ATTRIBUTE_FORMATS[semantic]
-        atype, ctype = acc.get("type"), acc.get("componentType")
-        if atype not in TYPE_SIZES or ctype not in COMPONENT_DTYPES:
-            self.error("MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT", f"{name} names accessor {a}, whose type "
-                       f"{atype!r} / componentType {ctype!r} baker cannot read", ptr)
-            return
         if atype not in types or ctype not in components:
             self.error("MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT",
                        f"{name} must be {' or '.join(types)} with componentType "
@@ -869,19 +887,18 @@ class _Checker:
             use(image.get("bufferView"), pointer("images", i))
         for m, mesh in self.items("meshes"):
             for p, prim in enumerate(mesh.get("primitives") if isinstance(mesh.get("primitives"), list) else []):
-                draco = ((prim.get("extensions") or {}) if isinstance(prim, dict) else {}).get(
-                    "KHR_draco_mesh_compression")
+                draco = extension(prim, "KHR_draco_mesh_compression")
                 if isinstance(draco, dict):
                     use(draco.get("bufferView"), pointer("meshes", m, "primitives", p))
         needed = {}
         for v, view in enumerate(views):
             if not isinstance(view, dict):
                 continue
-            meshopt = (view.get("extensions") or {}).get("EXT_meshopt_compression")
+            meshopt = extension(view, "EXT_meshopt_compression")
             if isinstance(meshopt, dict):
-                if v in used and meshopt.get("buffer") in empty:
+                if v in used and one_of(meshopt.get("buffer"), empty):
                     needed.setdefault(meshopt["buffer"], used[v])
-            elif v in used and view.get("buffer") in empty:
+            elif v in used and one_of(view.get("buffer"), empty):
                 needed.setdefault(view["buffer"], used[v])
         for b in sorted(needed):
             self.error("BUFFER_DATA_MISSING", f"buffer {b} {empty[b]}, but {needed[b]} reads its data (baker does "
@@ -916,7 +933,7 @@ def check_data(doc, issues: Issues) -> None:
     accessors = doc.json.get("accessors") or []
     finite_checked = set()
     for a, acc in enumerate(accessors):
-        if isinstance(acc.get("sparse"), dict) and acc.get("type") in TYPE_SIZES:
+        if isinstance(acc.get("sparse"), dict) and one_of(acc.get("type"), TYPE_SIZES):
             try:
                 doc.accessor(a)
             except BakerError as exc:
