@@ -452,13 +452,21 @@ def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
                     issues.info("BAKER_DATA_NOT_CHECKED", "extension semantics were not checked because of the data "
                                 "errors above")
                 else:
-                    # an extension that fails its schema is not handed to its semantic check (which trusts the shape)
+                    # an extension that fails its schema may break its semantic check, which trusts the shape: the
+                    # file has failed already; an extension that passed its schema gets no such allowance
                     misshapen = {m["pointer"].split("/extensions/", 1)[1].split("/", 1)[0] for m in issues.messages
                                  if m["code"] == "BAKER_SCHEMA" and "/extensions/" in (m.get("pointer") or "")}
                     for name, places in sorted(found.items()):
                         check = semantic_checks().get(name)
-                        if check is not None and name not in misshapen:
+                        if check is None:
+                            continue
+                        try:
                             check(doc, places, issues)
+                        except (TypeError, AttributeError, KeyError, IndexError, ValueError):
+                            if name not in misshapen:
+                                raise
+                            issues.info("BAKER_DATA_NOT_CHECKED", f"the semantics of {name} were not checked past "
+                                        "its schema errors")
         else:
             issues.info("BAKER_DATA_NOT_CHECKED", "accessor data and extension semantics were not checked because "
                         "of the structural errors above")
