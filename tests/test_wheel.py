@@ -38,8 +38,10 @@ def venv(wheel, tmp_path_factory) -> Path:
     root = tmp_path_factory.mktemp("venv")
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(root)], check=True)
     python = root / "bin" / "python"
+    # no PYTHONPATH: a checkout on it (with its baker.egg-info) would look like baker is installed already
+    clean = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     result = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "--no-deps", "-q",
-                             str(wheel)], capture_output=True, text=True)
+                             "--force-reinstall", str(wheel)], capture_output=True, text=True, env=clean)
     assert result.returncode == 0, result.stderr
     purelib = Path(subprocess.check_output([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()"
                                                              "['purelib'])"], text=True).strip())
