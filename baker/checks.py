@@ -21,6 +21,14 @@ def pointer(*parts) -> str:
     return "".join("/" + str(p).replace("~", "~0").replace("/", "~1") for p in parts)
 
 
+def material_extensions(places: list, name: str):
+    """(material index, extension object, its JSON pointer) for each place of material extension ``name`` that sits on
+    a material and is an object; misplaced or malformed ones are the schema pass's to report."""
+    for parts, ext in places:
+        if len(parts) == 2 and parts[0] == "materials" and isinstance(ext, dict):
+            yield parts[1], ext, pointer("materials", parts[1], "extensions", name)
+
+
 @dataclass
 class Issues:
     messages: list = field(default_factory=list)

@@ -85,14 +85,10 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, valu
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_curvature: named attributes exist with the right types, agree with each other
     (H = (k1 + k2) / 2, k1 >= k2, unit directions) and with ``range``; the texture's UV set exists."""
-    from baker.checks import is_index, is_number, primitives_using, check_vertex_attribute, pointer
+    from baker.checks import check_vertex_attribute, is_index, is_number, material_extensions, pointer, primitives_using
 
     gltf = doc.json
-    for parts, ext in places:
-        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
-            continue
-        material = parts[1]
-        ext_ptr = pointer("materials", material, "extensions", NAME)
+    for material, ext, ext_ptr in material_extensions(places, NAME):
         users = list(primitives_using(gltf, material))
         if not users:
             issues.info("BAKER_CURVATURE_UNUSED", "no triangle primitive uses this material", ext_ptr)

@@ -66,7 +66,6 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: Primit
     """Append the fin primitive of ``primitive``: per edge a degenerate quad (v0, v1, v1, v0) whose vertices all
     carry the edge's four positions, their corner number (0-3) and the edge flags. Returns its index."""
     prims = doc.json["meshes"][mesh]["primitives"]
-    source = prims[primitive]
     n = len(pe.edges)
     corners = pe.fin_corners.astype(np.float32)  # (n, 4, 3)
     corner = np.tile(np.arange(4, dtype=np.float32), n)

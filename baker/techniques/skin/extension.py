@@ -85,15 +85,11 @@ def _decode_texture(doc: GltfDocument, texture: int) -> np.ndarray | None:
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_skin_lut: ranges ordered, textures resolve to RGB images whose rows do not decrease
     along N.L (u) / the shadow value, and the curvature attribute or texture it names exists."""
-    from baker.checks import is_index, primitives_using, check_vertex_attribute, pointer
+    from baker.checks import check_vertex_attribute, is_index, material_extensions, pointer, primitives_using
 
     gltf = doc.json
     textures = gltf.get("textures") or []
-    for parts, ext in places:
-        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
-            continue
-        material = parts[1]
-        ext_ptr = pointer("materials", material, "extensions", NAME)
+    for material, ext, ext_ptr in material_extensions(places, NAME):
         users = list(primitives_using(gltf, material))
         if not users:
             issues.info("BAKER_SKIN_LUT_UNUSED", "no triangle primitive uses this material", ext_ptr)

@@ -161,15 +161,11 @@ def write_tam_directory(tam: TonalArtMap, folder, ktx2: bool = False) -> dict:
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_tonal_art_map: tones increase, levels halve finest-first and the images exist with
     those sizes, and the primitives using the material have the texture coordinates it reads."""
-    from baker.checks import is_index, primitives_using, pointer
+    from baker.checks import is_index, material_extensions, pointer, primitives_using
 
     gltf = doc.json
     textures = gltf.get("textures") or []
-    for parts, ext in places:
-        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
-            continue
-        material = parts[1]
-        ptr = pointer("materials", material, "extensions", NAME)
+    for material, ext, ptr in material_extensions(places, NAME):
         tones = ext.get("tones")
         if isinstance(tones, list) and len(tones) > 1 and any(b <= a for a, b in zip(tones, tones[1:])
                                                               if isinstance(a, (int, float)) and

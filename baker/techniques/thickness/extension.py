@@ -86,14 +86,10 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, max_
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_thickness (``baker validate``): the attribute and texture it announces exist and
     hold sane thickness. ``places`` lists (JSON path parts, extension object) for every occurrence."""
-    from baker.checks import is_index, is_number, primitives_using, check_vertex_attribute, pointer
+    from baker.checks import check_vertex_attribute, is_index, is_number, material_extensions, pointer, primitives_using
 
     gltf = doc.json
-    for parts, ext in places:
-        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
-            continue  # misplaced or malformed: already reported by the schema pass
-        material = parts[1]
-        ext_ptr = pointer("materials", material, "extensions", NAME)
+    for material, ext, ext_ptr in material_extensions(places, NAME):
         users = list(primitives_using(gltf, material))
         if not users:
             issues.info("BAKER_THICKNESS_UNUSED", "no triangle primitive uses this material", ext_ptr)

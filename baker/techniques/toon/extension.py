@@ -69,14 +69,11 @@ def write_toon_directory(options: ToonOptions, folder) -> dict:
 # ---------------------------------------------------------------------------------------------------------- validate
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_toon_ramp: the ramp texture exists and has the shape its mode needs."""
-    from baker.checks import is_index, pointer
+    from baker.checks import is_index, material_extensions
     from baker.gltf.images import decoded_texture
 
     textures = doc.json.get("textures") or []
-    for parts, ext in places:
-        if len(parts) != 2 or parts[0] != "materials" or not isinstance(ext, dict):
-            continue
-        ptr = pointer("materials", parts[1], "extensions", NAME)
+    for material, ext, ptr in material_extensions(places, NAME):
         info = ext.get("rampTexture")
         if not isinstance(info, dict) or not is_index(info.get("index"), textures):
             continue  # the reference pass reports it (rampTexture is a textureInfo)
