@@ -24,14 +24,11 @@ def add_parser(sub) -> None:
     p.set_defaults(func=run_tam)
 
 
-
-
 def run_tam(args) -> int:
     from baker.techniques.tam.options import TamOptions
     from baker.techniques.tam.kernel import check_options, generate_tam
-    from baker.techniques.tam.extension import write_tam_directory
-
     from baker.gltf.atomic import output_folder
+    from baker.techniques.tam.extension import write_tam_directory
 
     folder = output_folder(args.output)
     try:
