@@ -8,6 +8,8 @@ import math
 
 import numpy as np
 
+from baker.gltf.vertex_attributes import TYPE as VERTEX_ATTRIBUTE_TYPE, unpadded
+
 ERROR, WARNING, INFO, HINT = 0, 1, 2, 3
 TRIANGLE_MODES = (4, 5, 6)
 
@@ -89,10 +91,13 @@ def is_number(value) -> bool:
 
 
 def check_vertex_attribute(doc, mesh: int, primitive: int, name: str, issues: Issues, *,
-                           code: str, types: tuple = ("SCALAR",), component_type: int = 5126) -> np.ndarray | None:
+                           code: str, width: int = 1, types: tuple = (VERTEX_ATTRIBUTE_TYPE,),
+                           component_type: int = 5126) -> np.ndarray | None:
     """Shared rules for a baked per-vertex attribute of ``doc`` (a :class:`~baker.gltf.document.GltfDocument`):
-    present, FLOAT of an allowed type, one value per vertex, finite. Returns the values (float64, non-finite ones
-    included and reported) when the accessor can be read, else None (errors reported).
+    present, FLOAT VEC3 (the layout of :mod:`baker.gltf.vertex_attributes`, the one Blender's importer reads next
+    to other custom attributes), one value per vertex, finite. Returns the ``width`` meaningful components
+    (float64, (N,) for width 1; non-finite values included and reported) when the accessor can be read, else None
+    (errors reported).
     """
     gltf = doc.json
     accessors = gltf.get("accessors") or []
@@ -110,14 +115,15 @@ def check_vertex_attribute(doc, mesh: int, primitive: int, name: str, issues: Is
     acc_ptr = pointer("accessors", a)
     if acc.get("componentType") != component_type or acc.get("type") not in types or acc.get("normalized"):
         issues.error(f"{code}_ACCESSOR_FORMAT", f"'{name}' must be componentType {component_type} "
-                     f"{' or '.join(types)}, not {acc.get('componentType')} {acc.get('type')}", acc_ptr)
+                     f"{' or '.join(types)}, not {acc.get('componentType')} {acc.get('type')} (custom attributes of "
+                     "one mesh must share a width to import in Blender)", acc_ptr)
         return None
     positions = attrs.get("POSITION")
     if is_index(positions, accessors) and acc.get("count") != accessors[positions].get("count"):
         issues.error(f"{code}_ACCESSOR_COUNT", f"'{name}' has {acc.get('count')} values but POSITION has "
                      f"{accessors[positions].get('count')} vertices", prim_ptr + "/" + name)
         return None
-    values = doc.accessor(a).astype(np.float64)
+    values = unpadded(doc.accessor(a).astype(np.float64), width)
     finite = np.isfinite(values)
     if not finite.all():
         issues.error(f"{code}_VALUE_NOT_FINITE", f"{int((~finite).sum())} of {values.size} values are NaN or "

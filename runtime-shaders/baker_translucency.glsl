@@ -19,7 +19,7 @@
 //     t_ss = exp(-thickness / attenuationDistance)
 //
 // Data written by baker (schemas/BAKER_thickness/README.md):
-//   vertex attribute  _THICKNESS                               float, mesh units (bind e.g. as `in float _THICKNESS;`)
+//   vertex attribute  _THICKNESS                               FLOAT VEC3, x in mesh units (bind as `in float _THICKNESS;`: GL reads x)
 //   texture           KHR_materials_volume.thicknessTexture    GREEN channel; thickness = texel.g * thicknessFactor
 //   uniform           KHR_materials_volume.thicknessFactor     float, mesh units
 //   material params   BAKER_thickness.{attenuationDistance, distortion, power, scale, ambient, subsurfaceColor}

@@ -81,6 +81,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from baker.checks import check_vertex_attribute, is_number, pointer, primitives_using
+from baker.gltf.vertex_attributes import padded
 
 NAME = "BAKER_height"
 ATTRIBUTE = "_HEIGHT"
@@ -96,7 +97,7 @@ class HeightExtension:
 
 
 def write_vertex_heights(doc, mesh: int, primitive: int, heights: np.ndarray) -> int:
-    accessor = doc.add_accessor(heights.astype(np.float32), min_max=True)
+    accessor = doc.add_accessor(padded(heights), min_max=True)
     doc.json["meshes"][mesh]["primitives"][primitive]["attributes"][ATTRIBUTE] = accessor
     return accessor
 

@@ -8,6 +8,7 @@ def describe(path, allow_outside=None) -> dict:
     import numpy as np
 
     from baker.geometry.asset import Asset
+    from baker.gltf.vertex_attributes import used_columns
 
     asset = Asset.load(path, allow_outside=allow_outside)
     doc = asset.doc
@@ -28,7 +29,7 @@ def describe(path, allow_outside=None) -> dict:
             }
             for key in sorted(attrs):
                 if key.startswith("_"):
-                    values = doc.accessor(attrs[key]).astype(np.float64)
+                    values = used_columns(doc.accessor(attrs[key]).astype(np.float64))
                     row["baked"][key] = {"min": float(values.min()), "mean": float(values.mean()),
                                          "max": float(values.max())} if values.size else {}
             meshes.append(row)

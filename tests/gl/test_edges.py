@@ -207,7 +207,8 @@ def _fin_setup(ctx, name, data, vp, eye, width, show):
     prog["u_viewport"].value = (SIZE, SIZE)
     prog["u_show"].value = show
     fin = data["fin"]
-    content = [(ctx.buffer(np.ascontiguousarray(fin[k]).tobytes()), "3f" if k.startswith("_FIN_V") else "1f", k)
+    # the buffers as written (FLOAT VEC3, scalars in x) bound as "3f" to `in float`: GL reads x
+    content = [(ctx.buffer(np.ascontiguousarray(fin[k]).tobytes()), "3f", k)
                for k in ("_FIN_V0", "_FIN_V1", "_FIN_V2", "_FIN_V3", "_FIN_CORNER", "_FIN_FLAGS")]
     return prog, content
 
@@ -236,7 +237,7 @@ def test_fin_vertex_shader_matches_twin(gl_context, cube):
     vp = view_projection(eye)
     gpu = _fin_feedback(gl_context, cube, vp, eye, 3.0, 15)
     fin = cube["fin"]
-    kind = twins.baker_fin_classify(fin["_FIN_V0"], fin["_FIN_V1"], fin["_FIN_V2"], fin["_FIN_V3"], fin["_FIN_FLAGS"],
+    kind = twins.baker_fin_classify(fin["_FIN_V0"], fin["_FIN_V1"], fin["_FIN_V2"], fin["_FIN_V3"], fin["_FIN_FLAGS"][:, 0],
                                     eye, math.cos(math.radians(60.0)))
     assert np.array_equal(gpu[:, 4].astype(int), kind)
     # a cube from a generic viewpoint: 6 of its 12 edges are contours, all 12 are ridges, none valleys
@@ -245,7 +246,7 @@ def test_fin_vertex_shader_matches_twin(gl_context, cube):
     assert np.count_nonzero(per_edge & twins.BAKER_FIN_RIDGE) == 12
     assert np.count_nonzero(per_edge & (twins.BAKER_FIN_VALLEY | twins.BAKER_FIN_BOUNDARY)) == 0
     h = lambda p: np.concatenate([p, np.ones((len(p), 1), np.float32)], axis=1) @ vp.T.astype(np.float32)  # noqa: E731
-    clip = twins.baker_fin_position(h(fin["_FIN_V0"]), h(fin["_FIN_V1"]), fin["_FIN_CORNER"], 3.0, (SIZE, SIZE))
+    clip = twins.baker_fin_position(h(fin["_FIN_V0"]), h(fin["_FIN_V1"]), fin["_FIN_CORNER"][:, 0], 3.0, (SIZE, SIZE))
     drawn = kind != 0
     np.testing.assert_allclose(gpu[drawn, :4], clip[drawn], rtol=1e-4, atol=1e-4)
     assert np.all(gpu[~drawn, :4] == twins.baker_fin_culled())

@@ -141,7 +141,9 @@ def baked(tmp_path_factory):
     return {
         "positions": doc.accessor(prim["attributes"]["POSITION"]).astype(np.float32),
         "normals": doc.accessor(prim["attributes"]["NORMAL"]).astype(np.float32),
-        "curvature": doc.accessor(prim["attributes"][params["curvatureAttribute"]]).astype(np.float32),
+        "curvature": doc.accessor(prim["attributes"][params["curvatureAttribute"]]).astype(np.float32)[:, 0],
+        # as written: FLOAT VEC3 with H in x, bound as "3f" to `in float _CURVATURE` (GL reads x)
+        "curvature_vec3": doc.accessor(prim["attributes"][params["curvatureAttribute"]]).astype(np.float32),
         "indices": doc.accessor(prim["indices"]).astype(np.uint32),
         "params": params,
         "lut": image("lutTexture"),
@@ -186,8 +188,8 @@ def renders(gl_context, baked):
     ctx = gl_context
     matrix = (perspective(40.0, 1.0, 0.01, 1.0) @ look_at(EYE, np.zeros(3), np.array([0.0, 1.0, 0.0])))
     matrix = matrix.T.astype(np.float32).tobytes()
-    buffers = [ctx.buffer(np.ascontiguousarray(baked[k]).tobytes()) for k in ("positions", "normals", "curvature")]
-    layout = list(zip(buffers, ("3f", "3f", "f"), ("POSITION", "NORMAL", "_CURVATURE")))
+    buffers = [ctx.buffer(np.ascontiguousarray(baked[k]).tobytes()) for k in ("positions", "normals", "curvature_vec3")]
+    layout = list(zip(buffers, ("3f", "3f", "3f"), ("POSITION", "NORMAL", "_CURVATURE")))
     index_buffer = ctx.buffer(baked["indices"].tobytes())
     size = (SIZE, SIZE)
     depth = ctx.depth_renderbuffer(size)

@@ -1,8 +1,9 @@
 """``BAKER_curvature``: per-vertex curvature attributes (and an optional texture) -> glTF, and their checks.
 
 Where the data goes (see ``schemas/BAKER_curvature/README.md``):
-- primitive attributes ``_CURVATURE`` (FLOAT SCALAR, mean curvature H), ``_PRINCIPAL_CURVATURES`` (FLOAT VEC2,
-  k1 >= k2) and ``_PRINCIPAL_DIRECTION`` (FLOAT VEC3, unit tangent of k1), all in 1 / mesh units, convex positive;
+- primitive attributes, all FLOAT VEC3 (the custom attribute layout of :mod:`baker.gltf.vertex_attributes`, which
+  Blender imports): ``_CURVATURE`` (mean curvature H in x), ``_PRINCIPAL_CURVATURES`` (k1 >= k2 in x, y) and
+  ``_PRINCIPAL_DIRECTION`` (unit tangent of k1), curvatures in 1 / mesh units, convex positive;
 - optionally ``BAKER_curvature.curvatureTexture``: H per texel, remapped from ``textureRange`` to [0, 1];
 - ``BAKER_curvature`` on the material: how it was baked and which attributes hold what.
 USD gets ``primvars:baker:curvature``, ``primvars:baker:principal_curvatures``, ``primvars:baker:principal_direction``
@@ -16,6 +17,7 @@ import numpy as np
 
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import encode_image
+from baker.gltf.vertex_attributes import padded
 
 NAME = "BAKER_curvature"
 ATTRIBUTE = "_CURVATURE"
@@ -27,11 +29,11 @@ def write_vertex_curvature(doc: GltfDocument, mesh: int, primitive: int, mean: n
                            principal: np.ndarray | None = None, direction: np.ndarray | None = None) -> dict:
     """Add the curvature attributes to one primitive; returns {attribute name: accessor index}."""
     attrs = doc.json["meshes"][mesh]["primitives"][primitive]["attributes"]
-    written = {ATTRIBUTE: doc.add_accessor(mean.astype(np.float32), min_max=True)}
+    written = {ATTRIBUTE: doc.add_accessor(padded(mean), min_max=True)}
     if principal is not None:
-        written[PRINCIPAL] = doc.add_accessor(principal.astype(np.float32), min_max=True)
+        written[PRINCIPAL] = doc.add_accessor(padded(principal), min_max=True)
     if direction is not None:
-        written[DIRECTION] = doc.add_accessor(direction.astype(np.float32))
+        written[DIRECTION] = doc.add_accessor(padded(direction))
     attrs.update(written)
     return written
 
@@ -112,7 +114,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                                        pointer("accessors", prim["attributes"][name]))
             name = ext.get("principalCurvaturesAttribute")
             if isinstance(name, str):
-                principal = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_CURVATURE", types=("VEC2",))
+                principal = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_CURVATURE", width=2)
                 if principal is not None:
                     acc_ptr = pointer("accessors", prim["attributes"][name])
                     k1, k2 = principal[:, 0], principal[:, 1]
@@ -127,7 +129,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                                          "(k1 + k2) / 2", acc_ptr)
             name = ext.get("principalDirectionAttribute")
             if isinstance(name, str):
-                direction = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_CURVATURE", types=("VEC3",))
+                direction = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_CURVATURE", width=3)
                 if direction is not None:
                     length = np.linalg.norm(direction, axis=1)
                     bad = ~((np.abs(length - 1.0) < 1e-3) | (length < 1e-6))

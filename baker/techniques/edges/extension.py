@@ -7,7 +7,9 @@ Where the data goes (see ``schemas/BAKER_edges/README.md``):
   wireframe mask, the settings, per-class counts, and the index of the optional fin primitive;
 - the vertex attribute ``_OUTLINE_NORMAL`` (FLOAT VEC3, unit): one averaged normal per welded position;
 - optionally a fin primitive in the same mesh (4 vertices, 2 degenerate triangles per edge) whose ``BAKER_edges``
-  names its source primitive; a viewer that ignores the extensions rasterizes nothing from it.
+  names its source primitive; a viewer that ignores the extensions rasterizes nothing from it. Its attributes
+  ``_FIN_V0.._FIN_V3``, ``_FIN_CORNER`` and ``_FIN_FLAGS`` are all FLOAT VEC3 (scalars in x), the custom attribute
+  layout of :mod:`baker.gltf.vertex_attributes` that Blender imports.
 """
 from __future__ import annotations
 
@@ -21,6 +23,7 @@ import numpy as np
 from baker.geometry import edge_codes
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
 from baker.gltf.derived import match_morph_targets
+from baker.gltf.vertex_attributes import padded, unpadded
 
 if TYPE_CHECKING:  # the writers take the kernel's results; validation must not import the numba kernels
     from baker.geometry.edges import PrimitiveEdges
@@ -76,8 +79,8 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: Primit
     attributes = {"POSITION": doc.add_accessor(position, min_max=True)}
     for j, name in enumerate(FIN_ATTRIBUTES[:4]):
         attributes[name] = doc.add_accessor(np.repeat(corners[:, j], 4, axis=0))
-    attributes["_FIN_CORNER"] = doc.add_accessor(corner)
-    attributes["_FIN_FLAGS"] = doc.add_accessor(np.repeat(pe.flags.astype(np.float32), 4))
+    attributes["_FIN_CORNER"] = doc.add_accessor(padded(corner))
+    attributes["_FIN_FLAGS"] = doc.add_accessor(padded(np.repeat(pe.flags.astype(np.float32), 4)))
     fin = {
         "attributes": attributes,
         "indices": doc.add_accessor(indices.astype(np.uint16 if 4 * n <= 0xFFFF else np.uint32),
@@ -353,8 +356,8 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                 issues.error("BAKER_EDGES_FIN_SOURCE", f"finsOf {source!r} is not a primitive of this mesh",
                              ptr + "/finsOf")
             for name in FIN_ATTRIBUTES:
-                types = ("VEC3",) if name.startswith("_FIN_V") else ("SCALAR",)
-                check_vertex_attribute(doc, m, p, name, issues, code="BAKER_EDGES_FIN", types=types)
+                check_vertex_attribute(doc, m, p, name, issues, code="BAKER_EDGES_FIN",
+                                       width=3 if name.startswith("_FIN_V") else 1)
             if vertex_count % 4:
                 issues.error("BAKER_EDGES_FIN_COUNT", f"a fin primitive has 4 vertices per edge, not {vertex_count}",
                              pointer("meshes", m, "primitives", p))
@@ -410,7 +413,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                          pointer("accessors", ext["wireframeMask"]))
         name = ext.get("outlineNormal")
         if isinstance(name, str):
-            values = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_EDGES_OUTLINE", types=("VEC3",))
+            values = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_EDGES_OUTLINE", width=3)
             if values is not None and len(values):
                 length = np.linalg.norm(values, axis=1)
                 if np.abs(length - 1.0).max() > 1e-3:
@@ -482,7 +485,8 @@ def read(doc: GltfDocument, mesh: int, primitive: int) -> EdgesPrimitive | None:
     if "finsOf" in ext:
         return EdgesPrimitive(
             fins_of=int(ext["finsOf"]),
-            fin_attributes={k: doc.accessor(a) for k, a in prim["attributes"].items() if k.startswith("_FIN_")},
+            fin_attributes={k: unpadded(doc.accessor(a), 3 if k.startswith("_FIN_V") else 1)
+                            for k, a in prim["attributes"].items() if k.startswith("_FIN_")},
             fin_indices=doc.accessor(prim["indices"]).reshape(-1, 3))
     return EdgesPrimitive(
         crease_angle=float(ext["creaseAngle"]) if "creaseAngle" in ext else None,

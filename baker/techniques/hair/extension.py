@@ -4,8 +4,8 @@ Where the data goes (see ``schemas/BAKER_hair/README.md``):
 - one ``LINES`` primitive per strand set (guides, children), vertices strand by strand from root to tip, strands
   ordered nearest-the-emitter first (RTR4 14.7.1: a pre-sorted buffer limits alpha-blending errors); plain viewers
   draw the lines;
-- vertex attributes ``_STRAND_TANGENT`` (FLOAT VEC3, unit) and ``_STRAND_PARAM`` (FLOAT SCALAR, 0 at the root,
-  1 at the tip);
+- vertex attributes ``_STRAND_TANGENT`` (FLOAT VEC3, unit) and ``_STRAND_PARAM`` (FLOAT VEC3, x: 0 at the root,
+  1 at the tip; y = z = 0: the custom attribute layout of :mod:`baker.gltf.vertex_attributes` that Blender imports);
 - ``BAKER_hair`` on the primitive: counts, widths, the per-strand width scale, the ribbon index buffer (6 indices
   per segment over ``2 x vertex count`` ribbon vertices), and for children the guide ids + weights.
 """
@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
+from baker.gltf.vertex_attributes import padded, unpadded
 
 if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
     from baker.techniques.hair.kernel import HairResult, StrandSet
@@ -59,7 +60,7 @@ def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set:
         "attributes": {
             "POSITION": doc.add_accessor(positions, min_max=True),
             TANGENT: doc.add_accessor(tangents),
-            PARAM: doc.add_accessor(param),
+            PARAM: doc.add_accessor(padded(param)),
         },
         "indices": doc.add_accessor(lines, target=TARGET_ELEMENT_ARRAY_BUFFER),
         "mode": MODE_LINES,
@@ -114,7 +115,7 @@ def read_strands(doc: GltfDocument, mesh: int, primitive: int) -> dict:
     out = {
         "positions": doc.accessor(prim["attributes"]["POSITION"]).reshape(s, v, 3),
         "tangents": doc.accessor(prim["attributes"][ext.get("tangentAttribute", TANGENT)]).reshape(s, v, 3),
-        "param": doc.accessor(prim["attributes"][ext.get("paramAttribute", PARAM)]).reshape(s, v),
+        "param": unpadded(doc.accessor(prim["attributes"][ext.get("paramAttribute", PARAM)]), 1).reshape(s, v),
         "width_scale": doc.accessor(ext["widthScale"]),
         "ribbon": doc.accessor(ext["ribbonIndices"]),
         "ext": ext,
@@ -157,7 +158,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                 issues.error("BAKER_HAIR_LINE_COUNT", f"{len(lines)} line indices, expected 2 x strandCount x "
                              f"(verticesPerStrand - 1) = {2 * s * (v - 1)}", pointer("accessors", prim["indices"]))
         tangent = check_vertex_attribute(doc, m, p, ext.get("tangentAttribute", TANGENT), issues,
-                                         code="BAKER_HAIR_TANGENT", types=("VEC3",))
+                                         code="BAKER_HAIR_TANGENT", width=3)
         if tangent is not None and len(tangent):
             bad = np.abs(np.linalg.norm(tangent, axis=1) - 1.0) > 1e-3
             if bad.any():
@@ -244,7 +245,7 @@ def read(doc: GltfDocument, mesh: int, primitive: int) -> HairStrands | None:
     return HairStrands(
         strand_count=int(ext["strandCount"]), vertices_per_strand=int(ext["verticesPerStrand"]),
         positions=doc.accessor(attrs["POSITION"]), tangents=doc.accessor(attrs[ext.get("tangentAttribute", TANGENT)]),
-        param=doc.accessor(attrs[ext.get("paramAttribute", PARAM)]).reshape(-1),
+        param=unpadded(doc.accessor(attrs[ext.get("paramAttribute", PARAM)]), 1).reshape(-1),
         ribbon_indices=doc.accessor(ext["ribbonIndices"]).reshape(-1),
         root_width=float(ext["rootWidth"]), tip_width=float(ext["tipWidth"]),
         width_scale=doc.accessor(ext["widthScale"]).reshape(-1) if "widthScale" in ext else None,

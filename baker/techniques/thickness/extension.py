@@ -1,7 +1,8 @@
 """``BAKER_thickness`` and the Khronos fields it rides on: result arrays -> glTF JSON/accessors/images, and USD.
 
 Where the data goes (see ``schemas/BAKER_thickness/README.md``):
-- per vertex: the primitive attribute ``_THICKNESS`` (FLOAT SCALAR, mean chord in mesh units);
+- per vertex: the primitive attribute ``_THICKNESS`` (FLOAT VEC3: mean chord in mesh units in x, y = z = 0, the custom
+  attribute layout of :mod:`baker.gltf.vertex_attributes` that Blender imports);
 - per texel: ``KHR_materials_volume.thicknessTexture`` (green channel, 1.0 = ``thicknessFactor`` mesh units);
 - ``BAKER_thickness`` on the material: how it was baked and the translucency parameters of RTR4 eq. 14.30.
 
@@ -18,6 +19,7 @@ import numpy as np
 
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import encode_image
+from baker.gltf.vertex_attributes import padded
 
 NAME = "BAKER_thickness"
 ATTRIBUTE = "_THICKNESS"
@@ -26,7 +28,7 @@ KHR_VOLUME = "KHR_materials_volume"
 
 def write_vertex_thickness(doc: GltfDocument, mesh: int, primitive: int, thickness: np.ndarray) -> int:
     """Add ``_THICKNESS`` to a primitive; returns the accessor index."""
-    acc = doc.add_accessor(thickness.astype(np.float32), min_max=True)
+    acc = doc.add_accessor(padded(thickness), min_max=True)
     doc.json["meshes"][mesh]["primitives"][primitive]["attributes"][ATTRIBUTE] = acc
     return acc
 
