@@ -1,0 +1,229 @@
+"""Shader node groups that reproduce baker's runtime shaders in EEVEE/Cycles nodes, and their wiring into an
+imported material: each group's shader goes through a Mix Shader (factor 0) after whatever fed the Material Output,
+so the untouched material renders exactly as before; raise the factor to see the baked technique.
+
+- ``BAKER Translucency`` (runtime-shaders/baker_translucency.glsl, RTR4 eq. 14.30 + Barre-Brisebois & Bouchard 2011):
+  transmittance t = exp(-thickness / attenuationDistance) from ``_THICKNESS`` (x), a Translucent BSDF of colour
+  c_ss * t * scale (Blender's lights supply the (v . -l) lobe) plus c_ss * t * ambient as emission.
+- ``BAKER Skin LUT`` (baker_skin.glsl, Penner & Borshukov 2011): the LUT texel at u = N.L remapped from ndotlRange,
+  v = curvature * curvatureScale remapped from curvatureRange, as emission; N.L against the group's Light Direction.
+- ``BAKER Toon Ramp`` (baker_toon.glsl): the ramp texel at u = N.L * 0.5 + 0.5, as emission.
+- ``BAKER Hatching`` (baker_hatching.glsl, Praun et al. 2001): the finest level's tone textures blended by the
+  tone (1 - N.L) between the two nearest tones, as emission.
+"""
+from __future__ import annotations
+
+import bpy
+
+MIX_PREFIX = "BAKER mix "
+
+
+def new_group(name: str, inputs: list, outputs: list):
+    group = bpy.data.node_groups.get(name)
+    if group is not None:
+        return group, None
+    group = bpy.data.node_groups.new(name, "ShaderNodeTree")
+    for socket_name, kind, default in inputs:
+        socket = group.interface.new_socket(socket_name, in_out="INPUT", socket_type=kind)
+        if default is not None:
+            socket.default_value = default
+    for socket_name, kind in outputs:
+        group.interface.new_socket(socket_name, in_out="OUTPUT", socket_type=kind)
+    return group, (group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput"))
+
+
+def math_node(tree, operation: str, a, b=None):
+    node = tree.nodes.new("ShaderNodeMath")
+    node.operation = operation
+    for i, value in enumerate((a, b)):
+        if value is None:
+            continue
+        if isinstance(value, (int, float)):
+            node.inputs[i].default_value = value
+        else:
+            tree.links.new(value, node.inputs[i])
+    return node.outputs[0]
+
+
+def vector_scale(tree, color, factor):
+    node = tree.nodes.new("ShaderNodeVectorMath")
+    node.operation = "SCALE"
+    tree.links.new(color, node.inputs[0])
+    if isinstance(factor, (int, float)):
+        node.inputs["Scale"].default_value = factor
+    else:
+        tree.links.new(factor, node.inputs["Scale"])
+    return node.outputs[0]
+
+
+def translucency_group():
+    group, io = new_group("BAKER Translucency", [
+        ("Thickness", "NodeSocketFloat", 0.0), ("Subsurface Color", "NodeSocketColor", (1.0, 0.4, 0.3, 1.0)),
+        ("Attenuation Distance", "NodeSocketFloat", 1.0), ("Scale", "NodeSocketFloat", 1.0),
+        ("Ambient", "NodeSocketFloat", 0.0)], [("Shader", "NodeSocketShader"), ("Transmittance", "NodeSocketFloat")])
+    if io is None:
+        return group
+    tree, (gin, gout) = group, io
+    ratio = math_node(tree, "DIVIDE", gin.outputs["Thickness"], math_node(tree, "MAXIMUM", gin.outputs["Attenuation Distance"], 1e-9))
+    transmittance = math_node(tree, "EXPONENT", math_node(tree, "MULTIPLY", ratio, -1.0))
+    tinted = vector_scale(tree, gin.outputs["Subsurface Color"], transmittance)
+    translucent = tree.nodes.new("ShaderNodeBsdfTranslucent")
+    tree.links.new(vector_scale(tree, tinted, gin.outputs["Scale"]), translucent.inputs["Color"])
+    emission = tree.nodes.new("ShaderNodeEmission")
+    tree.links.new(vector_scale(tree, tinted, gin.outputs["Ambient"]), emission.inputs["Color"])
+    add = tree.nodes.new("ShaderNodeAddShader")
+    tree.links.new(translucent.outputs[0], add.inputs[0])
+    tree.links.new(emission.outputs[0], add.inputs[1])
+    tree.links.new(add.outputs[0], gout.inputs["Shader"])
+    tree.links.new(transmittance, gout.inputs["Transmittance"])
+    return group
+
+
+def lookup_uv_group(name: str):
+    """(N.L, value) -> (u, v): u = (N.L - lo_u) / (hi_u - lo_u), v = (value - lo_v) / (hi_v - lo_v), clamped."""
+    group, io = new_group(name, [
+        ("Light Direction", "NodeSocketVector", (0.0, 0.0, 1.0)), ("Value", "NodeSocketFloat", 0.0),
+        ("U Min", "NodeSocketFloat", -1.0), ("U Max", "NodeSocketFloat", 1.0),
+        ("V Min", "NodeSocketFloat", 0.0), ("V Max", "NodeSocketFloat", 1.0)],
+        [("Vector", "NodeSocketVector"), ("NdotL", "NodeSocketFloat")])
+    if io is None:
+        return group
+    tree, (gin, gout) = group, io
+    geometry = tree.nodes.new("ShaderNodeNewGeometry")
+    normalize = tree.nodes.new("ShaderNodeVectorMath")
+    normalize.operation = "NORMALIZE"
+    tree.links.new(gin.outputs["Light Direction"], normalize.inputs[0])
+    dot = tree.nodes.new("ShaderNodeVectorMath")
+    dot.operation = "DOT_PRODUCT"
+    tree.links.new(geometry.outputs["Normal"], dot.inputs[0])
+    tree.links.new(normalize.outputs[0], dot.inputs[1])
+    ndotl = dot.outputs["Value"]
+    coords = []
+    for value, lo, hi in ((ndotl, "U Min", "U Max"), (gin.outputs["Value"], "V Min", "V Max")):
+        span = math_node(tree, "MAXIMUM", math_node(tree, "SUBTRACT", gin.outputs[hi], gin.outputs[lo]), 1e-9)
+        t = math_node(tree, "DIVIDE", math_node(tree, "SUBTRACT", value, gin.outputs[lo]), span)
+        node = tree.nodes.new("ShaderNodeClamp")
+        tree.links.new(t, node.inputs["Value"])
+        coords.append(node.outputs[0])
+    combine = tree.nodes.new("ShaderNodeCombineXYZ")
+    tree.links.new(coords[0], combine.inputs[0])
+    tree.links.new(coords[1], combine.inputs[1])
+    tree.links.new(combine.outputs[0], gout.inputs["Vector"])
+    tree.links.new(ndotl, gout.inputs["NdotL"])
+    return group
+
+
+def output_and_surface(mat):
+    tree = mat.node_tree
+    output = next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output), None) or \
+        next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"), None)
+    if output is None:
+        output = tree.nodes.new("ShaderNodeOutputMaterial")
+    links = output.inputs["Surface"].links
+    return output, (links[0].from_socket if links else None)
+
+
+def mix_in(mat, label: str, shader_socket, location) -> object:
+    """Put ``shader_socket`` after the current surface through a Mix Shader with factor 0 (look unchanged)."""
+    tree = mat.node_tree
+    output, surface = output_and_surface(mat)
+    mix = tree.nodes.new("ShaderNodeMixShader")
+    mix.name = mix.label = MIX_PREFIX + label
+    mix.inputs["Fac"].default_value = 0.0
+    mix.location = location
+    if surface is not None:
+        tree.links.new(surface, mix.inputs[1])
+    tree.links.new(shader_socket, mix.inputs[2])
+    tree.links.new(mix.outputs[0], output.inputs["Surface"])
+    output.location = (location[0] + 250, location[1])
+    return mix
+
+
+def attribute_x(tree, name: str, location):
+    attribute = tree.nodes.new("ShaderNodeAttribute")
+    attribute.attribute_type = "GEOMETRY"
+    attribute.attribute_name = name
+    attribute.location = location
+    separate = tree.nodes.new("ShaderNodeSeparateXYZ")
+    separate.location = (location[0] + 180, location[1])
+    tree.links.new(attribute.outputs["Vector"], separate.inputs[0])
+    return separate.outputs["X"]
+
+
+def image_node(tree, textures: dict, info, location):
+    if not isinstance(info, dict) or str(info.get("index")) not in textures:
+        return None
+    node = tree.nodes.new("ShaderNodeTexImage")
+    node.image = bpy.data.images.get(textures[str(info["index"])]["blender_image"])
+    node.extension = "EXTEND"
+    node.location = location
+    return node
+
+
+def add_material_groups(mat, exts: dict, textures: dict) -> None:
+    if not mat.use_nodes:
+        mat.use_nodes = True
+    tree = mat.node_tree
+    x, y = 600, -400
+    thickness = exts.get("BAKER_thickness")
+    if isinstance(thickness, dict):
+        node = tree.nodes.new("ShaderNodeGroup")
+        node.node_tree = translucency_group()
+        node.name = node.label = "BAKER Translucency"
+        node.location = (x, y)
+        if thickness.get("attribute"):
+            tree.links.new(attribute_x(tree, thickness["attribute"], (x - 400, y)), node.inputs["Thickness"])
+        color = list(thickness.get("subsurfaceColor", (1.0, 1.0, 1.0)))[:3]
+        node.inputs["Subsurface Color"].default_value = (*color, 1.0)
+        for key, socket in (("attenuationDistance", "Attenuation Distance"), ("scale", "Scale"), ("ambient", "Ambient")):
+            if key in thickness:
+                node.inputs[socket].default_value = float(thickness[key])
+        mix_in(mat, "translucency", node.outputs["Shader"], (x + 250, y))
+        y -= 400
+    for name, label, texture_key, value_source in (
+            ("BAKER_skin_lut", "Skin LUT", "lutTexture", "curvature"),
+            ("BAKER_toon_ramp", "Toon Ramp", "rampTexture", None)):
+        ext = exts.get(name)
+        if not isinstance(ext, dict):
+            continue
+        uv = tree.nodes.new("ShaderNodeGroup")
+        uv.node_tree = lookup_uv_group("BAKER LUT Coordinates")
+        uv.name = uv.label = f"BAKER {label}"
+        uv.location = (x - 200, y)
+        if value_source == "curvature":
+            lo, hi = ext.get("ndotlRange", (-1.0, 1.0))
+            uv.inputs["U Min"].default_value, uv.inputs["U Max"].default_value = float(lo), float(hi)
+            lo, hi = ext.get("curvatureRange", (0.0, 1.0))
+            uv.inputs["V Min"].default_value, uv.inputs["V Max"].default_value = float(lo), float(hi)
+            scaled = math_node(tree, "MULTIPLY", attribute_x(tree, ext.get("curvatureAttribute", "_CURVATURE"),
+                                                             (x - 700, y)), float(ext.get("curvatureScale", 1.0)))
+            tree.links.new(scaled, uv.inputs["Value"])
+        image = image_node(tree, textures, ext.get(texture_key), (x, y))
+        emission = tree.nodes.new("ShaderNodeEmission")
+        emission.location = (x + 300, y)
+        if image is not None:
+            tree.links.new(uv.outputs["Vector"], image.inputs["Vector"])
+            tree.links.new(image.outputs["Color"], emission.inputs["Color"])
+        mix_in(mat, label.lower(), emission.outputs[0], (x + 500, y))
+        y -= 400
+    tam = exts.get("BAKER_tonal_art_map")
+    if isinstance(tam, dict) and tam.get("levels"):
+        uv = tree.nodes.new("ShaderNodeGroup")
+        uv.node_tree = lookup_uv_group("BAKER LUT Coordinates")
+        uv.name = uv.label = "BAKER Hatching"
+        uv.location = (x - 200, y)
+        tones = [float(t) for t in tam.get("tones", [])]
+        images = [image_node(tree, textures, info, (x, y - 260 * i))
+                  for i, info in enumerate(tam["levels"][0].get("textures", []))]
+        emission = tree.nodes.new("ShaderNodeEmission")
+        emission.location = (x + 300, y)
+        first = next((im for im in images if im is not None), None)
+        if first is not None:
+            coords = tree.nodes.new("ShaderNodeTexCoord")
+            coords.location = (x - 400, y - 200)
+            for im in images:
+                if im is not None:
+                    tree.links.new(coords.outputs["UV"], im.inputs["Vector"])
+            tree.links.new(first.outputs["Color"], emission.inputs["Color"])
+        mix_in(mat, "hatching", emission.outputs[0], (x + 500, y))
+        mat["baker_tam_tones"] = tones
