@@ -18,6 +18,7 @@ import pytest
 
 from baker.cli import main as baker_main
 from baker.gltf.document import GltfDocument
+from conftest import assert_khronos_clean
 
 ROOT = Path(__file__).resolve().parents[1]
 SPOT = ROOT / "examples" / "spot" / "spot.obj"
@@ -128,3 +129,162 @@ def test_stock_blender_imports_every_bake(label, baked, stock_report):
     baked_names = {n for attrs in expected.values() for n in attrs}
     imported = {n for o in meshes for n in o["attributes"] if n.startswith("_")}
     assert baked_names <= imported, f"{label}: Blender dropped {sorted(baked_names - imported)}"
+
+
+# ---------------------------------------------------------------------------------------------------- the add-on
+ADDON = ROOT / "runtime-shaders" / "blender"
+# accessor-valued properties of each extension (from the schemas), and those holding vertex indices
+ACCESSOR_KEYS = {"BAKER_edges": ("edges", "oppositeVertices", "flags", "dihedralAngles", "wireframeMask"),
+                 "EXT_mesh_primitive_edge_visibility": ("visibility", "silhouetteMates"),
+                 "BAKER_hair": ("widthScale", "ribbonIndices")}
+VERTEX_INDEX_KEYS = {"edges", "oppositeVertices"}
+ROUND_TRIP = ("all", "hair", "text", "edges")
+
+
+@pytest.fixture(scope="session")
+def round_trips(blender_python, baked, tmp_path_factory) -> dict:
+    """{label: (exported .glb, report of what the add-on made)} for a few inputs that cover every extension."""
+    out = tmp_path_factory.mktemp("blender_round_trip")
+    done = {}
+    for label in ROUND_TRIP:
+        target, report = out / f"{label}_blender.glb", out / f"{label}.json"
+        run_blender(blender_python, "round_trip.py", ADDON, baked[label], target, report)
+        done[label] = (target, json.loads(report.read_text()))
+    return done
+
+
+def digest(data: bytes) -> str:
+    import hashlib
+    return hashlib.sha256(data).hexdigest()
+
+
+def image_digest(doc, texture: int) -> str:
+    """A texture as what it shows: the image bytes and the sampler settings (indices differ after export)."""
+    tex = doc.json["textures"][texture]
+    sampler = doc.json["samplers"][tex["sampler"]] if "sampler" in tex else {}
+    return digest(doc.image_bytes(tex["source"])) + json.dumps(sampler, sort_keys=True)
+
+
+def resolve_textures(doc, obj):
+    """A copy of an extension object with every texture index replaced by what the texture holds."""
+    if isinstance(obj, dict):
+        out = {}
+        for key, value in obj.items():
+            textured = "texture" in key.lower()
+            if textured and isinstance(value, int) and not isinstance(value, bool):
+                out[key] = image_digest(doc, value)
+            elif isinstance(value, dict) and textured and isinstance(value.get("index"), int):
+                out[key] = dict(value, index=image_digest(doc, value["index"]))
+            else:
+                out[key] = resolve_textures(doc, value) if not (textured and isinstance(value, list)) else [
+                    dict(v, index=image_digest(doc, v["index"])) if isinstance(v, dict) and "index" in v
+                    else resolve_textures(doc, v) for v in value]
+        return out
+    if isinstance(obj, list):
+        return [resolve_textures(doc, v) for v in obj]
+    return obj
+
+
+def primitive_digest(doc, prim) -> str:
+    """A primitive named by the set of its vertex positions (its index and vertex copies may change)."""
+    positions = np.ascontiguousarray(doc.accessor(prim["attributes"]["POSITION"]), np.float32)
+    return digest(b"".join(sorted(set(map(bytes, positions)))))
+
+
+def triangle_edges(doc, prim):
+    """[(triangle key, edge key)] of every triangle edge k = (corner k, corner k+1), in bitfield order; keys are the
+    sorted float32 corner positions, so they survive reordering of vertices and of corners."""
+    positions = np.ascontiguousarray(doc.accessor(prim["attributes"]["POSITION"]), np.float32)
+    triangles = doc.accessor(prim["indices"]).astype(np.int64).reshape(-1, 3)
+    out = []
+    for tri in triangles:
+        corners = [bytes(positions[v]) for v in tri]
+        tri_key = b"".join(sorted(corners))
+        out.extend((tri_key, b"".join(sorted((corners[k], corners[(k + 1) % 3])))) for k in range(3))
+    return out, positions
+
+
+def canonical_extensions(path) -> dict:
+    """Every BAKER_* / edge-visibility extension of a file, with its references replaced by what they point at."""
+    doc = GltfDocument.load(path)
+    gltf = doc.json
+    found = {"root": resolve_textures(doc, {k: v for k, v in (gltf.get("extensions") or {}).items()})}
+    for font in (found["root"].get("BAKER_glyph_atlas") or {}).get("fonts", []):
+        for part in ("glyphs", "kerning"):
+            for key, value in list((font.get(part) or {}).items()):
+                if key != "count":
+                    font[part][key] = doc.accessor(value).tolist()
+    found["nodes"] = sorted(json.dumps(n["extensions"], sort_keys=True) for n in gltf.get("nodes", [])
+                            if "extensions" in n)
+    prims = []
+    for mesh in gltf.get("meshes", []):
+        for prim in mesh["primitives"]:
+            exts = prim.get("extensions") or {}
+            row = {"attributes": {}, "extensions": {}}
+            if "material" in prim:
+                material = (gltf["materials"][prim["material"]].get("extensions") or {})
+                row["material"] = resolve_textures(doc, {k: v for k, v in material.items() if k.startswith("BAKER_")})
+                for fin in (row["material"].get("BAKER_fur") or {}).get("fins", []):
+                    fin["primitive"] = primitive_digest(doc, gltf["meshes"][fin.pop("mesh")]["primitives"][fin["primitive"]])
+            positions = np.ascontiguousarray(doc.accessor(prim["attributes"]["POSITION"]), np.float32)
+            for name, acc in prim["attributes"].items():
+                if name.startswith("_"):
+                    values = np.ascontiguousarray(doc.accessor(acc), np.float32).reshape(len(positions), -1)
+                    row["attributes"][name] = {bytes(p) + bytes(v) for p, v in zip(positions, values)}
+            for name, ext in exts.items():
+                ext = dict(ext)
+                for key in ("finsOf", "fins"):
+                    if isinstance(ext.get(key), int):
+                        ext[key] = primitive_digest(doc, mesh["primitives"][ext[key]])
+                if isinstance(ext.get("guides"), dict) and "primitive" in ext["guides"]:
+                    ext["guides"] = dict(ext["guides"], primitive=primitive_digest(
+                        doc, mesh["primitives"][ext["guides"]["primitive"]]))
+                for key in ACCESSOR_KEYS.get(name, ()):
+                    if key not in ext:
+                        continue
+                    values = doc.accessor(ext[key])
+                    if key in VERTEX_INDEX_KEYS:
+                        ext[key] = [bytes(positions[i]) for i in values.astype(np.int64).reshape(-1)]
+                    elif key in ("visibility", "wireframeMask", "silhouetteMates"):
+                        ext[key] = None  # compared per triangle edge below
+                    else:
+                        ext[key] = values.tolist()
+                row["extensions"][name] = ext
+            if "EXT_mesh_primitive_edge_visibility" in exts or "wireframeMask" in exts.get("BAKER_edges", {}):
+                edges, positions = triangle_edges(doc, prim)
+                vis = exts.get("EXT_mesh_primitive_edge_visibility")
+                if vis:
+                    bits = np.unpackbits(doc.accessor(vis["visibility"]).astype(np.uint8), bitorder="little")
+                    codes = bits[0:2 * len(edges):2] | (bits[1:2 * len(edges):2] << 1)
+                    mates = iter(doc.accessor(vis["silhouetteMates"]).astype(np.int64)) if "silhouetteMates" in vis else iter(())
+                    row["visibility"] = sorted((t + e, int(c), bytes(positions[next(mates)]) if c == 1 else b"")
+                                               for (t, e), c in zip(edges, codes))
+                mask_acc = exts.get("BAKER_edges", {}).get("wireframeMask")
+                if mask_acc is not None:
+                    mask = doc.accessor(mask_acc).astype(np.int64)
+                    row["wireframe"] = sorted((t + e, int((mask[i // 3] >> (i % 3)) & 1))
+                                              for i, (t, e) in enumerate(edges))
+            prims.append(row)
+    found["primitives"] = sorted(prims, key=lambda r: json.dumps(sorted(r["extensions"])) + str(sorted(r["attributes"])))
+    return found
+
+
+@pytest.mark.parametrize("label", ROUND_TRIP)
+def test_blender_round_trip_keeps_every_extension(label, baked, round_trips):
+    exported, _ = round_trips[label]
+    assert baker_main(["validate", str(exported)]) == 0  # baker's checks and Khronos' validator
+    assert_khronos_clean(exported)
+    before, after = canonical_extensions(baked[label]), canonical_extensions(exported)
+    assert after["root"] == before["root"]
+    assert after["nodes"] == before["nodes"]
+    assert len(after["primitives"]) == len(before["primitives"])
+    for old, new in zip(before["primitives"], after["primitives"]):
+        assert sorted(new["extensions"]) == sorted(old["extensions"])
+        for name in old["extensions"]:
+            assert new["extensions"][name] == old["extensions"][name], f"{label}: {name} changed"
+        assert new.get("material") == old.get("material"), f"{label}: material extensions changed"
+        assert sorted(new["attributes"]) == sorted(old["attributes"])
+        for name in old["attributes"]:
+            assert new["attributes"][name] == old["attributes"][name], f"{label}: {name} values changed"
+        assert new.get("visibility") == old.get("visibility"), f"{label}: edge visibility changed"
+        assert new.get("wireframe") == old.get("wireframe"), f"{label}: wireframe mask changed"

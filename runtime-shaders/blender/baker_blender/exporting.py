@@ -111,6 +111,12 @@ class Rewriter:
             if entry["material"]:
                 index = next((self.material_index(n) for n in entry.get("blender_materials") or []
                               if self.material_index(n) is not None), self.material_index(entry["material"][0]))
+                if index is None and "material_json" in entry:
+                    material = copy.deepcopy(entry["material_json"])
+                    self.retexture(material, entry.get("material_textures") or {})
+                    materials = self.gltf.setdefault("materials", [])
+                    materials.append(material)
+                    index = len(materials) - 1
                 if index is not None:
                     prim["material"] = index
             prims.append(prim)
@@ -128,9 +134,17 @@ class Rewriter:
                 now = self.exported_positions(prim)
                 vertex_map = map_by_position(original, now)
             for name, ext in exts.items():
+                visibility = None
+                if name == refs.EDGE_VISIBILITY and vertex_map is not None and isinstance(ext.get("visibility"), int):
+                    visibility = glb.decode_array(entry["accessors"][str(ext["visibility"])]["array"])
                 for container, key, path in list(refs.accessor_slots(name, ext)):
                     stored_acc = entry["accessors"][str(container[key])]
                     values = glb.decode_array(stored_acc["array"])
+                    if visibility is not None and path == "silhouetteMates":
+                        if triangle_map is None:
+                            triangle_map = self.triangle_map(entry, prim, original, now)
+                        # one mate per silhouette edge (code 1) in bitfield order: follow the triangles' new order
+                        values = reorder_mates(values, visibility, triangle_map)
                     if vertex_map is not None and (name, path) in refs.VERTEX_INDEX_ACCESSORS:
                         values = vertex_map[values.astype(np.int64)].astype(values.dtype)
                     bits = PER_TRIANGLE_BITS.get((name, path))
@@ -174,12 +188,20 @@ class Rewriter:
                 continue
             # a mesh of derived primitives only (hair lines): Blender exported nothing for it
             meshes = gltf.setdefault("meshes", [])
-            meshes.append({"name": name, "primitives": []})
+            meshes.append({"name": payload.get("name") or name, "primitives": []})
             self.rewrite_mesh(len(meshes) - 1, mesh, payload, moved)
             nodes = gltf.setdefault("nodes", [])
-            nodes.append({"name": name, "mesh": len(meshes) - 1})
-            scenes = gltf.setdefault("scenes", [{"nodes": []}])
-            scenes[gltf.get("scene", 0)].setdefault("nodes", []).append(len(nodes) - 1)
+            owners = [o.name for o in bpy.data.objects if o.type == "MESH" and o.data == mesh]
+            node = next((n for n in nodes if n.get("name") in owners and "mesh" not in n), None)
+            if node is not None:  # Blender wrote the object as an empty node: give it its mesh back
+                node["mesh"] = len(meshes) - 1
+            else:
+                nodes.append({"name": owners[0] if owners else name, "mesh": len(meshes) - 1})
+                scenes = gltf.setdefault("scenes", [{"nodes": []}])
+                scenes[gltf.get("scene", 0)].setdefault("nodes", []).append(len(nodes) - 1)
+        # the Curves objects made for strands are Blender's view of the hair primitive, not scene content
+        stand_ins = {o.name for o in bpy.data.objects if PROPERTY + "_source" in o}
+        remove_empty_nodes(gltf, stand_ins)
         for mat in bpy.data.materials:
             if PROPERTY not in mat:
                 continue
@@ -285,6 +307,64 @@ def remap_triangle_bits(values: np.ndarray, triangle_map, bits: int) -> np.ndarr
     pairs = np.stack([out.reshape(-1) & 1, (out.reshape(-1) >> 1) & 1], axis=1).reshape(-1).astype(np.uint8)
     packed = np.packbits(pairs, bitorder="little")
     return packed.astype(values.dtype)
+
+
+def remove_empty_nodes(gltf: dict, names: set) -> None:
+    """Drop leaf nodes named in ``names`` that carry nothing (no mesh, camera, skin, children, extensions),
+    renumbering every node reference (children, scenes, skins, animation targets)."""
+    nodes = gltf.get("nodes") or []
+    referenced = {j.get("skeleton") for j in gltf.get("skins") or []} | \
+        {n for s in gltf.get("skins") or [] for n in s.get("joints", [])} | \
+        {c["target"].get("node") for a in gltf.get("animations") or [] for c in a.get("channels", [])}
+    dead = {i for i, n in enumerate(nodes) if n.get("name") in names and i not in referenced
+            and not set(n) - {"name", "translation", "rotation", "scale", "matrix"}}
+    if not dead:
+        return
+    new_index = {}
+    kept = []
+    for i, n in enumerate(nodes):
+        if i not in dead:
+            new_index[i] = len(kept)
+            kept.append(n)
+    for n in kept:
+        if "children" in n:
+            n["children"] = [new_index[c] for c in n["children"] if c in new_index]
+            if not n["children"]:
+                del n["children"]
+    for scene in gltf.get("scenes") or []:
+        scene["nodes"] = [new_index[c] for c in scene.get("nodes", []) if c in new_index]
+    for skin in gltf.get("skins") or []:
+        skin["joints"] = [new_index[j] for j in skin.get("joints", [])]
+        if "skeleton" in skin:
+            skin["skeleton"] = new_index[skin["skeleton"]]
+    for animation in gltf.get("animations") or []:
+        for channel in animation.get("channels", []):
+            if "node" in channel.get("target", {}):
+                channel["target"]["node"] = new_index[channel["target"]["node"]]
+    gltf["nodes"] = kept
+
+
+def edge_codes_of(values: np.ndarray) -> np.ndarray:
+    flat = np.unpackbits(np.asarray(values).astype(np.uint8).reshape(-1), bitorder="little")
+    pairs = flat[:(len(flat) // 2) * 2].reshape(-1, 2)
+    return (pairs[:, 0] | (pairs[:, 1] << 1))[: 3 * (len(pairs) // 3)].reshape(-1, 3)
+
+
+def reorder_mates(mates: np.ndarray, visibility: np.ndarray, triangle_map) -> np.ndarray:
+    """silhouetteMates holds one vertex per silhouette edge (code 1) in bitfield order (triangle by triangle, edge
+    by edge); give them in the order of the exported triangles' bitfield."""
+    codes = edge_codes_of(visibility)
+    order = {}
+    n = 0
+    for t, row in enumerate(codes):
+        for e, code in enumerate(row):
+            if code == 1:
+                order[(t, e)] = n
+                n += 1
+    source, rotation = triangle_map
+    out = [mates[order[(i, (e + k) % 3)]] for i, k in zip(source, rotation) if i >= 0
+           for e in range(3) if (i, (e + k) % 3) in order]
+    return np.asarray(out, mates.dtype)
 
 
 def after_export(path: str) -> None:

@@ -164,6 +164,11 @@ def import_meshes(gltf_importer, gltf: dict, binary: bytes) -> None:
                 entry["accessors"].update(store_accessors(gltf, binary, name, ext))
             is_derived = any("finsOf" in (e or {}) for e in exts.values()) or "BAKER_hair" in exts
             entry["derived"] = is_derived
+            if is_derived and "material" in prim:
+                # Blender exports only materials that faces use: keep the strands' material to put it back
+                material_json = json.loads(json.dumps(gltf["materials"][prim["material"]]))
+                entry["material_json"] = material_json
+                entry["material_textures"] = store_textures(gltf, binary, material_json)
             if exts or is_derived:
                 # POSITION (and indices) to match vertices by position on export; derived primitives keep everything
                 keep = dict(prim["attributes"]) if is_derived else {"POSITION": prim["attributes"]["POSITION"]}
