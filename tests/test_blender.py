@@ -288,3 +288,61 @@ def test_blender_round_trip_keeps_every_extension(label, baked, round_trips):
             assert new["attributes"][name] == old["attributes"][name], f"{label}: {name} values changed"
         assert new.get("visibility") == old.get("visibility"), f"{label}: edge visibility changed"
         assert new.get("wireframe") == old.get("wireframe"), f"{label}: wireframe mask changed"
+
+
+def test_addon_shows_the_baked_data(baked, round_trips):
+    """What an artist sees after importing with the add-on: attributes, node groups mixed in at factor 0, hard and
+    crease edges marked sharp and for Freestyle, strands as curves, text quads with their atlas material."""
+    _, report = round_trips["all"]
+    spot = report["objects"]["spot.obj"]
+    doc = GltfDocument.load(baked["all"])
+    surface = doc.json["meshes"][0]["primitives"][0]
+    for name in ("_THICKNESS", "_CURVATURE", "_PRINCIPAL_CURVATURES", "_PRINCIPAL_DIRECTION", "_OUTLINE_NORMAL"):
+        assert spot["attributes"].get(name) == "FLOAT_VECTOR", name
+    assert not [n for n in spot["attributes"] if n.startswith(("_FIN", "_FUR"))], "fin data leaked onto the surface"
+    assert "baker_gltf" in spot["mesh_properties"]
+    # BAKER_edges' hard (normal seam) and crease edges, by position, are exactly the marked Blender edges
+    edges_ext = surface["extensions"]["BAKER_edges"]
+    positions = doc.accessor(surface["attributes"]["POSITION"]).astype(np.float32)
+    pairs = doc.accessor(edges_ext["edges"]).astype(np.int64).reshape(-1, 2)
+    flags = doc.accessor(edges_ext["flags"]).astype(np.int64)
+    wanted = {tuple(sorted((bytes(positions[a]), bytes(positions[b]))))
+              for a, b in pairs[(flags & ((1 << 2) | (1 << 7))) != 0]}
+    assert wanted
+    for name in ("sharp_edge", "freestyle_edge"):
+        marked = {tuple(sorted(bytes(np.asarray(p, np.float32)) for p in pair)) for pair in spot[name + "_positions"]}
+        assert marked == wanted, f"{name}: {len(marked ^ wanted)} edges differ from BAKER_edges' hard/crease edges"
+    material = next(m for m in report["materials"].values() if m["payload"])
+    assert {"BAKER Translucency", "BAKER LUT Coordinates"} <= set(material["groups"])
+    assert material["mixes"] == {"BAKER mix translucency": 0.0, "BAKER mix skin lut": 0.0,
+                                 "BAKER mix toon ramp": 0.0, "BAKER mix hatching": 0.0}
+    # hair: one curve per strand, every strand vertex a curve point, the guide data as attributes
+    _, report = round_trips["hair"]
+    doc = GltfDocument.load(baked["hair"])
+    strands = [p["extensions"]["BAKER_hair"] for m in doc.json["meshes"] for p in m["primitives"]
+               if "BAKER_hair" in (p.get("extensions") or {})]
+    curves = [o for o in report["objects"].values() if o["type"] == "CURVES"]
+    assert sorted(c["curves"] for c in curves) == sorted(s["strandCount"] for s in strands)
+    assert sorted(c["points"] for c in curves) == sorted(s["strandCount"] * s["verticesPerStrand"] for s in strands)
+    assert all({"_STRAND_TANGENT", "_STRAND_PARAM"} <= set(c["attributes"]) for c in curves)
+    # text: the label is a visible mesh of quads with the atlas material, BAKER_text kept on its object
+    _, report = round_trips["text"]
+    text = [o for o in report["objects"].values() if o["type"] == "MESH"]
+    assert text and not text[0]["hidden"] and "baker_gltf_node" in text[0]["properties"]
+
+
+def test_translucency_group_renders_thin_parts_brighter(blender_python, baked, tmp_path):
+    """Cycles CPU, 64 x 64: spot lit from behind through the BAKER Translucency group. Thin pixels are brighter than
+    thick ones, and per pixel lit / control (same render with thickness 0) follows exp(-thickness / d)."""
+    out = tmp_path / "render.npz"
+    run_blender(blender_python, "render_translucency.py", ADDON, baked["thickness"], out)
+    data = np.load(out)
+    lit = data["lit"][..., :3].mean(axis=-1)
+    control = data["control"][..., :3].mean(axis=-1)
+    thickness, inside = data["thickness"], (data["alpha"] > 0.99) & (control > 0.05)
+    assert inside.sum() > 200, "the object covers too few pixels"
+    thin_edge, thick_edge = np.quantile(thickness[inside], [0.25, 0.75])
+    thin, thick = lit[inside & (thickness <= thin_edge)].mean(), lit[inside & (thickness >= thick_edge)].mean()
+    assert thin > 1.3 * thick, (thin, thick)
+    expected = np.exp(-thickness[inside] / float(data["attenuation"]))
+    assert np.corrcoef(lit[inside] / control[inside], expected)[0, 1] > 0.8

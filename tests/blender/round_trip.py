@@ -22,11 +22,19 @@ for obj in bpy.data.objects:
         mesh = obj.data
         row["mesh_properties"] = sorted(mesh.keys())
         count = len(mesh.edges)
+        co = np.zeros(len(mesh.vertices) * 3, np.float32)
+        mesh.vertices.foreach_get("co", co)
+        co = co.reshape(-1, 3)
+        co = np.stack([co[:, 0], co[:, 2], -co[:, 1]], axis=1)  # back to glTF axes (Y up)
+        pairs = np.zeros(count * 2, np.int32)
+        mesh.edges.foreach_get("vertices", pairs)
+        pairs = pairs.reshape(-1, 2)
         for name in ("sharp_edge", "freestyle_edge"):
             values = np.zeros(count, bool)
             if name in mesh.attributes:
                 mesh.attributes[name].data.foreach_get("value", values)
             row[name] = int(values.sum())
+            row[name + "_positions"] = [co[list(pair)].tolist() for pair in pairs[values]]
         row["edges"] = count
         row["attributes"] = {a.name: a.data_type for a in mesh.attributes if a.name.startswith("_")}
     if obj.type == "CURVES":
