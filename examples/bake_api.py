@@ -22,7 +22,7 @@ asset = baker.bake(mesh, bakes=["thickness", "curvature", "edges"], seed=1,
                    options={"thickness": {"rays": 64, "texture_size": 512}, "edges": {"crease_angle": 45}})
 
 prim = asset.doc.json["meshes"][0]["primitives"][0]
-thickness = asset.doc.accessor(prim["attributes"]["_THICKNESS"])
+thickness = asset.doc.accessor(prim["attributes"]["_THICKNESS"])[:, 0]  # FLOAT VEC3, the value in x
 print(f"{mesh.name}: {len(thickness)} vertices, thickness {thickness.min():.3f} .. {thickness.max():.3f} mesh units")
 
 written = save(asset, out / f"{mesh.stem}.glb") + save(asset, out / f"{mesh.stem}.usdz")

@@ -25,6 +25,10 @@ SPOT = ROOT / "examples" / "spot" / "spot.obj"
 HELPERS = Path(__file__).parent / "blender"
 FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 BAKES = ("thickness", "curvature", "edges", "fur", "skin", "tam", "toon")
+# smaller than the defaults where a bake's cost is in its own resolution (the layouts written are the same)
+CHEAP = {"thickness": ("--thickness-rays", "32", "--thickness-texture-size", "128"),
+         "fur": ("--fur-shells", "4", "--fur-texture-size", "64"), "tam": ("--tam-size", "64"),
+         "skin": ("--skin-width", "64", "--skin-height", "64")}
 
 
 @pytest.fixture(scope="session")
@@ -58,11 +62,11 @@ def baked(tmp_path_factory) -> dict:
     files = {}
     for name in BAKES:
         files[name] = out / f"spot_{name}.glb"
-        bake("bake", SPOT, "--bakes", name, "-o", files[name])
+        bake("bake", SPOT, "--bakes", name, *CHEAP.get(name, ()), "-o", files[name])
     files["edges_fins"] = out / "spot_edges_fins.glb"
     bake("bake", SPOT, "--bakes", "edges", "--edges-fins", "true", "-o", files["edges_fins"])
     files["all"] = out / "spot_all.glb"
-    bake("bake", SPOT, "--bakes", ",".join(BAKES), "--edges-fins", "true", "-o", files["all"])
+    bake("bake", SPOT, "--bakes", ",".join(BAKES), "--edges-fins", "true", *sum(CHEAP.values(), ()), "-o", files["all"])
     files["hair"] = out / "spot_hair.glb"
     bake("hair", SPOT, "--guides", "40", "--children", "3", "-o", files["hair"])
     files["text"] = out / "text.glb"
