@@ -305,17 +305,18 @@ def test_addon_shows_the_baked_data(baked, round_trips):
         assert spot["attributes"].get(name) == "FLOAT_VECTOR", name
     assert not [n for n in spot["attributes"] if n.startswith(("_FIN", "_FUR"))], "fin data leaked onto the surface"
     assert "baker_gltf" in spot["mesh_properties"]
-    # BAKER_edges' hard (normal seam) and crease edges, by position, are exactly the marked Blender edges
+    # by position, the Freestyle-marked Blender edges are exactly BAKER_edges' hard (normal seam) and crease edges,
+    # the sharp ones exactly its hard edges (sharp creases would re-split the imported normals: the look would change)
     edges_ext = surface["extensions"]["BAKER_edges"]
     positions = doc.accessor(surface["attributes"]["POSITION"]).astype(np.float32)
     pairs = doc.accessor(edges_ext["edges"]).astype(np.int64).reshape(-1, 2)
     flags = doc.accessor(edges_ext["flags"]).astype(np.int64)
-    wanted = {tuple(sorted((bytes(positions[a]), bytes(positions[b]))))
-              for a, b in pairs[(flags & ((1 << 2) | (1 << 7))) != 0]}
-    assert wanted
-    for name in ("sharp_edge", "freestyle_edge"):
+    crease, hard = 1 << 2, 1 << 7
+    for name, bits in (("freestyle_edge", crease | hard), ("sharp_edge", hard)):
+        wanted = {tuple(sorted((bytes(positions[a]), bytes(positions[b])))) for a, b in pairs[(flags & bits) != 0]}
+        assert wanted, name
         marked = {tuple(sorted(bytes(np.asarray(p, np.float32)) for p in pair)) for pair in spot[name + "_positions"]}
-        assert marked == wanted, f"{name}: {len(marked ^ wanted)} edges differ from BAKER_edges' hard/crease edges"
+        assert marked == wanted, f"{name}: {len(marked ^ wanted)} edges differ from BAKER_edges' flagged edges"
     material = next(m for m in report["materials"].values() if m["payload"])
     assert {"BAKER Translucency", "BAKER LUT Coordinates"} <= set(material["groups"])
     assert material["mixes"] == {"BAKER mix translucency": 0.0, "BAKER mix skin lut": 0.0,
@@ -350,3 +351,14 @@ def test_translucency_group_renders_thin_parts_brighter(blender_python, baked, t
     assert thin > 1.3 * thick, (thin, thick)
     expected = np.exp(-thickness[inside] / float(data["attenuation"]))
     assert np.corrcoef(lit[inside] / control[inside], expected)[0, 1] > 0.8
+
+
+def test_addon_leaves_the_untouched_look_unchanged(blender_python, baked, tmp_path):
+    """The same Cycles frame (fixed seed) of every bake together, imported by stock Blender and with the add-on:
+    node groups mixed in at factor 0 and the edge marks change no pixel."""
+    stock, addon = tmp_path / "stock.npy", tmp_path / "addon.npy"
+    run_blender(blender_python, "render_look.py", "-", baked["all"], stock)
+    run_blender(blender_python, "render_look.py", ADDON, baked["all"], addon)
+    stock, addon = np.load(stock), np.load(addon)
+    assert stock[..., 3].sum() > 100 and stock[..., :3].max() > 0.05, "the render shows nothing"
+    np.testing.assert_allclose(addon, stock, atol=1e-6)

@@ -6,7 +6,7 @@ point attribute (baker writes them all as FLOAT VEC3, scalars in x); this module
   packed images, and node groups (translucency, skin LUT, toon ramp, tonal art map) mixed in after the Principled BSDF
   with factor 0, so the material looks as before until an artist raises the factor;
 - on each mesh with BAKER_* / EXT_mesh_primitive_edge_visibility primitives: the payload (property ``baker_gltf``,
-  accessor data included), hard and crease edges of BAKER_edges as sharp edges and Freestyle edge marks; fin
+  accessor data included), hard and crease edges of BAKER_edges as Freestyle edge marks, the hard ones also sharp; fin
   primitives (edges, fur) are kept in the payload and hidden in Blender;
 - BAKER_hair primitives: a Curves object (one curve per strand, ``_STRAND_TANGENT`` / ``_STRAND_PARAM`` and the
   width as attributes), the original line mesh hidden;
@@ -97,29 +97,36 @@ def blender_object(gltf_importer, node_index: int):
     return name
 
 
-def mark_edges(mesh, positions: np.ndarray, edges: np.ndarray, flags: np.ndarray) -> int:
-    """Sharp + Freestyle marks on every Blender edge whose end positions match a hard or crease BAKER_edges edge."""
-    wanted = set()
-    keep = (flags & (EDGE_CREASE | EDGE_NORMAL_SEAM)) != 0
+def mark_edges(mesh, positions: np.ndarray, edges: np.ndarray, flags: np.ndarray) -> dict:
+    """Freestyle edge marks on every Blender edge whose end positions match a hard (normal seam) or crease
+    BAKER_edges edge, and Sharp on the hard ones. Crease edges are not marked sharp: Blender would then split the
+    imported (smooth) custom normals there and the untouched mesh would shade differently."""
     points = to_blender(positions)
-    for v0, v1 in edges[keep]:
-        a, b = position_key(points[v0]), position_key(points[v1])
-        wanted.add((a, b) if a <= b else (b, a))
+
+    def pair_keys(selected):
+        keys = set()
+        for v0, v1 in edges[selected]:
+            a, b = position_key(points[v0]), position_key(points[v1])
+            keys.add((a, b) if a <= b else (b, a))
+        return keys
+
+    wanted = {"freestyle_edge": pair_keys((flags & (EDGE_CREASE | EDGE_NORMAL_SEAM)) != 0),
+              "sharp_edge": pair_keys((flags & EDGE_NORMAL_SEAM) != 0)}
     co = np.zeros(len(mesh.vertices) * 3, np.float32)
     mesh.vertices.foreach_get("co", co)
     keys = [position_key(p) for p in co.reshape(-1, 3)]
     pairs = np.zeros(len(mesh.edges) * 2, np.int32)
     mesh.edges.foreach_get("vertices", pairs)
-    marks = np.zeros(len(mesh.edges), bool)
-    for e, (i, j) in enumerate(pairs.reshape(-1, 2)):
-        a, b = keys[i], keys[j]
-        marks[e] = ((a, b) if a <= b else (b, a)) in wanted
-    for name in ("sharp_edge", "freestyle_edge"):
+    edge_keys = [(keys[i], keys[j]) if keys[i] <= keys[j] else (keys[j], keys[i]) for i, j in pairs.reshape(-1, 2)]
+    counts = {}
+    for name, keep in wanted.items():
+        marks = np.fromiter((k in keep for k in edge_keys), bool, len(edge_keys))
         attribute = mesh.attributes.get(name) or mesh.attributes.new(name, "BOOLEAN", "EDGE")
         current = np.zeros(len(mesh.edges), bool)
         attribute.data.foreach_get("value", current)
         attribute.data.foreach_set("value", current | marks)
-    return int(marks.sum())
+        counts[name] = int(marks.sum())
+    return counts
 
 
 def make_curves(name: str, positions: np.ndarray, tangents: np.ndarray, param: np.ndarray, strands: int,
