@@ -296,7 +296,7 @@ def test_blender_round_trip_keeps_every_extension(label, baked, round_trips):
 
 def test_addon_shows_the_baked_data(baked, round_trips):
     """What an artist sees after importing with the add-on: attributes, node groups mixed in at factor 0, hard and
-    crease edges marked sharp and for Freestyle, strands as curves, text quads with their atlas material."""
+    crease edges marked for Freestyle (hard ones sharp too), strands as curves, text quads with their atlas material."""
     _, report = round_trips["all"]
     spot = report["objects"]["spot.obj"]
     doc = GltfDocument.load(baked["all"])

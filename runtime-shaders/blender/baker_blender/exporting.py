@@ -30,6 +30,7 @@ class Rewriter:
         self.writer = glb.Writer(self.gltf, binary)
         self.textures = {}  # Blender image name -> new texture index
         self.used = set()
+        self.removed = False
 
     # ---------------------------------------------------------------- references
     def texture(self, stored: dict) -> int:
@@ -201,7 +202,7 @@ class Rewriter:
                 scenes[gltf.get("scene", 0)].setdefault("nodes", []).append(len(nodes) - 1)
         # the Curves objects made for strands are Blender's view of the hair primitive, not scene content
         stand_ins = {o.name for o in bpy.data.objects if PROPERTY + "_source" in o}
-        remove_empty_nodes(gltf, stand_ins)
+        self.removed = remove_empty_nodes(gltf, stand_ins)
         for mat in bpy.data.materials:
             if PROPERTY not in mat:
                 continue
@@ -245,9 +246,10 @@ class Rewriter:
                 if node.get("name") == obj.name:
                     node.setdefault("extensions", {}).update(copy.deepcopy(payload["extensions"]))
                     self.used.update(payload["extensions"])
-        if self.used:
-            used = gltf.setdefault("extensionsUsed", [])
-            used.extend(sorted(n for n in self.used if n not in used))
+        if not self.used and not self.removed:
+            return  # nothing of baker's in this scene: leave Blender's file as it wrote it
+        used = gltf.setdefault("extensionsUsed", [])
+        used.extend(sorted(n for n in self.used if n not in used))
         self.writer.save(self.path)
 
 
@@ -309,7 +311,7 @@ def remap_triangle_bits(values: np.ndarray, triangle_map, bits: int) -> np.ndarr
     return packed.astype(values.dtype)
 
 
-def remove_empty_nodes(gltf: dict, names: set) -> None:
+def remove_empty_nodes(gltf: dict, names: set) -> bool:
     """Drop leaf nodes named in ``names`` that carry nothing (no mesh, camera, skin, children, extensions),
     renumbering every node reference (children, scenes, skins, animation targets)."""
     nodes = gltf.get("nodes") or []
@@ -319,7 +321,7 @@ def remove_empty_nodes(gltf: dict, names: set) -> None:
     dead = {i for i, n in enumerate(nodes) if n.get("name") in names and i not in referenced
             and not set(n) - {"name", "translation", "rotation", "scale", "matrix"}}
     if not dead:
-        return
+        return False
     new_index = {}
     kept = []
     for i, n in enumerate(nodes):
@@ -342,6 +344,7 @@ def remove_empty_nodes(gltf: dict, names: set) -> None:
             if "node" in channel.get("target", {}):
                 channel["target"]["node"] = new_index[channel["target"]["node"]]
     gltf["nodes"] = kept
+    return True
 
 
 def edge_codes_of(values: np.ndarray) -> np.ndarray:
