@@ -8,8 +8,10 @@ so the untouched material renders exactly as before; raise the factor to see the
 - ``BAKER Skin LUT`` (baker_skin.glsl, Penner & Borshukov 2011): the LUT texel at u = N.L remapped from ndotlRange,
   v = curvature * curvatureScale remapped from curvatureRange, as emission; N.L against the group's Light Direction.
 - ``BAKER Toon Ramp`` (baker_toon.glsl): the ramp texel at u = N.L * 0.5 + 0.5, as emission.
-- ``BAKER Hatching`` (baker_hatching.glsl, Praun et al. 2001): the finest level's tone textures blended by the
-  tone (1 - N.L) between the two nearest tones, as emission.
+- ``BAKER Hatching`` (baker_hatching.glsl, Praun et al. 2001): the first level's tone textures on TEXCOORD_0, its
+  first texture as emission (the tones are in the material's ``baker_tam_tones``).
+- ``BAKER Fur Shell`` (baker_fur.glsl, Lengyel et al. 2001): the innermost shell texture tiled over TEXCOORD_0,
+  its coverage as alpha over a transparent BSDF.
 """
 from __future__ import annotations
 
@@ -205,6 +207,28 @@ def add_material_groups(mat, exts: dict, textures: dict) -> None:
             tree.links.new(uv.outputs["Vector"], image.inputs["Vector"])
             tree.links.new(image.outputs["Color"], emission.inputs["Color"])
         mix_in(mat, label.lower(), emission.outputs[0], (x + 500, y))
+        y -= 400
+    fur = exts.get("BAKER_fur")
+    if isinstance(fur, dict) and fur.get("shellTextures"):
+        # the innermost shell (colour + coverage) tiled over TEXCOORD_0, where the fur starts; shells above it and
+        # the fins are drawn by the runtime (baker_fur.glsl), not by this node setup
+        coords = tree.nodes.new("ShaderNodeTexCoord")
+        coords.location = (x - 600, y)
+        tiled = vector_scale(tree, coords.outputs["UV"], float(fur.get("tiling", 1.0)))
+        image = image_node(tree, textures, fur["shellTextures"][0], (x - 200, y))
+        shell = tree.nodes.new("ShaderNodeMixShader")
+        shell.name = shell.label = "BAKER Fur Shell"
+        shell.location = (x + 200, y)
+        transparent = tree.nodes.new("ShaderNodeBsdfTransparent")
+        emission = tree.nodes.new("ShaderNodeEmission")
+        tree.links.new(transparent.outputs[0], shell.inputs[1])
+        tree.links.new(emission.outputs[0], shell.inputs[2])
+        if image is not None:
+            image.extension = "REPEAT"
+            tree.links.new(tiled, image.inputs["Vector"])
+            tree.links.new(image.outputs["Color"], emission.inputs["Color"])
+            tree.links.new(image.outputs["Alpha"], shell.inputs["Fac"])
+        mix_in(mat, "fur", shell.outputs[0], (x + 500, y))
         y -= 400
     tam = exts.get("BAKER_tonal_art_map")
     if isinstance(tam, dict) and tam.get("levels"):
