@@ -82,7 +82,8 @@ def translucency_group():
 
 
 def lookup_uv_group(name: str):
-    """(N.L, value) -> (u, v): u = (N.L - lo_u) / (hi_u - lo_u), v = (value - lo_v) / (hi_v - lo_v), clamped."""
+    """(N.L, value) -> (u, v): u = (N.L - lo_u) / (hi_u - lo_u), v = (value - lo_v) / (hi_v - lo_v), clamped, as
+    baker_skin_lut_uv computes them; the output's y is 1 - v (Blender counts image rows from the bottom)."""
     group, io = new_group(name, [
         ("Light Direction", "NodeSocketVector", (0.0, 0.0, 1.0)), ("Value", "NodeSocketFloat", 0.0),
         ("U Min", "NodeSocketFloat", -1.0), ("U Max", "NodeSocketFloat", 1.0),
@@ -109,7 +110,8 @@ def lookup_uv_group(name: str):
         coords.append(node.outputs[0])
     combine = tree.nodes.new("ShaderNodeCombineXYZ")
     tree.links.new(coords[0], combine.inputs[0])
-    tree.links.new(coords[1], combine.inputs[1])
+    # glTF images have row 0 at the top, Blender's image coordinates start at the bottom row
+    tree.links.new(math_node(tree, "SUBTRACT", 1.0, coords[1]), combine.inputs[1])
     tree.links.new(combine.outputs[0], gout.inputs["Vector"])
     tree.links.new(ndotl, gout.inputs["NdotL"])
     return group
