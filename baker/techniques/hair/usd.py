@@ -74,9 +74,9 @@ def _curves(stage, path: str, strands: StrandSet, result: HairResult, curve_type
 
 
 def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type: str = "linear",
-                   primitive_hooks=None) -> None:
+                   primitive_hooks=None, hair_hook=None) -> None:
     """Write the emitter asset (as :func:`baker.gltf.usd.write_usd` does, with the same ``primitive_hooks``) plus the
-    hair curves, atomically."""
+    hair curves, atomically; ``hair_hook(stage)``, when given, adds to the hair prims before the file is written."""
     from pxr import Gf, Usd, UsdGeom
 
     from baker.gltf.usd import build_layer, custom_attributes, write_stage_and_textures
@@ -98,4 +98,6 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     _curves(stage, "/Root/Hair/guides", result.guides, result, curve_type)
     if result.children.count:
         _curves(stage, "/Root/Hair/children", result.children, result, curve_type)
+    if hair_hook is not None:
+        hair_hook(stage)
     write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])
