@@ -376,15 +376,50 @@ def progressive_order(roots: np.ndarray, counts: list[int], seed: int) -> np.nda
 
 
 # ---------------------------------------------------------------------------------------------------------- driver
+def worst_first(errors: np.ndarray, roots: np.ndarray, exclude: np.ndarray, count: int, radius: float) -> np.ndarray:
+    """Up to ``count`` strands in order of decreasing error, none in ``exclude`` and no two whose roots are closer
+    than ``radius`` (so one bad region does not take the whole budget)."""
+    order = np.argsort(-errors, kind="stable")
+    taken = np.zeros(len(errors), bool)
+    taken[exclude] = True
+    tree = cKDTree(roots)
+    picked = []
+    for i in order[: 50 * max(count, 1)].tolist():
+        if len(picked) == count or errors[i] <= 0:
+            break
+        if taken[i]:
+            continue
+        picked.append(i)
+        taken[tree.query_ball_point(roots[i], radius)] = True
+    return np.asarray(picked, np.int64)
+
+
 def solve_guides(strands: np.ndarray, lengths: np.ndarray, count: int, *, candidates: int = 10,
-                 locality: float = 0.5, iterations: int = 8, seed: int = 0) -> GuideSolution:
-    """Guides and 3-guide weights for resampled strands (S, V, 3); the stats hold the relative errors."""
+                 locality: float = 0.5, iterations: int = 8, seed: int = 0, tail: float = 0.1,
+                 tail_rounds: int = 2) -> GuideSolution:
+    """Guides and 3-guide weights for resampled strands (S, V, 3); the stats hold the relative errors.
+
+    k-medoids picks ``(1 - tail) x count`` guides (the bulk of the error); the rest go, over ``tail_rounds``
+    rounds, to the worst reconstructed strands (spread apart), which lowers the maximum error where the medoid
+    objective (a sum) does not look; weights are solved again after each round."""
     roots = strands[:, 0]
     shapes = strands - roots[:, None]
     count = min(count, len(strands))
-    guides, labels = select_guides(shapes, roots, lengths, count, locality=locality, iterations=iterations,
-                                   seed=seed)
+    extra = int(round(tail * count)) if count >= 20 else 0
+    guides, labels = select_guides(shapes, roots, lengths, count - extra, locality=locality,
+                                   iterations=iterations, seed=seed)
     ids, weights = solve_weights(shapes, roots, guides, candidates, labels)
+    for r in range(tail_rounds if extra else 0):
+        rel = np.sqrt(np.mean(np.sum((strands - reconstruct(strands[guides], roots, ids, weights)) ** 2, axis=2),
+                              axis=1)) / np.maximum(lengths, 1e-300)
+        spacing = float(np.median(cKDTree(roots[guides]).query(roots[guides], k=2)[0][:, 1]))
+        add = worst_first(rel, roots, guides, (count - len(guides)) // (tail_rounds - r), spacing)
+        if not len(add):
+            break
+        guides = np.sort(np.concatenate([guides, add]))
+        labels = labels.copy()
+        labels[add] = add
+        ids, weights = solve_weights(shapes, roots, guides, candidates, labels)
     rebuilt = reconstruct(strands[guides], roots, ids, weights)
     stats = reconstruction_error(strands, rebuilt, lengths)
     return GuideSolution(guides, ids, weights, {"rmsError": stats["rms"], "maxError": stats["max"]})
