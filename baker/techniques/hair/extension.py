@@ -244,7 +244,7 @@ def check_lods_and_binding(doc: GltfDocument, ext: dict, strand_count: int, ptr:
         issues.error("UNRESOLVED_REFERENCE", f"mesh {m!r} does not exist", ptr + "/rootBinding/mesh")
         return
     arrays = {}
-    for key, kind in (("primitive", "SCALAR"), ("triangle", "SCALAR"), ("barycentrics", "VEC3")):
+    for key, kind in (("primitives", "SCALAR"), ("triangles", "SCALAR"), ("barycentrics", "VEC3")):
         a = binding.get(key)
         if not is_index(a, accessors):
             issues.error("UNRESOLVED_REFERENCE", f"accessor {a!r} does not exist", ptr + "/rootBinding/" + key)
@@ -255,10 +255,10 @@ def check_lods_and_binding(doc: GltfDocument, ext: dict, strand_count: int, ptr:
             return
         arrays[key] = doc.accessor(a)
     prims = meshes[m].get("primitives") or []
-    primitive = arrays["primitive"].astype(np.int64)
+    primitive = arrays["primitives"].astype(np.int64)
     if len(primitive) and int(primitive.max()) >= len(prims):
-        issues.error("BAKER_HAIR_BINDING", f"rootBinding.primitive must be < {len(prims)} (primitives of mesh {m})",
-                     pointer("accessors", binding["primitive"]))
+        issues.error("BAKER_HAIR_BINDING", f"rootBinding.primitives must be < {len(prims)} (primitives of mesh {m})",
+                     pointer("accessors", binding["primitives"]))
         return
     for p in np.unique(primitive).tolist():
         prim = prims[p]
@@ -266,9 +266,9 @@ def check_lods_and_binding(doc: GltfDocument, ext: dict, strand_count: int, ptr:
             continue
         source = prim.get("indices", (prim.get("attributes") or {}).get("POSITION"))
         n_tri = (accessors[source].get("count", 0) // 3) if is_index(source, accessors) else 0
-        if int(arrays["triangle"][primitive == p].max()) >= n_tri:
-            issues.error("BAKER_HAIR_BINDING", f"rootBinding.triangle names a triangle past the {n_tri} of mesh {m} "
-                         f"primitive {p}", pointer("accessors", binding["triangle"]))
+        if int(arrays["triangles"][primitive == p].max()) >= n_tri:
+            issues.error("BAKER_HAIR_BINDING", f"rootBinding.triangles names a triangle past the {n_tri} of mesh {m} "
+                         f"primitive {p}", pointer("accessors", binding["triangles"]))
     bary = arrays["barycentrics"].astype(np.float64)
     if (bary < -1e-6).any() or (np.abs(bary.sum(axis=1) - 1.0) > 1e-4).any() or not np.isfinite(bary).all():
         issues.error("BAKER_HAIR_BINDING", "rootBinding.barycentrics must be >= 0 and sum to 1 per strand",
@@ -294,7 +294,7 @@ class HairStrands:
     material: int | None = None
     interpolation: str | None = None  # children: "offset"
     lods: tuple = ()  # ((strandCount, widthScale), ...), finest first
-    root_binding: dict | None = None  # {"mesh", "primitive", "triangle", "barycentrics"} (arrays), or None
+    root_binding: dict | None = None  # {"mesh", "primitives", "triangles", "barycentrics"} (arrays), or None
 
 
 def read(doc: GltfDocument, mesh: int, primitive: int) -> HairStrands | None:
@@ -320,4 +320,4 @@ def read(doc: GltfDocument, mesh: int, primitive: int) -> HairStrands | None:
         lods=tuple((int(x["strandCount"]), float(x["widthScale"])) for x in ext.get("lods", ())),
         root_binding=None if "rootBinding" not in ext else {
             "mesh": int(ext["rootBinding"]["mesh"]),
-            **{k: doc.accessor(ext["rootBinding"][k]) for k in ("primitive", "triangle", "barycentrics")}})
+            **{k: doc.accessor(ext["rootBinding"][k]) for k in ("primitives", "triangles", "barycentrics")}})

@@ -153,8 +153,8 @@ def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET) 
 # ------------------------------------------------------------------------------------------------------------ write
 def _binding_json(doc, binding: RootBinding) -> dict:
     return {"mesh": int(binding.mesh),
-            "primitive": doc.add_accessor(binding.primitive.astype(np.uint32), target=None),
-            "triangle": doc.add_accessor(binding.triangle.astype(np.uint32), target=None),
+            "primitives": doc.add_accessor(binding.primitive.astype(np.uint32), target=None),
+            "triangles": doc.add_accessor(binding.triangle.astype(np.uint32), target=None),
             "barycentrics": doc.add_accessor(binding.barycentrics.astype(np.float32), target=None)}
 
 
