@@ -39,8 +39,9 @@ class GuideSolution:
 # ------------------------------------------------------------------------------------------------------ resampling
 def resample_strands(points: np.ndarray, counts: np.ndarray, vertices: int, widths: np.ndarray | None = None):
     """Ragged polylines (``points`` (P, 3), ``counts`` (S,), each >= 2 with length > 0) -> (S, V, 3) at equal
-    arc-length steps, root and tip kept; each strand is then scaled about its root so its polyline length equals the
-    input's (resampling cuts corners). Returns (strands, lengths (S,), widths (S, V) or None)."""
+    arc-length steps, root and tip kept (curves of ``vertices`` vertices are taken as they are). Every sample lies on the input curve, so the strand keeps its length up to
+    the corners the new vertices cut (a tight curl sampled by too few vertices gets shorter; scaling it back would
+    distort its shape). Returns (strands, input arc lengths (S,), widths (S, V) or None)."""
     counts = np.asarray(counts, np.int64)
     s = len(counts)
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
@@ -61,12 +62,18 @@ def resample_strands(points: np.ndarray, counts: np.ndarray, vertices: int, widt
     k0, k1 = key[k], key[k + 1]
     f = np.where(k1 > k0, (target - k0) / np.where(k1 > k0, k1 - k0, 1.0), 0.0)[:, None]
     out = (points[k] * (1.0 - f) + points[k + 1] * f).reshape(s, vertices, 3)
-    new_lengths = np.linalg.norm(np.diff(out, axis=1), axis=2).sum(axis=1)
-    scale = np.where(new_lengths > 0, lengths / np.where(new_lengths > 0, new_lengths, 1.0), 1.0)
-    out = out[:, :1] + (out - out[:, :1]) * scale[:, None, None]
+    # curves that already have ``vertices`` vertices are kept as they are: a written groom reads back unchanged
+    # (equal arc-length steps of the source are not equal steps of the resampled polyline, so resampling again
+    # would move them)
+    same = counts == vertices
+    if same.any():
+        keep = np.repeat(same, counts)
+        out[same] = points[keep].reshape(-1, vertices, 3)
     w = None
     if widths is not None:
         w = (widths[k] * (1.0 - f[:, 0]) + widths[k + 1] * f[:, 0]).reshape(s, vertices)
+        if same.any():
+            w[same] = widths[keep].reshape(-1, vertices)
     return out, lengths, w
 
 

@@ -111,8 +111,8 @@ def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET) 
     timings = {}
     start = time.perf_counter()
     groom = clean_groom(read_groom(groom_path), groom_path, options.bad_curves)
-    strands, lengths, widths = resample_strands(groom.points, groom.counts, options.vertices_per_strand,
-                                                groom.widths)
+    strands, _, widths = resample_strands(groom.points, groom.counts, options.vertices_per_strand, groom.widths)
+    lengths = np.linalg.norm(np.diff(strands, axis=1), axis=2).sum(axis=1)  # errors are relative to these
     timings["read"] = time.perf_counter() - start
     asset, binding, inside, normals = None, None, 0, np.zeros((len(strands), 3))
     if options.scalp:
