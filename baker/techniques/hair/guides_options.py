@@ -11,7 +11,7 @@ class GuidesOptions:
     """Options of the groom -> guides solver (``baker guides``)."""
 
     guides: int = opt(500, "number of guide strands chosen among the groom's strands", min=1)
-    vertices_per_strand: int = opt(32, "vertices of every output strand (arc-length resampling, lengths kept)",
+    vertices_per_strand: int = opt(32, "vertices of every output strand (equal arc-length steps on the input curve; curves with this count are kept)",
                                    min=2, max=256)
     lods: int = opt(4, "levels of detail: LOD k keeps a blue-noise prefix of about 1/2^k of the children", min=1,
                     max=16)
