@@ -462,11 +462,19 @@ def test_bad_curves_skipped_or_refused(tmp_path, capsys):
     assert len(err.splitlines()) == 1 and "bad.usda" in err and "curve 60" in err and "fewer than 2" in err
 
 
-@pytest.mark.parametrize("case", ["counts_past_end", "offset_past_end", "truncated", "no_lines"])
+@pytest.mark.parametrize("case", ["counts_past_end", "offset_past_end", "truncated", "no_lines", "broken_usd",
+                                  "usd_counts"])
 def test_bad_files_one_line_exit_2(tmp_path, capsys, case):
     if case == "no_lines":
         path = tmp_path / "tri.gltf"
         path.write_text(json.dumps({"asset": {"version": "2.0"}}))
+    elif case == "broken_usd":
+        path = tmp_path / "broken.usda"
+        path.write_text("#usda 1.0\n( garbage\n")
+    elif case == "usd_counts":  # curveVertexCounts that need more points than there are
+        path = tmp_path / "counts.usda"
+        path.write_text('#usda 1.0\ndef BasisCurves "c" {\n    int[] curveVertexCounts = [3, 5]\n'
+                        '    point3f[] points = [(0, 0, 0), (0, 1, 0), (0, 2, 0)]\n}\n')
     else:
         head = bytearray(struct.pack("<f7I32I", 4.0, 2, 4, 160, 0, 0, 0, 0, *([0] * 32)))
         body = np.zeros((2, 4, 4), "<f4").tobytes()

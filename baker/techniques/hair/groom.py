@@ -43,16 +43,23 @@ def _concat(parts: list, path) -> Groom:
 
 # ------------------------------------------------------------------------------------------------------------ USD
 def read_usd_groom(path) -> Groom:
-    """Every ``UsdGeom.BasisCurves`` of the stage, points moved by the prim's local-to-world transform, widths
+    """Every visible ``UsdGeom.BasisCurves`` of the stage (instance proxies included), points moved by the prim's local-to-world transform, widths
     (constant, uniform, vertex or varying when it has one value per point) scaled by the transform's mean scale."""
     from pxr import Usd, UsdGeom
 
-    stage = Usd.Stage.Open(str(path))
+    try:
+        stage = Usd.Stage.Open(str(path))
+    except Exception as exc:  # pxr raises Tf.ErrorException with a multi-line message: keep its first commentary
+        text = next((str(getattr(a, "commentary", "")).strip() for a in exc.args
+                     if str(getattr(a, "commentary", "")).strip()), str(exc))
+        raise BakerError(path, f"cannot open USD stage: {' '.join(text.split())[:300]}") from None
     if stage is None:
-        raise BakerError(path, "USD stage cannot be opened")
+        raise BakerError(path, "cannot open USD stage")
     parts = []
-    for prim in stage.Traverse():
+    for prim in stage.Traverse(Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)):
         if not prim.IsA(UsdGeom.BasisCurves):
+            continue
+        if UsdGeom.Imageable(prim).ComputeVisibility(Usd.TimeCode.Default()) == UsdGeom.Tokens.invisible:
             continue
         curves = UsdGeom.BasisCurves(prim)
         where = f"{prim.GetPath()}"
