@@ -78,6 +78,19 @@ def resample_strands(points: np.ndarray, counts: np.ndarray, vertices: int, widt
 
 
 # ------------------------------------------------------------------------------------------------ guide selection
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _closer(desc, centre, mind):
+    """mind[i] = min(mind[i], |desc[i] - desc[centre]|^2) for every strand."""
+    s, d = desc.shape
+    for i in numba.prange(s):
+        dist = 0.0
+        for j in range(d):
+            x = desc[i, j] - desc[centre, j]
+            dist += x * x
+        if dist < mind[i]:
+            mind[i] = dist
+
+
 @numba.njit(cache=True, nogil=True)
 def _kmeans_plus_plus(desc, weight, count, uniforms):
     """Weighted k-means++ seeding: each next centre drawn with probability ~ weight x squared distance to the
@@ -98,13 +111,7 @@ def _kmeans_plus_plus(desc, weight, count, uniforms):
             break
     for c in range(count):
         chosen[c] = cur
-        for i in range(s):
-            dist = 0.0
-            for j in range(d):
-                x = desc[i, j] - desc[cur, j]
-                dist += x * x
-            if dist < mind[i]:
-                mind[i] = dist
+        _closer(desc, cur, mind)
         if c + 1 == count:
             break
         total = 0.0
@@ -193,8 +200,8 @@ def select_guides(shapes: np.ndarray, roots: np.ndarray, lengths: np.ndarray, co
         cand = cand.reshape(s, k).astype(np.int64)
         label, _ = _assign(desc, centres, cand, label)
         # Voronoi iteration: the new medoid of each cluster is its member nearest the weighted mean
-        sums = np.zeros((count, desc.shape[1]))
-        np.add.at(sums, label, desc * weight[:, None])
+        sums = np.stack([np.bincount(label, weights=desc[:, j] * weight, minlength=count)
+                         for j in range(desc.shape[1])], axis=1)
         mass = np.bincount(label, weights=weight, minlength=count)
         means = sums / np.maximum(mass, 1e-300)[:, None]
         gap = ((desc - means[label]) ** 2).sum(axis=1)
