@@ -22,12 +22,11 @@ from pathlib import Path
 
 import numpy as np
 
-from baker.errors import BakerError
-from baker.options import from_args
 from baker.progress import QUIET, Progress
 from baker.techniques.hair.groom import clean_groom, read_groom
 from baker.techniques.hair.guide_solver import (GuideSolution, lod_counts, progressive_order, resample_strands,
                                                  solve_guides)
+from baker.techniques.hair.command import checked_options
 from baker.techniques.hair.guides_command import GUIDES_OUTPUT_SUFFIXES
 from baker.techniques.hair.guides_options import GuidesOptions
 from baker.techniques.hair.kernel import HairResult, StrandSet
@@ -260,13 +259,7 @@ def summary(bake: GuidesBake, input_path, output) -> dict:
 
 
 def run(args) -> int:
-    suffix = Path(args.output).suffix.lower()
-    if suffix not in GUIDES_OUTPUT_SUFFIXES:
-        raise BakerError(args.output, f"unsupported output type (use one of {', '.join(GUIDES_OUTPUT_SUFFIXES)})")
-    try:
-        options = from_args(GuidesOptions, "guides", args)
-    except ValueError as exc:
-        raise BakerError(None, str(exc)) from None
+    options = checked_options(args, GuidesOptions, "guides", GUIDES_OUTPUT_SUFFIXES)
     progress = Progress(enabled=False) if args.quiet else Progress()
     bake = make_guides(args.input, options, progress)
     write_output(bake, args.output, options)
