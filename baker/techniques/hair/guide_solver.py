@@ -78,11 +78,12 @@ def resample_strands(points: np.ndarray, counts: np.ndarray, vertices: int, widt
 
 
 # ------------------------------------------------------------------------------------------------ guide selection
-@numba.njit(cache=True, nogil=True, parallel=True)
+@numba.njit(cache=True, nogil=True)
 def _closer(desc, centre, mind):
-    """mind[i] = min(mind[i], |desc[i] - desc[centre]|^2) for every strand."""
+    """mind[i] = min(mind[i], |desc[i] - desc[centre]|^2) for every strand (serial: called once per centre, a
+    parallel region each time costs more than it saves on a busy machine)."""
     s, d = desc.shape
-    for i in numba.prange(s):
+    for i in range(s):
         dist = 0.0
         for j in range(d):
             x = desc[i, j] - desc[centre, j]
