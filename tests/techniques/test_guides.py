@@ -463,7 +463,7 @@ def test_bad_curves_skipped_or_refused(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("case", ["counts_past_end", "offset_past_end", "truncated", "no_lines", "broken_usd",
-                                  "usd_counts"])
+                                  "usd_counts", "usd_outside"])
 def test_bad_files_one_line_exit_2(tmp_path, capsys, case):
     if case == "no_lines":
         path = tmp_path / "tri.gltf"
@@ -471,6 +471,12 @@ def test_bad_files_one_line_exit_2(tmp_path, capsys, case):
     elif case == "broken_usd":
         path = tmp_path / "broken.usda"
         path.write_text("#usda 1.0\n( garbage\n")
+    elif case == "usd_outside":  # a sublayer outside the groom's folder is refused
+        (tmp_path / "outside.usda").write_text('#usda 1.0\ndef BasisCurves "c" {\n    int[] curveVertexCounts = [2]\n'
+                                                '    point3f[] points = [(0, 0, 0), (0, 1, 0)]\n}\n')
+        (tmp_path / "inner").mkdir()
+        path = tmp_path / "inner" / "groom.usda"
+        path.write_text('#usda 1.0\n(\n    subLayers = [@../outside.usda@]\n)\n')
     elif case == "usd_counts":  # curveVertexCounts that need more points than there are
         path = tmp_path / "counts.usda"
         path.write_text('#usda 1.0\ndef BasisCurves "c" {\n    int[] curveVertexCounts = [3, 5]\n'

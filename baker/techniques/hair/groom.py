@@ -55,6 +55,11 @@ def read_usd_groom(path) -> Groom:
         raise BakerError(path, f"cannot open USD stage: {' '.join(text.split())[:300]}") from None
     if stage is None:
         raise BakerError(path, "cannot open USD stage")
+    folder = Path(path).resolve().parent
+    for layer in stage.GetUsedLayers():  # sublayers and references must stay inside the groom's folder
+        real = layer.realPath.split("[", 1)[0]  # a layer inside a .usdz: "file.usdz[inner.usdc]"
+        if real and not Path(real).resolve().is_relative_to(folder):
+            raise BakerError(path, f"layer {layer.identifier} lies outside the groom's folder")
     parts = []
     for prim in stage.Traverse(Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)):
         if not prim.IsA(UsdGeom.BasisCurves):
