@@ -509,16 +509,25 @@ def test_same_seed_same_bytes(groom, tmp_path):
     assert outs[0] == outs[1]
 
 
-def test_scalp_binding(tmp_path):
-    """Roots bound to a sphere scalp: rootBinding rebuilds every root from the scalp's own triangles (read by
-    trimesh) and no strand vertex is inside the sphere."""
+@pytest.mark.parametrize("offset", [(0.0, 0.0, 0.0), (0.0, 2.0, -1.0)])
+def test_scalp_binding(tmp_path, offset):
+    """Roots bound to a sphere scalp (an OBJ, or a GLB whose node translates the sphere by ``offset``, the groom
+    translated alike): rootBinding rebuilds every root from the scalp's own triangles, the roots lie on the sphere
+    and no strand vertex is inside it; the hair node hangs under the scalp's node."""
     import trimesh
 
     sphere = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
-    scalp = tmp_path / "scalp.obj"
-    sphere.export(scalp)
+    offset = np.asarray(offset)
+    if offset.any():
+        scalp = tmp_path / "scalp.glb"
+        scene = trimesh.Scene()
+        scene.add_geometry(sphere, node_name="head", transform=trimesh.transformations.translation_matrix(offset))
+        scene.export(scalp)
+    else:
+        scalp = tmp_path / "scalp.obj"
+        sphere.export(scalp)
     curves, widths = make_groom(200, seed=11)
-    curves = [c * 1.02 for c in curves]  # roots slightly off the surface: binding snaps them
+    curves = [c * 1.02 + offset for c in curves]  # roots slightly off the surface: binding snaps them
     src = tmp_path / "g.usda"
     write_usd(src, curves, widths)
     out = tmp_path / "bound.glb"
@@ -526,7 +535,8 @@ def test_scalp_binding(tmp_path):
     report = validate_file(out, khronos=False)
     assert report["issues"]["numErrors"] == 0, report["issues"]["messages"]
     gltf, acc = read_glb(out)
-    mesh = next(m for m in gltf["meshes"] if m.get("name") == "hair")
+    hair_mesh = next(i for i, m in enumerate(gltf["meshes"]) if m.get("name") == "hair")
+    mesh = gltf["meshes"][hair_mesh]
     ext = mesh["primitives"][1]["extensions"]["BAKER_hair"]
     binding = ext["rootBinding"]
     s = ext["strandCount"]
@@ -539,6 +549,11 @@ def test_scalp_binding(tmp_path):
     faces = acc(prim["indices"]).reshape(-1, 3).astype(np.int64)
     roots = np.einsum("sk,skd->sd", bary.astype(np.float64), positions[faces[tris]])
     assert np.abs(roots - children[:, 0]).max() < 1e-5
+    # the hair node is a child of the node drawing the scalp mesh: strands are in the scalp mesh's space
+    parent = next(n for n in gltf["nodes"] if n.get("mesh") == binding["mesh"])
+    assert any(gltf["nodes"][c].get("mesh") == hair_mesh for c in parent.get("children", []))
+    translation = parent["matrix"][12:15] if "matrix" in parent else parent.get("translation", [0, 0, 0])
+    assert np.allclose(translation, offset)
     # roots on the surface (a mesh of the unit sphere: within its chord error), strands outside it
     assert np.abs(np.linalg.norm(children[:, 0], axis=1) - 1.0).max() < 0.01
     inside = sphere.contains(children[:, 1:].reshape(-1, 3))

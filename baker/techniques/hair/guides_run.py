@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from baker.errors import BakerError
 from baker.progress import QUIET, Progress
 from baker.techniques.hair.groom import clean_groom, read_groom
 from baker.techniques.hair.guide_solver import (GuideSolution, lod_counts, progressive_order, resample_strands,
@@ -118,6 +119,14 @@ def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET) 
         from baker.geometry.asset import Asset
 
         asset = Asset.load(options.scalp)
+        # the hair is written under the scalp's node (glTF) or with its transform (USD): work in its mesh space
+        from baker.techniques.hair.usd import emitter_world_matrix
+
+        matrix = emitter_world_matrix(asset.doc.json, 0)
+        if abs(np.linalg.det(matrix[:3, :3])) < 1e-300:
+            raise BakerError(options.scalp, "the node drawing the scalp mesh has a singular transform")
+        inverse = np.linalg.inv(matrix)
+        strands = strands @ inverse[:3, :3].T + inverse[:3, 3]
         binding, strands, normals, inside = bind_to_scalp(asset, strands, options.seed)
         lengths = np.linalg.norm(np.diff(strands, axis=1), axis=2).sum(axis=1)
     with progress.task("guides", 3) as advance:

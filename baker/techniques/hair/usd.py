@@ -23,7 +23,8 @@ from baker.techniques.hair.kernel import HairResult, StrandSet
 from baker.errors import BakerError
 
 
-def _emitter_world_matrix(gltf: dict, emitter_mesh: int) -> np.ndarray:
+def emitter_world_matrix(gltf: dict, emitter_mesh: int) -> np.ndarray:
+    """World matrix of the first node drawing ``emitter_mesh`` (the one the hair node hangs under), else identity."""
     from baker.gltf.document import node_matrix
 
     nodes = gltf.get("nodes", [])
@@ -88,7 +89,7 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     layer, images = build_layer(doc, folder, primitive_hooks)
     stage = Usd.Stage.Open(layer)
     hair = UsdGeom.Xform.Define(stage, "/Root/Hair")
-    matrix = _emitter_world_matrix(doc.json, emitter_mesh)
+    matrix = emitter_world_matrix(doc.json, emitter_mesh)
     if not np.array_equal(matrix, np.eye(4)):
         hair.AddTransformOp().Set(Gf.Matrix4d(matrix.T.tolist()))
     custom_attributes(hair.GetPrim(), "baker:hair", {
