@@ -84,7 +84,7 @@ def bind_to_scalp(asset, strands: np.ndarray, seed: int):
 
     emitter = emitter_from_asset(asset, HairOptions())
     surface = SurfaceLookup(emitter.vertices, emitter.colliders, rng_seed=seed)
-    closest, normals, _, face = surface.closest_faces(strands[:, 0])
+    closest, _, _, face = surface.closest_faces(strands[:, 0])
     tri = emitter.vertices[emitter.colliders[face]]
     bary = barycentric_weights(closest, tri[:, 0], tri[:, 1], tri[:, 2])
     moved = strands + (closest - strands[:, 0])[:, None, :]
@@ -97,8 +97,8 @@ def bind_to_scalp(asset, strands: np.ndarray, seed: int):
                       root_normals=smooth)
     # triangle numbers of the welded emitter -> (primitive, triangle within it): emitter_from_asset concatenates
     # the triangle primitives of mesh 0 in order
-    sizes = [len(asset.primitive(0, p).faces) for p in asset.triangle_primitives(0)]
-    prims = [p for p in asset.triangle_primitives(0)]
+    prims = list(asset.triangle_primitives(0))
+    sizes = [len(asset.primitive(0, p).faces) for p in prims]
     offsets = np.cumsum([0] + [n for n in sizes if n])
     prims = [p for p, n in zip(prims, sizes) if n]
     which = np.searchsorted(offsets, face, side="right") - 1
