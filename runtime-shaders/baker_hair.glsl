@@ -43,6 +43,27 @@ vec3 baker_hair_ribbon_position(vec3 position, vec3 tangent, vec3 eye, float wid
     return position + baker_hair_ribbon_side(position, tangent, eye) * (width * (side - 0.5));
 }
 
+// ------------------------------------------------------------------------------------------------ guides, LODs
+// A child from its 3 guides (BAKER_hair guides.interpolation "offset", written by `baker guides`):
+// child(t) = childRoot + sum_i w_i (guide_i(t) - guideRoot_i), t the vertex index along the strand. Feed it the
+// animated guides to move the children with the simulation; the rest pose gives back the stored child.
+vec3 baker_hair_offset_child(vec3 childRoot, vec3 weights, vec3 guide0, vec3 guideRoot0, vec3 guide1,
+                             vec3 guideRoot1, vec3 guide2, vec3 guideRoot2) {
+    return childRoot + weights.x * (guide0 - guideRoot0) + weights.y * (guide1 - guideRoot1)
+         + weights.z * (guide2 - guideRoot2);
+}
+
+// LODs by prefix (BAKER_hair lods, order "lodPrefix"): level k draws the first lods[k].strandCount strands, i.e.
+// the first baker_hair_lod_index_count(lods[k].strandCount, verticesPerStrand) entries of ribbonIndices...
+int baker_hair_lod_index_count(int strandCount, int verticesPerStrand) {
+    return strandCount * 6 * (verticesPerStrand - 1);
+}
+
+// ... with every width times lods[k].widthScale, so the fewer strands cover about the same area.
+float baker_hair_lod_width(float width, float lodWidthScale) {
+    return width * lodWidthScale;
+}
+
 // ------------------------------------------------------------------------------------------------ shading
 // Kajiya & Kay 1989: diffuse sin(T, L); specular cone around the mirror direction about the fiber:
 // (sin(T,L) sin(T,V) - cos(T,L) cos(T,V))^p. T, L, V unit; L and V point away from the fiber.

@@ -47,7 +47,8 @@ REFS = {
     EDGE_VISIBILITY: {"visibility": "accessor", "silhouetteMates": "accessor", "lineStrings/*/indices": "accessor",
                       "lineStrings/*/material": "material"},  # baker writes no lineStrings
     "BAKER_hair": {"widthScale": "accessor", "ribbonIndices": "accessor", "guides/ids": "accessor",
-                   "guides/weights": "accessor", "guides/primitive": "primitive"},
+                   "guides/weights": "accessor", "guides/primitive": "primitive", "rootBinding/primitives": "accessor",
+                   "rootBinding/triangles": "accessor", "rootBinding/barycentrics": "accessor"},
     "BAKER_fur": {"shellTextures/*": "texture", "finTexture": "texture", "finsOf": "primitive",
                   "fins/*": "mesh-primitive"},
     "BAKER_glyph_atlas": {"fonts/*/texture": "texture-index", "fonts/*/glyphs/unicode": "accessor",

@@ -104,8 +104,31 @@ void main() {
 }
 """
 
+CHILD_VS = """
+in vec3 ROOT;
+in vec3 WEIGHTS;
+in vec3 G0;
+in vec3 R0;
+in vec3 G1;
+in vec3 R1;
+in vec3 G2;
+in vec3 R2;
+uniform float u_lodWidthScale;
+uniform int u_strandCount;
+uniform int u_verticesPerStrand;
+out vec3 o_child;
+out vec2 o_lod;
+void main() {
+    o_child = baker_hair_offset_child(ROOT, WEIGHTS, G0, R0, G1, R1, G2, R2);
+    o_lod = vec2(baker_hair_lod_width(0.75, u_lodWidthScale),
+                 float(baker_hair_lod_index_count(u_strandCount, u_verticesPerStrand)));
+    gl_Position = vec4(0.0);
+}
+"""
+
 TRIVIAL_FS = "out vec4 o_color;\nvoid main() { o_color = vec4(1.0); }\n"
-STAGES = {"shade": (FULLSCREEN_VS, SHADE_FS), "ribbon": (RIBBON_VS, TRIVIAL_FS), "fur": (FUR_VS, TRIVIAL_FS)}
+STAGES = {"shade": (FULLSCREEN_VS, SHADE_FS), "ribbon": (RIBBON_VS, TRIVIAL_FS), "fur": (FUR_VS, TRIVIAL_FS),
+          "child": (CHILD_VS, TRIVIAL_FS)}
 
 
 def source(version: str, body: str) -> str:
@@ -211,7 +234,7 @@ def _transform(ctx, vs, varyings, arrays, uniforms):
     buffers = [(ctx.buffer(np.ascontiguousarray(a, np.float32).tobytes()), f"{a.shape[1] if a.ndim > 1 else 1}f", k)
                for k, a in arrays.items()]
     vao = ctx.vertex_array(prog, buffers)
-    widths = {"o_side0": 3, "o_side1": 3, "o_coverage": 2, "o_shell": 3, "o_fin": 3}
+    widths = {"o_side0": 3, "o_side1": 3, "o_coverage": 2, "o_shell": 3, "o_fin": 3, "o_child": 3, "o_lod": 2}
     stride = sum(widths[v] for v in varyings)
     out = ctx.buffer(reserve=n * stride * 4)
     fbo = ctx.simple_framebuffer((4, 4))  # a surfaceless EGL context has no default framebuffer to bind
@@ -279,3 +302,45 @@ def test_fur_vertex_functions_match_twin(gl_context):
     # fin corners: 0, 1 on the edge; 2, 3 raised by the length over v1, v0
     assert np.allclose(fin_pos[corner == 2], v1[corner == 2] + 0.25 * normal[corner == 2], atol=1e-6)
     assert np.allclose(fin_pos[corner == 0], v0[corner == 0])
+
+
+def test_offset_children_and_lods_match_twin(gl_context, tmp_path):
+    """Children written by ``baker guides`` (from a ``baker hair`` groom) rebuilt on the GPU from their 3 guides
+    with ``baker_hair_offset_child``: the twin agrees, and so does the offset formula in float64 on the file's data;
+    LOD widths and prefix index counts from the file's ``lods``."""
+    from baker.cli import main as cli_main
+    from baker.gltf.document import GltfDocument
+    from baker.techniques.hair.extension import read
+    from baker.techniques.hair.grow import make_hair, write_output
+    from baker.techniques.hair.options import HairOptions
+
+    groom = tmp_path / "groom.glb"
+    opts = HairOptions(guides=40, children=6, segments=8, length=0.3, curl_amplitude=0.1)
+    asset, result = make_hair(REPO / "examples" / "spot" / "spot.obj", opts, seed=2)
+    write_output(asset, result, opts, groom)
+    out = tmp_path / "guides.glb"
+    assert cli_main(["guides", str(groom), "-o", str(out), "--guides", "30", "--vertices-per-strand", "9",
+                     "--quiet"]) == 0
+    doc = GltfDocument.load(out)
+    guides, children = read(doc, 0, 0), read(doc, 0, 1)
+    v = guides.vertices_per_strand
+    gpos = guides.positions.reshape(-1, v, 3)
+    cpos = children.positions.reshape(-1, v, 3)
+    ids, w = children.guide_ids.astype(np.int64), children.guide_weights
+    n = len(cpos) * v
+    rep = lambda a: np.repeat(a, v, axis=0)  # noqa: E731  per strand -> per vertex
+    arrays = {"ROOT": rep(cpos[:, 0]), "WEIGHTS": rep(w)}
+    for k in range(3):
+        arrays[f"G{k}"] = gpos[ids[:, k]].reshape(n, 3)
+        arrays[f"R{k}"] = rep(gpos[ids[:, k], 0])
+    lod_count, lod_scale = children.lods[-1]
+    gpu = _transform(gl_context, CHILD_VS, ["o_child", "o_lod"], arrays,
+                     {"u_lodWidthScale": lod_scale, "u_strandCount": lod_count, "u_verticesPerStrand": v})
+    twin = twins.baker_hair_offset_child(arrays["ROOT"], arrays["WEIGHTS"], arrays["G0"], arrays["R0"],
+                                         arrays["G1"], arrays["R1"], arrays["G2"], arrays["R2"])
+    assert np.abs(gpu["o_child"] - twin).max() < 1e-5
+    exact = cpos[:, :1] + np.einsum("sk,skvd->svd", w, gpos[ids] - gpos[ids][:, :, :1])
+    assert np.abs(gpu["o_child"].reshape(-1, v, 3) - exact).max() < 1e-5
+    assert np.allclose(gpu["o_lod"][:, 0], twins.baker_hair_lod_width(0.75, lod_scale))
+    assert (gpu["o_lod"][:, 1] == twins.baker_hair_lod_index_count(lod_count, v)).all()
+    assert twins.baker_hair_lod_index_count(lod_count, v) == 6 * (v - 1) * lod_count

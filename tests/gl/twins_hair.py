@@ -55,6 +55,20 @@ def baker_hair_ribbon_side(position, tangent, eye):
     return s / length[..., None]
 
 
+def baker_hair_offset_child(child_root, weights, guide0, guide_root0, guide1, guide_root1, guide2, guide_root2):
+    w = _f(weights)
+    return (_f(child_root) + w[..., 0:1] * (_f(guide0) - _f(guide_root0)) + w[..., 1:2] * (_f(guide1) - _f(guide_root1))
+            + w[..., 2:3] * (_f(guide2) - _f(guide_root2)))
+
+
+def baker_hair_lod_index_count(strand_count, vertices_per_strand):
+    return np.asarray(strand_count, np.int32) * 6 * (np.asarray(vertices_per_strand, np.int32) - 1)
+
+
+def baker_hair_lod_width(width, lod_width_scale):
+    return _f(width) * _f(lod_width_scale)
+
+
 def baker_hair_ribbon_position(position, tangent, eye, width, side):
     return _f(position) + baker_hair_ribbon_side(position, tangent, eye) * (_f(width) * (_f(side) - F32(0.5)))[..., None]
 

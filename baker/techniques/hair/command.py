@@ -1,7 +1,7 @@
 """``baker hair SCALP -o OUT``: the parser; the work is in :mod:`baker.techniques.hair.grow`, imported when it runs."""
 from __future__ import annotations
 
-from baker.options import add_arguments
+from baker.options import add_arguments, from_args
 from baker.technique import lazy
 from baker.techniques.hair.options import HairOptions
 
@@ -16,3 +16,18 @@ def add_parser(subparsers) -> None:
     p.add_argument("-q", "--quiet", action="store_true", help="no summary")
     add_arguments(p, HairOptions, "hair", prefixed_flags=False)
     p.set_defaults(func=lazy("baker.techniques.hair.grow:run"))
+
+
+def checked_options(args, options_class, prefix: str, suffixes):
+    """The options of a hair command from its parsed flags, once the output suffix is known to be one of
+    ``suffixes``; a bad suffix or value is a BakerError (one line, exit 2)."""
+    from pathlib import Path
+
+    from baker.errors import BakerError
+
+    if Path(args.output).suffix.lower() not in suffixes:
+        raise BakerError(args.output, f"unsupported output type (use one of {', '.join(suffixes)})")
+    try:
+        return from_args(options_class, prefix, args)
+    except ValueError as exc:
+        raise BakerError(None, str(exc)) from None

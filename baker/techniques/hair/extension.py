@@ -28,15 +28,15 @@ PARAM = "_STRAND_PARAM"
 MODE_LINES = 1
 
 
-def _add_node(doc: GltfDocument, mesh: int, emitter_mesh: int, name: str) -> int:
+def add_hair_node(doc: GltfDocument, mesh: int, emitter_mesh: int | None, name: str) -> int:
     """A node drawing ``mesh``, child of the first node that draws ``emitter_mesh`` (so it shares its transform),
-    else a root of the default scene."""
+    else (or when ``emitter_mesh`` is None) a root of the default scene."""
     gltf = doc.json
     nodes = gltf.setdefault("nodes", [])
     nodes.append({"name": name, "mesh": mesh})
     node = len(nodes) - 1
     for i, n in enumerate(nodes[:-1]):
-        if n.get("mesh") == emitter_mesh:
+        if emitter_mesh is not None and n.get("mesh") == emitter_mesh:
             n.setdefault("children", []).append(node)
             return node
     scenes = gltf.setdefault("scenes", [{"nodes": []}])
@@ -102,7 +102,7 @@ def write_hair(doc: GltfDocument, result: HairResult, emitter_mesh: int, color=(
     meshes = doc.json.setdefault("meshes", [])
     meshes.append({"name": "hair", "primitives": prims})
     mesh = len(meshes) - 1
-    _add_node(doc, mesh, emitter_mesh, "hair")
+    add_hair_node(doc, mesh, emitter_mesh, "hair")
     doc.use_extension(NAME)
     return mesh
 
@@ -188,6 +188,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                              pointer("accessors", a))
         if (ext.get("tipWidth") or 0) > (ext.get("rootWidth") or 0) * 1.000001:
             issues.warning("BAKER_HAIR_WIDTH_ORDER", "tipWidth is larger than rootWidth", ptr)
+        check_lods_and_binding(doc, ext, s, ptr, issues)
         guides = ext.get("guides")
         if isinstance(guides, dict):
             gp = guides.get("primitive")
@@ -215,6 +216,66 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                              pointer("accessors", w_a))
 
 
+def check_lods_and_binding(doc: GltfDocument, ext: dict, strand_count: int, ptr: str, issues) -> None:
+    """``lods``: the first level holds every strand, counts never grow, widthScale > 0; ``rootBinding``: one
+    primitive/triangle/barycentric per strand, naming triangles that exist, barycentrics a partition of unity."""
+    from baker.checks import is_index, pointer
+
+    lods = ext.get("lods")
+    if isinstance(lods, list) and lods and all(isinstance(x, dict) for x in lods):
+        counts = [x.get("strandCount") for x in lods]
+        if all(isinstance(c, int) for c in counts):
+            if counts[0] != strand_count:
+                issues.error("BAKER_HAIR_LOD_COUNT", f"lods[0].strandCount must be strandCount {strand_count}, not "
+                             f"{counts[0]}", ptr + "/lods/0/strandCount")
+            if any(b > a for a, b in zip(counts, counts[1:])):
+                issues.error("BAKER_HAIR_LOD_ORDER", "lods must go from the most strands to the fewest",
+                             ptr + "/lods")
+        if ext.get("order") != "lodPrefix" and len(lods) > 1:
+            issues.warning("BAKER_HAIR_LOD_ORDER", "lods on a primitive whose order is not 'lodPrefix': a prefix "
+                           "may not cover the scalp evenly", ptr + "/order")
+    binding = ext.get("rootBinding")
+    if not isinstance(binding, dict):
+        return
+    gltf = doc.json
+    accessors = gltf.get("accessors") or []
+    meshes = gltf.get("meshes") or []
+    m = binding.get("mesh")
+    if not is_index(m, meshes):
+        issues.error("UNRESOLVED_REFERENCE", f"mesh {m!r} does not exist", ptr + "/rootBinding/mesh")
+        return
+    arrays = {}
+    for key, kind in (("primitives", "SCALAR"), ("triangles", "SCALAR"), ("barycentrics", "VEC3")):
+        a = binding.get(key)
+        if not is_index(a, accessors):
+            issues.error("UNRESOLVED_REFERENCE", f"accessor {a!r} does not exist", ptr + "/rootBinding/" + key)
+            return
+        if accessors[a].get("count") != strand_count or accessors[a].get("type") != kind:
+            issues.error("BAKER_HAIR_BINDING", f"rootBinding.{key} must be {strand_count} {kind} values",
+                         pointer("accessors", a))
+            return
+        arrays[key] = doc.accessor(a)
+    prims = meshes[m].get("primitives") or []
+    primitive = arrays["primitives"].astype(np.int64)
+    if len(primitive) and int(primitive.max()) >= len(prims):
+        issues.error("BAKER_HAIR_BINDING", f"rootBinding.primitives must be < {len(prims)} (primitives of mesh {m})",
+                     pointer("accessors", binding["primitives"]))
+        return
+    for p in np.unique(primitive).tolist():
+        prim = prims[p]
+        if prim.get("mode", 4) != 4:
+            continue
+        source = prim.get("indices", (prim.get("attributes") or {}).get("POSITION"))
+        n_tri = (accessors[source].get("count", 0) // 3) if is_index(source, accessors) else 0
+        if int(arrays["triangles"][primitive == p].max()) >= n_tri:
+            issues.error("BAKER_HAIR_BINDING", f"rootBinding.triangles names a triangle past the {n_tri} of mesh {m} "
+                         f"primitive {p}", pointer("accessors", binding["triangles"]))
+    bary = arrays["barycentrics"].astype(np.float64)
+    if (bary < -1e-6).any() or (np.abs(bary.sum(axis=1) - 1.0) > 1e-4).any() or not np.isfinite(bary).all():
+        issues.error("BAKER_HAIR_BINDING", "rootBinding.barycentrics must be >= 0 and sum to 1 per strand",
+                     pointer("accessors", binding["barycentrics"]))
+
+
 @dataclass(frozen=True, eq=False)  # holds arrays: compared by identity
 class HairStrands:
     """One ``BAKER_hair`` primitive as read back: strands of ``vertices_per_strand`` vertices, root first."""
@@ -232,6 +293,9 @@ class HairStrands:
     guide_ids: np.ndarray | None = None
     guide_weights: np.ndarray | None = None
     material: int | None = None
+    interpolation: str | None = None  # children: "offset"
+    lods: tuple = ()  # ((strandCount, widthScale), ...), finest first
+    root_binding: dict | None = None  # {"mesh", "primitives", "triangles", "barycentrics"} (arrays), or None
 
 
 def read(doc: GltfDocument, mesh: int, primitive: int) -> HairStrands | None:
@@ -252,4 +316,9 @@ def read(doc: GltfDocument, mesh: int, primitive: int) -> HairStrands | None:
         guides_primitive=int(guides["primitive"]) if "primitive" in guides else None,
         guide_ids=doc.accessor(guides["ids"]) if "ids" in guides else None,
         guide_weights=doc.accessor(guides["weights"]) if "weights" in guides else None,
-        material=prim.get("material"))
+        material=prim.get("material"),
+        interpolation=guides.get("interpolation", "offset") if guides else None,
+        lods=tuple((int(x["strandCount"]), float(x["widthScale"])) for x in ext.get("lods", ())),
+        root_binding=None if "rootBinding" not in ext else {
+            "mesh": int(ext["rootBinding"]["mesh"]),
+            **{k: doc.accessor(ext["rootBinding"][k]) for k in ("primitives", "triangles", "barycentrics")}})

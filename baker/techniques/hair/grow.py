@@ -17,9 +17,8 @@ from baker.geometry.welding import weld
 from baker.techniques.hair.kernel import Emitter, HairResult, SurfaceField, generate_hair
 from baker.techniques.hair.options import HairOptions
 from baker.errors import BakerError
-from baker.options import from_args
 
-from baker.techniques.hair.command import OUTPUT_SUFFIXES
+from baker.techniques.hair.command import OUTPUT_SUFFIXES, checked_options
 
 
 
@@ -128,13 +127,7 @@ def write_output(asset: Asset, result: HairResult, options: HairOptions, output)
 
 
 def run(args) -> int:
-    suffix = Path(args.output).suffix.lower()
-    if suffix not in OUTPUT_SUFFIXES:
-        raise BakerError(args.output, f"unsupported output type (use one of {', '.join(OUTPUT_SUFFIXES)})")
-    try:
-        options = from_args(HairOptions, "hair", args)
-    except ValueError as exc:
-        raise BakerError(None, str(exc)) from None
+    options = checked_options(args, HairOptions, "hair", OUTPUT_SUFFIXES)
     asset, result = make_hair(args.input, options, seed=args.seed)
     write_output(asset, result, options, args.output)
     if not args.quiet:

@@ -215,6 +215,13 @@ def _neighbour_graph(points: np.ndarray, radius: float):
     return np.cumsum(indptr), j, dist
 
 
+def eliminate_samples(points: np.ndarray, keep: int, rmax: float, alpha: float = 8.0) -> np.ndarray:
+    """Boolean mask of the ``keep`` points weighted sample elimination (Yuksel 2015) keeps, for a Poisson radius
+    ``rmax`` of the kept set."""
+    indptr, indices, dist = _neighbour_graph(points, 2.0 * rmax)
+    return _sample_elimination(keep, indptr, indices, dist, rmax, alpha)
+
+
 def masked_surface_points(emitter: Emitter, count: int, rng: np.random.Generator, oversample: int = 1):
     """``count * oversample`` points, uniform over the area times the density mask (rejection sampling in
     batches; deterministic). Returns (triangle ids, barycentrics, mean mask value)."""
@@ -244,8 +251,7 @@ def sample_roots(emitter: Emitter, count: int, rng: np.random.Generator, oversam
     effective_area = float(triangle_areas(emitter.vertices, faces).sum()) * mask_mean
     points = np.einsum("sk,skd->sd", bary, emitter.vertices[faces[tri]])
     rmax = math.sqrt(effective_area / (2.0 * math.sqrt(3.0) * count))
-    indptr, indices, dist = _neighbour_graph(points, 2.0 * rmax)
-    alive = _sample_elimination(count, indptr, indices, dist, rmax, 8.0)
+    alive = eliminate_samples(points, count, rmax)
     return tri[alive], bary[alive], points[alive], rmax
 
 
@@ -437,9 +443,17 @@ class SurfaceLookup:
         _, idx = self.tree.query(points, k=k, workers=2)
         idx = idx.reshape(len(points), k)
         tris = self.sample_triangle[idx]
-        best_p, best_n, best_d = _closest_on_triangles(np.ascontiguousarray(points, np.float64), tris,
-                                                      self.vertices, self.faces, self.face_normals)
+        best_p, best_n, best_d, _ = _closest_on_triangles(np.ascontiguousarray(points, np.float64), tris,
+                                                         self.vertices, self.faces, self.face_normals)
         return best_p, best_n, best_d
+
+    def closest_faces(self, points: np.ndarray):
+        """(closest points, unit face normals, distances, triangle indices) for each point."""
+        k = min(self.k, self.tree.n)
+        _, idx = self.tree.query(points, k=k, workers=2)
+        tris = self.sample_triangle[idx.reshape(len(points), k)]
+        return _closest_on_triangles(np.ascontiguousarray(points, np.float64), tris, self.vertices, self.faces,
+                                     self.face_normals)
 
     def distance(self, points: np.ndarray) -> np.ndarray:
         return self.closest(points)[2]
@@ -455,6 +469,7 @@ def _closest_on_triangles(points, tris, vertices, faces, face_normals):
     out_p = np.empty((n, 3))
     out_n = np.empty((n, 3))
     out_d = np.empty(n)
+    out_f = np.empty(n, np.int64)
     for i in numba.prange(n):
         best = 1e300
         for j in range(tris.shape[1]):
@@ -465,8 +480,9 @@ def _closest_on_triangles(points, tris, vertices, faces, face_normals):
                 best = d
                 out_p[i] = q
                 out_n[i] = face_normals[f]
+                out_f[i] = f
         out_d[i] = math.sqrt(best)
-    return out_p, out_n, out_d
+    return out_p, out_n, out_d, out_f
 
 
 @numba.njit(cache=True, nogil=True, inline="always")

@@ -109,9 +109,22 @@ def decode_tfx(data: bytes) -> TfxFile:
         raise ValueError(f"a .tfx file has a {HEADER.size}-byte header; got {len(data)} bytes")
     fields = HEADER.unpack_from(data)
     version, s, v, pos_off, uv_off, _vuv_off, th_off, _col_off = fields[:8]
+    if not np.isfinite(version):
+        raise ValueError("header: version is not a number")
+    if s < 1 or v < 1:
+        raise ValueError(f"header: {s} strands of {v} vertices")
     n = s * v
-    if pos_off + 16 * n > len(data):
-        raise ValueError("vertex positions run past the end of the file")
+
+    def block(name, offset, size):  # every block must lie after the header and inside the file
+        if offset < HEADER.size or offset + size > len(data):
+            raise ValueError(f"header: {name} ({size} bytes at offset {offset}) runs outside the {len(data)}-byte "
+                             "file")
+
+    block("vertex positions", pos_off, 16 * n)
+    if uv_off:
+        block("strand UVs", uv_off, 8 * s)
+    if th_off:
+        block("strand thickness", th_off, 4 * s)
     positions = np.frombuffer(data, "<f4", count=4 * n, offset=pos_off).reshape(s, v, 4).copy()
     uv = np.frombuffer(data, "<f4", count=2 * s, offset=uv_off).reshape(s, 2).copy() if uv_off else None
     thickness = np.frombuffer(data, "<f4", count=s, offset=th_off).copy() if th_off else None

@@ -23,7 +23,8 @@ from baker.techniques.hair.kernel import HairResult, StrandSet
 from baker.errors import BakerError
 
 
-def _emitter_world_matrix(gltf: dict, emitter_mesh: int) -> np.ndarray:
+def emitter_world_matrix(gltf: dict, emitter_mesh: int) -> np.ndarray:
+    """World matrix of the first node drawing ``emitter_mesh`` (the one the hair node hangs under), else identity."""
     from baker.gltf.document import node_matrix
 
     nodes = gltf.get("nodes", [])
@@ -74,9 +75,9 @@ def _curves(stage, path: str, strands: StrandSet, result: HairResult, curve_type
 
 
 def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type: str = "linear",
-                   primitive_hooks=None) -> None:
+                   primitive_hooks=None, hair_hook=None) -> None:
     """Write the emitter asset (as :func:`baker.gltf.usd.write_usd` does, with the same ``primitive_hooks``) plus the
-    hair curves, atomically."""
+    hair curves, atomically; ``hair_hook(stage)``, when given, adds to the hair prims before the file is written."""
     from pxr import Gf, Usd, UsdGeom
 
     from baker.gltf.usd import build_layer, custom_attributes, write_stage_and_textures
@@ -88,7 +89,7 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     layer, images = build_layer(doc, folder, primitive_hooks)
     stage = Usd.Stage.Open(layer)
     hair = UsdGeom.Xform.Define(stage, "/Root/Hair")
-    matrix = _emitter_world_matrix(doc.json, emitter_mesh)
+    matrix = emitter_world_matrix(doc.json, emitter_mesh)
     if not np.array_equal(matrix, np.eye(4)):
         hair.AddTransformOp().Set(Gf.Matrix4d(matrix.T.tolist()))
     custom_attributes(hair.GetPrim(), "baker:hair", {
@@ -98,4 +99,6 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     _curves(stage, "/Root/Hair/guides", result.guides, result, curve_type)
     if result.children.count:
         _curves(stage, "/Root/Hair/children", result.children, result, curve_type)
+    if hair_hook is not None:
+        hair_hook(stage)
     write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])

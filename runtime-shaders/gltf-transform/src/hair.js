@@ -5,7 +5,9 @@ import { BakerExtension, defineProperty } from './base.js';
 const HAIR = 'BAKER_hair';
 
 /** BAKER_hair on a LINES primitive: `widthScale`, `ribbonIndices`, and for children `guides` (`primitive`: the
- * guide Primitive of the same mesh; `ids`, `weights`: accessors). */
+ * guide Primitive of the same mesh; `ids`, `weights`: accessors; `interpolation`), `lods` (plain JSON) and, from
+ * `baker guides --scalp`, `rootBinding` (`primitives`, `triangles`, `barycentrics`: accessors; `mesh`: an index
+ * kept as written). */
 export const Hair = defineProperty(HAIR, 'BakerHair', PropertyType.PRIMITIVE);
 
 export class BakerHair extends BakerExtension {

@@ -50,6 +50,9 @@ export const REFERENCES = {
 			["guides/primitive", "primitive"],
 			["guides/ids", "accessor"],
 			["guides/weights", "accessor"],
+			["rootBinding/primitives", "accessor"],
+			["rootBinding/triangles", "accessor"],
+			["rootBinding/barycentrics", "accessor"],
 		],
 	},
 	"BAKER_skin_lut": {

@@ -9,13 +9,14 @@ attribute float baker_side;
 attribute float baker_widthScale;
 uniform float u_rootWidth;
 uniform float u_tipWidth;
+uniform float u_lodWidthScale;
 uniform vec2 u_viewport;
 varying float vOpacity;
 varying vec3 vTangent;
 varying vec3 vView;
 void main() {
 	vec3 eye = (inverse(modelMatrix) * vec4(cameraPosition, 1.0)).xyz;  // object space
-	float w = baker_hair_width(u_rootWidth, u_tipWidth, baker_param, baker_widthScale);
+	float w = baker_hair_lod_width(baker_hair_width(u_rootWidth, u_tipWidth, baker_param, baker_widthScale), u_lodWidthScale);
 	float tanHalfFovY = 1.0 / projectionMatrix[1][1];
 	vec2 cov = baker_hair_coverage(w, baker_hair_pixel_size(distance(eye, position), tanHalfFovY, u_viewport.y));
 	vec3 p = baker_hair_ribbon_position(position, baker_tangent, eye, cov.x, baker_side);
@@ -78,12 +79,28 @@ export function ribbonGeometry(line, ribbonIndices, widthScale, verticesPerStran
 	return geometry;
 }
 
+/**
+ * Draw level `level` of a BAKER_hair primitive's `lods` (written by `baker guides`, order "lodPrefix"): the first
+ * lods[level].strandCount strands (a prefix of the ribbon index buffer, 6 indices per segment) with every width
+ * times lods[level].widthScale. `ribbons` is the mesh the plugin made (userData.bakerHair holds the lods).
+ */
+export function setHairLod(ribbons, level) {
+	const hair = ribbons.userData.bakerHair;
+	if (!hair || !hair.lods.length) return;
+	const k = Math.max(0, Math.min(Math.floor(level), hair.lods.length - 1));
+	const lod = hair.lods[k];
+	ribbons.geometry.setDrawRange(0, lod.strandCount * 6 * (hair.verticesPerStrand - 1));
+	ribbons.material.uniforms.u_lodWidthScale.value = lod.widthScale;
+	hair.level = k;
+}
+
 /** GLTFLoader plugin for BAKER_hair: view-facing ribbons extruded in the vertex shader, Kajiya-Kay shading. */
 export class BakerHairPlugin {
 	constructor(parser, options = {}) {
 		this.parser = parser;
 		this.name = BAKER_HAIR;
 		this.shaders = options.shaders || {};
+		this.lod = options.hairLod ?? 0; // level of `lods` drawn at load (setHairLod changes it later)
 	}
 
 	async afterRoot(result) {
@@ -101,7 +118,7 @@ export class BakerHairPlugin {
 				{ tangent: (ext.tangentAttribute ?? '_STRAND_TANGENT').toLowerCase(), param: (ext.paramAttribute ?? '_STRAND_PARAM').toLowerCase() });
 			const base = object.material.color ? object.material.color.clone() : new THREE.Color(0.18, 0.11, 0.06);
 			const uniforms = {
-				u_rootWidth: { value: ext.rootWidth }, u_tipWidth: { value: ext.tipWidth },
+				u_rootWidth: { value: ext.rootWidth }, u_tipWidth: { value: ext.tipWidth }, u_lodWidthScale: { value: 1 },
 				u_viewport: { value: new THREE.Vector2(1, 1) },
 				u_color: { value: new THREE.Vector3(base.r, base.g, base.b) },
 				u_specular: { value: new THREE.Vector3(0.3, 0.28, 0.25) }, u_exponent: { value: 60 },
@@ -114,6 +131,8 @@ export class BakerHairPlugin {
 			}));
 			ribbons.name = 'baker hair ribbons';
 			ribbons.frustumCulled = false;
+			ribbons.userData.bakerHair = { lods: ext.lods ?? [], verticesPerStrand: ext.verticesPerStrand, level: 0 };
+			setHairLod(ribbons, this.lod);
 			trackViewport(ribbons, uniforms);
 			object.parent.add(ribbons);
 			ribbons.position.copy(object.position);

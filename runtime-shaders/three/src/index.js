@@ -33,7 +33,7 @@ import { BakerTextPlugin } from './text.js';
 export { thicknessParameters } from './thickness.js';
 export { tamTextures } from './tonal_art_map.js';
 export { wireframeGeometry } from './edges.js';
-export { ribbonGeometry } from './hair.js';
+export { ribbonGeometry, setHairLod } from './hair.js';
 export { BakerGlyphAtlasPlugin } from './glyph_atlas.js';
 export {
 	BakerThicknessPlugin, BakerCurvaturePlugin, BakerSkinLutPlugin, BakerToonRampPlugin, BakerTonalArtMapPlugin,

@@ -1,0 +1,19 @@
+"""``baker guides GROOM -o OUT``: the parser; the work is in :mod:`baker.techniques.hair.guides_run`."""
+from __future__ import annotations
+
+from baker.options import add_arguments
+from baker.technique import lazy
+from baker.techniques.hair.guides_options import GuidesOptions
+
+GUIDES_OUTPUT_SUFFIXES = (".glb", ".gltf", ".usda", ".usdc", ".usd", ".tfx")
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser("guides", help="dense groom -> simulation guides, 3-guide child weights and LODs")
+    p.add_argument("input", help="groom: .usd .usda .usdc .usdz (BasisCurves), .gltf .glb (LINES, LINE_STRIP, "
+                                 "BAKER_hair) or .tfx (TressFX)")
+    p.add_argument("-o", "--output", required=True, help=f"output file ({' '.join(GUIDES_OUTPUT_SUFFIXES)})")
+    p.add_argument("--format", choices=("text", "json"), default="text", help="summary format (stdout for json)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no summary, no progress bar")
+    add_arguments(p, GuidesOptions, "guides", prefixed_flags=False)
+    p.set_defaults(func=lazy("baker.techniques.hair.guides_run:run"))
