@@ -102,6 +102,7 @@ export async function babylonViewer() {
 			await scene.whenReadyAsync();
 			window.__bakerTechniques = found;
 			window.__bakerView = v;
+			window.__bakerScene = scene; // for inspection from the console
 			engine.runRenderLoop(() => scene.render());
 			// two frames drawn before the page says it is ready (the screenshot reads the drawing buffer)
 			await new Promise((resolve) => { let n = 0; scene.onAfterRenderObservable.add(() => { if (++n === 2) resolve(); }); });

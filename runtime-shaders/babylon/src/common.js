@@ -184,6 +184,8 @@ export async function dataTexture(loader, info, { repeat = false, mipmaps = fals
 
 // ------------------------------------------------------------------------------------------------ ShaderMaterials
 export const MAX_LIGHTS = 4;
+// glTF's front faces wind counter-clockwise; the meshes built here keep the file's indices
+export const GLTF_FRONT = Constants.MATERIAL_CounterClockWiseSideOrientation;
 const LIGHT_UNIFORMS = ['u_lightCount', 'u_lightDirection', 'u_lightColor', 'u_ambientLight'];
 
 /**

@@ -1,7 +1,7 @@
 // BAKER_edges: fins (McGuire & Hughes 2004), shell outline (RTR4 15.2.2) and wireframe (Baerentzen et al. 2006);
 // EXT_mesh_primitive_edge_visibility: the wireframe's mask when BAKER_edges has none.
 import { Constants } from '@babylonjs/core/Engines/constants.js';
-import { BAKER_EDGES, EXT_EDGE_VISIBILITY, bakerShaderMaterial, controls, loadedPrimitives, readAccessor, requireShader } from './common.js';
+import { BAKER_EDGES, EXT_EDGE_VISIBILITY, GLTF_FRONT, bakerShaderMaterial, controls, loadedPrimitives, readAccessor, requireShader } from './common.js';
 import { asComponents, bakerMesh, premultiplied, primitiveAttributes, primitiveIndices } from './geometry.js';
 
 const FIN_VERTEX = (decl, a) => `
@@ -157,7 +157,7 @@ export class BakerEdgesExtension {
 				// the shell shows its back faces only (RTR4 15.2.2): cull the faces that look at the eye
 				material.backFaceCulling = true;
 				material.cullBackFaces = false;
-				material.sideOrientation = mesh.material?.sideOrientation ?? null;
+				material.sideOrientation = GLTF_FRONT;
 				shell.material = material;
 				c.add('outline', (on) => shell.setEnabled(on));
 			}
@@ -178,7 +178,7 @@ export class BakerEdgesExtension {
 				material.setVector3('u_color', { x: this.style.wireframeColor[0], y: this.style.wireframeColor[1], z: this.style.wireframeColor[2] });
 				material.zOffset = -1;
 				material.zOffsetUnits = -4;
-				material.sideOrientation = mesh.material?.sideOrientation ?? null;
+				material.sideOrientation = GLTF_FRONT;
 				wire.material = material;
 				wire.alphaIndex = 1;
 				c.add('wireframe', (on) => wire.setEnabled(on));

@@ -1,5 +1,5 @@
 // BAKER_fur: Lengyel et al. 2001 shells (one blended pass per shell texture) and fins.
-import { BAKER_EDGES, BAKER_FUR, LIGHTS_GLSL, bakerShaderMaterial, controls, dataTexture, loadedPrimitives, readAccessor, requireShader } from './common.js';
+import { BAKER_EDGES, BAKER_FUR, GLTF_FRONT, LIGHTS_GLSL, bakerShaderMaterial, controls, dataTexture, loadedPrimitives, readAccessor, requireShader } from './common.js';
 import { asComponents, bakerMesh, primitiveAttributes, primitiveIndices } from './geometry.js';
 
 const SHELL_VERTEX = `
@@ -139,7 +139,7 @@ export class BakerFurExtension {
 				material.setFloat('u_shellSpacing', ext.shellSpacing ?? ext.length / textures.length);
 				material.setFloat('u_tiling', ext.tiling ?? 1);
 				material.disableDepthWrite = true;
-				material.sideOrientation = mesh.material?.sideOrientation ?? null;
+				material.sideOrientation = GLTF_FRONT;
 				shell.material = material;
 				shell.alphaIndex = 4 + i; // inner to outer
 				shells.push(shell);

@@ -1,8 +1,8 @@
 // The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature):
 // each extension builds one part (GLSL module, uniforms, samplers, attributes); one MaterialPluginBase per PBR
-// material composes the parts of that material. Per punctual light the Lambert term of Babylon's PBR
-// (computeDiffuseLighting) is replaced by f (vec3): the skin LUT (Penner) and/or the toon ramp of it; translucency
-// is added; hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
+// material composes the parts of that material. Per punctual light, after Babylon's own diffuse
+// (computeDiffuseLighting), the clamped N.L of Lambert's term becomes f (vec3): the skin LUT (Penner) and/or the
+// toon ramp of it, and the translucency is added, both on the base colour as @baker/three does; hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
 // curvature view replaces it. Each part is gated by a uniform, so a switch costs no recompile.
 import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase.js';
 import { controls, glslType, loadedPrimitives } from './common.js';
@@ -15,7 +15,8 @@ const LIGHT_POINT = '!info\\.diffuse=computeDiffuseLighting\\(preInfo,diffuse(\\
 const OUTGOING_POINT = '!finalColor=applyImageProcessing\\(finalColor\\);';
 const POINTS = {
 	vertex: ['CUSTOM_VERTEX_DEFINITIONS', 'CUSTOM_VERTEX_MAIN_END'],
-	fragment: ['CUSTOM_FRAGMENT_DEFINITIONS', LIGHT_POINT, OUTGOING_POINT],
+	fragment: ['CUSTOM_FRAGMENT_DEFINITIONS', 'CUSTOM_FRAGMENT_BEFORE_LIGHTS', LIGHT_POINT,
+		'CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION', OUTGOING_POINT],
 };
 
 // the first directional light of the scene, towards the light (world space): the key light of hatching
@@ -171,11 +172,14 @@ v_bakerUv = vec2(0.0);
 	vec3 f = vec3(clamp(dotNL, 0.0, 1.0));
 	bool bakerReplaced = false;
 	${diffuse.join('\n\t')}
-	if (bakerReplaced) info.diffuse = f * (preInfo.attenuation / PI) * diffuse$1.rgb;
-	${p.translucency ? `info.diffuse += u_baker_translucency_on * preInfo.attenuation * diffuse$1.rgb *
+	// like @baker/three: the change to Lambert's term, and the translucency, on the base colour (not metal-weighted)
+	if (bakerReplaced) bakerDirect += (f - vec3(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb;
+	${p.translucency ? `bakerDirect += u_baker_translucency_on * preInfo.attenuation * diffuse$1.rgb *
 		baker_translucency(${p.translucency.struct}, normalW, viewDirectionW, bakerL, ${p.translucency.thickness});` : ''}
 }`;
 		}
+		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);';
+		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;';
 		let outgoing = '';
 		if (p.tam) outgoing += `
 if (u_baker_tam_on > 0.5) {
