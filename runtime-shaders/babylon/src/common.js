@@ -175,8 +175,10 @@ export async function setAttribute(loader, mesh, primitive, name, kind) {
 export async function dataTexture(loader, info, { repeat = false, mipmaps = false } = {}) {
 	const index = typeof info === 'number' ? info : info?.index;
 	if (index === undefined) return null;
-	const texture = await loader.loadTextureInfoAsync(`/textures/${index}`, { index }, () => {});
-	texture.gammaSpace = false; // LUTs, ramps, shells and distance fields are data, not sRGB colour
+	// nonColorData: no sRGB texture format (it would decode the values); LUTs, ramps, distance fields are data, and
+	// @baker/three samples the fur textures raw too
+	const texture = await loader.loadTextureInfoAsync(`/textures/${index}`, { index, nonColorData: true }, () => {});
+	texture.gammaSpace = false;
 	texture.wrapU = texture.wrapV = repeat ? Constants.TEXTURE_WRAP_ADDRESSMODE : Constants.TEXTURE_CLAMP_ADDRESSMODE;
 	texture.updateSamplingMode(mipmaps ? Constants.TEXTURE_TRILINEAR_SAMPLINGMODE : Constants.TEXTURE_LINEAR_LINEAR);
 	return texture;
