@@ -101,6 +101,7 @@ export async function babylonViewer() {
 			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}`;
 			await scene.whenReadyAsync();
 			window.__bakerTechniques = found;
+			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
 			window.__bakerView = v;
 			window.__bakerScene = scene; // for inspection from the console
 			engine.runRenderLoop(() => scene.render());

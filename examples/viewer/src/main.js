@@ -99,6 +99,7 @@ async function viewer() {
 			publishView();
 			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}`;
 			window.__bakerTechniques = found;
+			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
 			window.__bakerReady = true;
 		} catch (e) {
 			fail(`cannot load ${name}: ${e.message || e}`);

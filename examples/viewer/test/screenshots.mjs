@@ -1,5 +1,6 @@
 // Screenshot several viewer pages in one headless Chromium (Debian's): one browser launch for a whole test.
 //   node test/screenshots.mjs JOBS.json       JOBS.json: [{"url": ..., "out": ..., "width": 480, "height": 360}, ...]
+//   a job may add "shots": [{"on": [techniques], "off": [techniques], "out": ...}, ...]: switched in the loaded page
 // Prints one JSON line per job, {url, errors, warnings, status, techniques, ready, view}. Used by tests/test_viewer.py and tests/test_babylon.py.
 import { readFileSync } from 'node:fs';
 import { chromium } from 'playwright-core';
@@ -33,7 +34,14 @@ try {
 		const techniques = await page.evaluate(() => window.__bakerTechniques || []);
 		const ready = await page.evaluate(() => Boolean(window.__bakerReady));
 		const view = await page.evaluate(() => window.__bakerView || null);
-		await page.locator('canvas').screenshot({ path: job.out });
+		if (job.out) await page.locator('canvas').screenshot({ path: job.out });
+		// shots: the same page with techniques switched (window.__bakerSwitch) between screenshots, one load for all
+		for (const shot of job.shots || []) {
+			await page.evaluate(({ on, off }) => { window.__bakerSwitch(off, false); window.__bakerSwitch(on, true); }, shot);
+			await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
+			await page.waitForTimeout(100);
+			await page.locator('canvas').screenshot({ path: shot.out });
+		}
 		console.log(JSON.stringify({ url: job.url, errors, warnings, status, techniques, ready, view }));
 		await page.close();
 	}
