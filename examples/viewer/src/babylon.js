@@ -14,7 +14,7 @@ import '@babylonjs/loaders/glTF/2.0/index.js';
 import { TECHNIQUES, bakerControls, registerBakerExtensions, unregisterBakerExtensions } from '../../../runtime-shaders/babylon/src/index.js';
 import {
 	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
-	bakerOn, engineSwitch, fail, frameDistance, listParam, params, showToggles, status,
+	bakerOn, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
 } from './ui.js';
 import { shaders } from './shaders.js';
 
@@ -104,6 +104,7 @@ export async function babylonViewer() {
 			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
 			window.__bakerView = v;
 			window.__bakerScene = scene; // for inspection from the console
+			engine.stopRenderLoop();
 			engine.runRenderLoop(() => scene.render());
 			// two frames drawn before the page says it is ready (the screenshot reads the drawing buffer)
 			await new Promise((resolve) => { let n = 0; scene.onAfterRenderObservable.add(() => { if (++n === 2) resolve(); }); });
@@ -113,16 +114,9 @@ export async function babylonViewer() {
 		}
 	}
 	addEventListener('resize', () => engine.resize());
-	addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
-	addEventListener('dragleave', () => document.body.classList.remove('dragging'));
-	addEventListener('drop', (e) => {
-		e.preventDefault();
-		document.body.classList.remove('dragging');
-		const file = e.dataTransfer.files[0];
-		if (file) {
-			for (const m of [...scene.meshes]) m.dispose();
-			show(file, file.name);
-		}
+	onDroppedFile((file) => {
+		for (const m of [...scene.meshes]) m.dispose();
+		show(file, file.name);
 	});
 	if (params.get('src')) await show(params.get('src'), params.get('src'));
 	else engine.runRenderLoop(() => scene.render());

@@ -10,7 +10,7 @@ import { registerBakerPlugins, TECHNIQUES } from '../../../runtime-shaders/three
 import { shaders } from './shaders.js';
 import {
 	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
-	bakerOn, engineSwitch, fail, frameDistance, listParam, params, showToggles, status,
+	bakerOn, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
 } from './ui.js';
 
 const view = document.getElementById('view');
@@ -106,14 +106,7 @@ async function viewer() {
 		}
 	}
 
-	addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
-	addEventListener('dragleave', () => document.body.classList.remove('dragging'));
-	addEventListener('drop', (e) => {
-		e.preventDefault();
-		document.body.classList.remove('dragging');
-		const file = e.dataTransfer.files[0];
-		if (file) show(URL.createObjectURL(file), file.name);
-	});
+	onDroppedFile((file) => show(URL.createObjectURL(file), file.name));
 	if (params.get('src')) show(params.get('src'), params.get('src'));
 	renderer.setAnimationLoop(() => renderer.render(scene, camera));
 }

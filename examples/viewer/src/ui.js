@@ -72,3 +72,15 @@ export const FRAME_DIRECTION = (() => {
 
 /** ?baker=0: no baker plugins/extensions, the asset as glTF's standard PBR. */
 export const bakerOn = params.get('baker') !== '0';
+
+/** Drag and drop of a .glb on the page: fn(file). */
+export function onDroppedFile(fn) {
+	addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
+	addEventListener('dragleave', () => document.body.classList.remove('dragging'));
+	addEventListener('drop', (e) => {
+		e.preventDefault();
+		document.body.classList.remove('dragging');
+		const file = e.dataTransfer.files[0];
+		if (file) fn(file);
+	});
+}
