@@ -8,8 +8,8 @@ How frames are compared (both 400 x 300, sRGB; measured on this machine, SwiftSh
 - the frame: mean absolute difference (max over RGB) over the pixels either engine covers, after a Gaussian blur of
   sigma 1.5 px (it forgives the two rasterizers' MSAA and sub-pixel placement of pixel-wide lines), below
   FRAME_MAD = 16/255, and SSIM of the blurred frames' luma above FRAME_SSIM = 0.95. The floor is the base PBR: the
-  spot's material is glTF's default (metallic 1, roughness 1), all specular, and Babylon's GGX with its multiple-
-  scattering energy compensation draws it 13/255 brighter on the object than three.js's single-scattering GGX
+  spot's material is glTF's default (metallic 1, roughness 1), all specular, and Babylon's PBR (its GGX terms and
+  energy compensation are not three.js's) draws it 13/255 brighter on the object than three.js's MeshStandardMaterial
   (measured with ?baker=0, no baker code in either page); the hair groom's emitter 9/255, the text label 0. So the
   frame bound says "the same picture", and the technique is checked by its change:
 - the technique's change: frame minus the frame with every technique off, in each engine (the base difference

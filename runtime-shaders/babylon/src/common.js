@@ -115,10 +115,11 @@ const COMPONENT_TYPES = {
 
 /**
  * An accessor as floats, read from its declared type and component type (not from what a technique expects, so a
- * custom attribute may change its component count). Returns { data: Float32Array, size, count }. Checks that the
- * accessor fits its buffer view before reading.
+ * custom attribute may change its component count). Returns { data: Float32Array, size, count } (with `integer`:
+ * a Uint32Array of the raw values, for indices past float precision). Checks that the accessor fits its buffer view
+ * before reading.
  */
-export async function readAccessor(loader, index) {
+export async function readAccessor(loader, index, { integer = false } = {}) {
 	const context = `/accessors/${index}`;
 	const accessor = loader.gltf.accessors?.[index];
 	if (!accessor) throw new Error(`${context}: no such accessor`);
@@ -127,7 +128,7 @@ export async function readAccessor(loader, index) {
 	if (!size || !type) throw new Error(`${context}: unsupported type ${accessor.type} / ${accessor.componentType}`);
 	const [bytes, getter, max] = type;
 	const count = accessor.count;
-	const data = new Float32Array(count * size);
+	const data = integer ? new Uint32Array(count * size) : new Float32Array(count * size);
 	if (accessor.bufferView === undefined) return { data, size, count };
 	if (accessor.sparse) throw new Error(`${context}: sparse accessors are not read by @baker/babylon`);
 	const view = loader.gltf.bufferViews[accessor.bufferView];
@@ -138,11 +139,11 @@ export async function readAccessor(loader, index) {
 		throw new Error(`${context}: ${count} elements do not fit buffer view ${accessor.bufferView}`);
 	}
 	const dv = new DataView(buffer.buffer, buffer.byteOffset + offset, buffer.byteLength - offset);
-	const scale = accessor.normalized && max ? 1 / max : 1;
+	const scale = accessor.normalized && max && !integer ? 1 / max : 1;
 	for (let i = 0; i < count; i++) {
 		for (let k = 0; k < size; k++) {
 			const v = dv[getter](i * stride + k * bytes, true) * scale;
-			data[i * size + k] = accessor.normalized ? Math.max(v, -1) : v; // signed normalized: -128 -> -1
+			data[i * size + k] = accessor.normalized && !integer ? Math.max(v, -1) : v; // signed normalized: -128 -> -1
 		}
 	}
 	return { data, size, count };

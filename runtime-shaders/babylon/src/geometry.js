@@ -7,8 +7,7 @@ import { glslType, readAccessor } from './common.js';
 /** The primitive's indices (or 0..n-1 for a non-indexed primitive) as a Uint32Array. */
 export async function primitiveIndices(loader, primitive, vertexCount) {
 	if (primitive.indices === undefined) return Uint32Array.from({ length: vertexCount }, (_, i) => i);
-	const { data } = await readAccessor(loader, primitive.indices);
-	return Uint32Array.from(data);
+	return (await readAccessor(loader, primitive.indices, { integer: true })).data;
 }
 
 /**

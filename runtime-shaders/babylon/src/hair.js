@@ -100,11 +100,11 @@ export class BakerHairExtension {
 			const read = (name) => readAccessor(loader, primitive.attributes[name]);
 			const [position, tangent, param, indices, widths] = await Promise.all([
 				read('POSITION'), read(ext.tangentAttribute ?? '_STRAND_TANGENT'), read(ext.paramAttribute ?? '_STRAND_PARAM'),
-				readAccessor(loader, ext.ribbonIndices),
+				readAccessor(loader, ext.ribbonIndices, { integer: true }),
 				ext.widthScale !== undefined ? readAccessor(loader, ext.widthScale) : null,
 			]);
 			const ribbon = ribbonArrays({ position, tangent, param }, widths && widths.data, ext.verticesPerStrand);
-			const ribbons = bakerMesh('baker hair ribbons', scene, mesh.parent, ribbon.positions, Uint32Array.from(indices.data), ribbon.attributes);
+			const ribbons = bakerMesh('baker hair ribbons', scene, mesh.parent, ribbon.positions, indices.data, ribbon.attributes);
 			ribbons.position.copyFrom(mesh.position);
 			if (mesh.rotationQuaternion) ribbons.rotationQuaternion = mesh.rotationQuaternion.clone();
 			ribbons.scaling.copyFrom(mesh.scaling);
