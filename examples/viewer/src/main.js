@@ -7,48 +7,40 @@ import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { registerBakerPlugins, TECHNIQUES } from '../../../runtime-shaders/three/src/index.js';
-import translucency from '../../../runtime-shaders/baker_translucency.glsl';
-import skin from '../../../runtime-shaders/baker_skin.glsl';
-import toon from '../../../runtime-shaders/baker_toon.glsl';
-import hatching from '../../../runtime-shaders/baker_hatching.glsl';
-import edges from '../../../runtime-shaders/baker_edges.glsl';
-import fur from '../../../runtime-shaders/baker_fur.glsl';
-import hair from '../../../runtime-shaders/baker_hair.glsl';
-import text from '../../../runtime-shaders/baker_text.glsl';
+import { shaders } from './shaders.js';
+import {
+	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
+	bakerOn, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
+} from './ui.js';
 
-const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text };
-const params = new URLSearchParams(location.search);
 const view = document.getElementById('view');
-const status = document.getElementById('status');
-const toggles = document.getElementById('toggles');
 
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(1);
-view.appendChild(renderer.domElement);
-
-function fail(message) {
-	status.textContent = message;
-	console.error(message);
-	window.__bakerError = message;
+let renderer = null;
+function createRenderer() {
+	renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+	renderer.setPixelRatio(1);
+	view.appendChild(renderer.domElement);
 }
 
 async function loadGLB(url) {
-	const loader = registerBakerPlugins(new GLTFLoader(), { shaders });
+	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders }) : new GLTFLoader();
 	return loader.loadAsync(url);
 }
 
 // ------------------------------------------------------------------------------------------------ viewer mode
 async function viewer() {
-	if (params.get('hud') === '0') document.getElementById('panel').style.visibility = 'hidden'; // clean screenshots
+	createRenderer();
+	engineSwitch('three');
 	const scene = new THREE.Scene();
-	scene.background = new THREE.Color(0x292b30);
-	const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
+	scene.background = new THREE.Color().setRGB(...BACKGROUND, THREE.SRGBColorSpace);
+	const camera = new THREE.PerspectiveCamera(FOV_DEGREES, 1, 0.01, 1000);
 	const controls = new OrbitControls(camera, renderer.domElement);
-	scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 0.6));
-	const key = new THREE.DirectionalLight(0xffffff, 2.0);
+	scene.add(new THREE.HemisphereLight(new THREE.Color().setRGB(...HEMI.sky, THREE.SRGBColorSpace),
+		new THREE.Color().setRGB(...HEMI.groundSrgb, THREE.SRGBColorSpace), HEMI.intensity));
+	const key = new THREE.DirectionalLight(0xffffff, KEY_INTENSITY);
 	scene.add(key, key.target);
-	const fill = new THREE.DirectionalLight(0xffffff, 1.2); // from the upper left of the camera, moves with it
-	fill.position.set(-1, 1.5, 2);
+	const fill = new THREE.DirectionalLight(0xffffff, FILL_INTENSITY); // from the upper left of the camera, moves with it
+	fill.position.set(...FILL_CAMERA_POSITION);
 	camera.add(fill);
 	scene.add(camera);
 	let root = null;
@@ -64,8 +56,8 @@ async function viewer() {
 	function frame(object) {
 		const box = new THREE.Box3().setFromObject(object);
 		const sphere = box.getBoundingSphere(new THREE.Sphere());
-		const distance = sphere.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
-		camera.position.copy(sphere.center).add(new THREE.Vector3(0.5, 0.25, 0.85).normalize().multiplyScalar(distance));
+		const distance = frameDistance(sphere.radius);
+		camera.position.copy(sphere.center).add(new THREE.Vector3(...FRAME_DIRECTION).multiplyScalar(distance));
 		camera.near = distance / 100;
 		camera.far = distance * 10;
 		camera.updateProjectionMatrix();
@@ -81,9 +73,15 @@ async function viewer() {
 		key.target.position.copy(sphere.center);
 	}
 
-	const listParam = (key) => new Set((params.get(key) || '').split(',').map((x) => x.trim()).filter(Boolean));
 	const off = listParam('off');
-	const on = listParam('on');
+	// the view and lights drawn, world space (towards the light), for a page of the other engine (?view=)
+	function publishView() {
+		scene.updateMatrixWorld(true);
+		const towards = (light) => new THREE.Vector3().setFromMatrixPosition(light.matrixWorld)
+			.sub(new THREE.Vector3().setFromMatrixPosition(light.target.matrixWorld)).normalize().toArray();
+		window.__bakerView = { eye: camera.position.toArray(), target: controls.target.toArray(), near: camera.near,
+			far: camera.far, key: towards(key), fill: towards(fill) };
+	}
 
 	async function show(url, name) {
 		try {
@@ -94,39 +92,21 @@ async function viewer() {
 			const sphere = frame(root);
 			const baker = gltf.userData.baker;
 			const found = baker ? baker.techniques : [];
-			toggles.innerHTML = '';
-			const add = (label, key, checked, onChange) => {
-				const el = document.createElement('label');
-				el.innerHTML = `<input type="checkbox" ${checked ? 'checked' : ''}> ${label}`;
-				el.firstChild.dataset.technique = key;
-				el.firstChild.addEventListener('change', (e) => onChange(e.target.checked));
-				toggles.appendChild(el);
-			};
-			for (const technique of found) {
-				if (off.has(technique)) baker.setEnabled(technique, false);
-				if (on.has(technique)) baker.setEnabled(technique, true);
-				const info = TECHNIQUES[technique] || { label: technique, extension: '' };
-				add(`${info.label} (${info.extension})`, technique, baker.isEnabled(technique), (v) => baker.setEnabled(technique, v));
-			}
+			showToggles(baker, found, TECHNIQUES);
 			const back = found.includes('translucency') && !off.has('backlight');
 			setBackLight(back, sphere);
-			if (found.includes('translucency')) add('light from behind', 'backlight', back, (v) => setBackLight(v, sphere));
+			if (found.includes('translucency')) addToggle('light from behind', 'backlight', back, (v) => setBackLight(v, sphere));
+			publishView();
 			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}`;
 			window.__bakerTechniques = found;
+			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
 			window.__bakerReady = true;
 		} catch (e) {
 			fail(`cannot load ${name}: ${e.message || e}`);
 		}
 	}
 
-	addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
-	addEventListener('dragleave', () => document.body.classList.remove('dragging'));
-	addEventListener('drop', (e) => {
-		e.preventDefault();
-		document.body.classList.remove('dragging');
-		const file = e.dataTransfer.files[0];
-		if (file) show(URL.createObjectURL(file), file.name);
-	});
+	onDroppedFile((file) => show(URL.createObjectURL(file), file.name));
 	if (params.get('src')) show(params.get('src'), params.get('src'));
 	renderer.setAnimationLoop(() => renderer.render(scene, camera));
 }
@@ -154,6 +134,7 @@ function toES(fragment) {
 }
 
 async function panel() {
+	createRenderer();
 	document.getElementById('panel').style.display = 'none'; // the screenshot is compared pixel by pixel
 	THREE.ColorManagement.enabled = false;
 	renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
@@ -195,4 +176,7 @@ async function panel() {
 	window.__bakerReady = true;
 }
 
-(params.get('panel') ? panel() : viewer()).catch((e) => fail(String(e && e.stack || e)));
+const engine = params.get('engine') === 'babylon' ? 'babylon' : 'three';
+// the Babylon.js page is its own bundle (dist/babylon.js), loaded only when asked for
+const start = params.get('panel') ? panel : engine === 'babylon' ? () => import(new URL('./babylon.js', import.meta.url).href) : viewer;
+start().catch((e) => fail(String(e && e.stack || e)));

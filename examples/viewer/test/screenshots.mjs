@@ -1,6 +1,7 @@
 // Screenshot several viewer pages in one headless Chromium (Debian's): one browser launch for a whole test.
 //   node test/screenshots.mjs JOBS.json       JOBS.json: [{"url": ..., "out": ..., "width": 480, "height": 360}, ...]
-// Prints one JSON line per job, {url, errors, warnings, status, techniques, ready}. Used by tests/test_viewer.py.
+//   a job may add "shots": [{"on": [techniques], "off": [techniques], "out": ...}, ...]: switched in the loaded page
+// Prints one JSON line per job, {url, errors, warnings, status, techniques, ready, view}. Used by tests/test_viewer.py and tests/test_babylon.py.
 import { readFileSync } from 'node:fs';
 import { chromium } from 'playwright-core';
 
@@ -18,8 +19,12 @@ try {
 		const page = await browser.newPage({ viewport: { width: job.width || 480, height: job.height || 360 }, deviceScaleFactor: 1 });
 		page.on('console', (msg) => {
 			if (msg.type() === 'error') errors.push(msg.text());
-			// three.js reports shader problems as errors, program info logs that are not fatal as warnings
-			if (msg.type() === 'warning' && /THREE\.WebGL(Program|Shader)/.test(msg.text())) warnings.push(msg.text());
+			// three.js reports shader problems as errors, program info logs that are not fatal as warnings; Babylon.js
+			// logs its warnings as "BJS - ..."; Chromium relays WebGL warnings as "[.WebGL-...]" or "WebGL: ..."
+			// (not the driver's "GPU stall due to ReadPixels" performance note: that is the screenshot reading pixels back)
+			const text = msg.text();
+			if (msg.type() === 'warning' && /THREE\.WebGL(Program|Shader)|^BJS -|WebGL/.test(text) &&
+				!/GL Driver Message \(OpenGL, Performance/.test(text)) warnings.push(text);
 		});
 		page.on('pageerror', (err) => errors.push(String(err)));
 		await page.goto(job.url);
@@ -28,8 +33,16 @@ try {
 		const status = await page.evaluate(() => document.getElementById('status').textContent);
 		const techniques = await page.evaluate(() => window.__bakerTechniques || []);
 		const ready = await page.evaluate(() => Boolean(window.__bakerReady));
-		await page.locator('canvas').screenshot({ path: job.out });
-		console.log(JSON.stringify({ url: job.url, errors, warnings, status, techniques, ready }));
+		const view = await page.evaluate(() => window.__bakerView || null);
+		if (job.out) await page.locator('canvas').screenshot({ path: job.out });
+		// shots: the same page with techniques switched (window.__bakerSwitch) between screenshots, one load for all
+		for (const shot of job.shots || []) {
+			await page.evaluate(({ on, off }) => { window.__bakerSwitch(off, false); window.__bakerSwitch(on, true); }, shot);
+			await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
+			await page.waitForTimeout(100);
+			await page.locator('canvas').screenshot({ path: shot.out });
+		}
+		console.log(JSON.stringify({ url: job.url, errors, warnings, status, techniques, ready, view }));
 		await page.close();
 	}
 } finally {

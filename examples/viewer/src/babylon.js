@@ -1,0 +1,125 @@
+// The viewer on Babylon.js: the same asset, switches and URL parameters as the three.js page (main.js), with the
+// loader extensions of @baker/babylon (runtime-shaders/babylon). ?view=JSON (what the three.js page publishes as
+// window.__bakerView: eye, target, near, far, lights) draws the very view the three.js page drew.
+import { Engine } from '@babylonjs/core/Engines/engine.js';
+import { Scene } from '@babylonjs/core/scene.js';
+import { ArcRotateCamera } from '@babylonjs/core/Cameras/arcRotateCamera.js';
+import { HemisphericLight } from '@babylonjs/core/Lights/hemisphericLight.js';
+import { DirectionalLight } from '@babylonjs/core/Lights/directionalLight.js';
+import { Color3, Color4 } from '@babylonjs/core/Maths/math.color.js';
+import { Vector3 } from '@babylonjs/core/Maths/math.vector.js';
+import { ImportMeshAsync } from '@babylonjs/core/Loading/sceneLoader.js';
+import '@babylonjs/loaders/glTF/glTFFileLoader.js';
+import '@babylonjs/loaders/glTF/2.0/index.js';
+import { TECHNIQUES, bakerControls, registerBakerExtensions, unregisterBakerExtensions } from '../../../runtime-shaders/babylon/src/index.js';
+import {
+	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
+	bakerOn, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
+} from './ui.js';
+import { shaders } from './shaders.js';
+
+const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4);
+
+export async function babylonViewer() {
+	engineSwitch('babylon');
+	const view = document.getElementById('view');
+	const canvas = document.createElement('canvas');
+	canvas.style.width = '100%';
+	canvas.style.height = '100%';
+	canvas.style.display = 'block';
+	view.appendChild(canvas);
+	// exact sRGB encoding (three.js's), not Babylon's default pow(1/2.2) approximation
+	const engine = new Engine(canvas, true, { preserveDrawingBuffer: true, stencil: true, useExactSrgbConversions: true }, false);
+	engine.setHardwareScalingLevel(1);
+	const scene = new Scene(engine);
+	scene.useRightHandedSystem = true; // glTF's frame, as three.js: no mirroring root, same camera numbers
+	scene.clearColor = new Color4(...BACKGROUND, 1);
+	scene.ambientColor = new Color3(0, 0, 0);
+	const camera = new ArcRotateCamera('camera', 0, 1, 1, Vector3.Zero(), scene);
+	camera.fov = FOV_DEGREES * Math.PI / 180;
+	camera.attachControl(canvas, true);
+	camera.wheelPrecision = 50;
+	// three.js's HemisphereLight irradiance goes through its Lambert BRDF (1/pi); Babylon's hemispheric term does not
+	const hemi = new HemisphericLight('hemisphere', new Vector3(0, 1, 0), scene);
+	hemi.diffuse = new Color3(...HEMI.sky);
+	hemi.groundColor = new Color3(...HEMI.groundSrgb.map(srgbToLinear));
+	hemi.specular = Color3.Black();
+	hemi.intensity = HEMI.intensity / Math.PI;
+	const key = new DirectionalLight('key', new Vector3(0, -1, 0), scene);
+	key.intensity = KEY_INTENSITY;
+	const fill = new DirectionalLight('fill', new Vector3(0, -1, 0), scene);
+	fill.intensity = FILL_INTENSITY;
+
+	// ?disable=BAKER_fur,...: extensions left to Babylon's loader (which ignores them)
+	if (bakerOn) registerBakerExtensions({ shaders, disabled: [...listParam('disable')] });
+	else unregisterBakerExtensions();
+
+	const given = params.get('view') ? JSON.parse(params.get('view')) : null;
+	let sphere = null;
+	function place(v) {
+		camera.setTarget(new Vector3(...v.target));
+		camera.setPosition(new Vector3(...v.eye));
+		camera.minZ = v.near;
+		camera.maxZ = v.far;
+		key.direction = new Vector3(...v.key.map((x) => -x));
+		fill.direction = new Vector3(...v.fill.map((x) => -x));
+	}
+	function frame(root, back) {
+		const { min, max } = root.getHierarchyBoundingVectors(true);
+		const center = min.add(max).scale(0.5);
+		const radius = max.subtract(min).length() / 2;
+		const distance = frameDistance(radius);
+		const eye = center.add(new Vector3(...FRAME_DIRECTION).scale(distance));
+		const toEye = eye.subtract(center).normalize();
+		// fill: camera space (-1, 1.5, 2), aimed at the world origin as three.js's default light target
+		camera.setTarget(center);
+		camera.setPosition(eye);
+		const m = camera.getWorldMatrix();
+		const fillWorld = Vector3.TransformCoordinates(new Vector3(...FILL_CAMERA_POSITION), m);
+		const keyDir = back ? toEye.scale(-1) : toEye;
+		return { eye: eye.asArray(), target: center.asArray(), near: distance / 100, far: distance * 10,
+			key: keyDir.asArray(), fill: fillWorld.normalize().asArray() };
+	}
+
+	async function show(source, name) {
+		try {
+			const options = typeof source === 'string' ? {} : { pluginExtension: '.glb' };
+			const result = await ImportMeshAsync(source, scene, options);
+			const root = result.meshes[0];
+			const baker = bakerControls(root);
+			const found = showToggles(baker, null, TECHNIQUES);
+			const back = found.includes('translucency') && !listParam('off').has('backlight');
+			const v = given ?? frame(root, back);
+			place(v);
+			sphere = v;
+			if (found.includes('translucency')) {
+				addToggle('light from behind', 'backlight', back, (on) => {
+					const k = new Vector3(...sphere.key);
+					key.direction = (on === back ? k.scale(-1) : k);
+				});
+			}
+			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}`;
+			await scene.whenReadyAsync();
+			window.__bakerTechniques = found;
+			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
+			window.__bakerView = v;
+			window.__bakerScene = scene; // for inspection from the console
+			engine.stopRenderLoop();
+			engine.runRenderLoop(() => scene.render());
+			// two frames drawn before the page says it is ready (the screenshot reads the drawing buffer)
+			await new Promise((resolve) => { let n = 0; scene.onAfterRenderObservable.add(() => { if (++n === 2) resolve(); }); });
+			window.__bakerReady = true;
+		} catch (e) {
+			fail(`cannot load ${name}: ${e.message || e}\n${e.stack || ''}`);
+		}
+	}
+	addEventListener('resize', () => engine.resize());
+	onDroppedFile((file) => {
+		for (const m of [...scene.meshes]) m.dispose();
+		show(file, file.name);
+	});
+	if (params.get('src')) await show(params.get('src'), params.get('src'));
+	else engine.runRenderLoop(() => scene.render());
+}
+
+babylonViewer().catch((e) => fail(String(e && e.stack || e)));

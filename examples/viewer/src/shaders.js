@@ -1,0 +1,11 @@
+// The runtime-shaders/ modules as text (esbuild's text loader at build time): both engines inject these very files.
+import translucency from '../../../runtime-shaders/baker_translucency.glsl';
+import skin from '../../../runtime-shaders/baker_skin.glsl';
+import toon from '../../../runtime-shaders/baker_toon.glsl';
+import hatching from '../../../runtime-shaders/baker_hatching.glsl';
+import edges from '../../../runtime-shaders/baker_edges.glsl';
+import fur from '../../../runtime-shaders/baker_fur.glsl';
+import hair from '../../../runtime-shaders/baker_hair.glsl';
+import text from '../../../runtime-shaders/baker_text.glsl';
+
+export const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text };

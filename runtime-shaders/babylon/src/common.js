@@ -1,0 +1,251 @@
+// Shared by the loader extensions of @baker/babylon: the extension names, the techniques (switches) and the
+// per-load registry of their on/off handlers, and what several extensions use (primitive -> mesh lookup, a generic
+// accessor reader for custom attributes, data textures, scene lights for ShaderMaterials). Import from index.js.
+import { Constants } from '@babylonjs/core/Engines/constants.js';
+import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
+import { Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
+
+export const BAKER_THICKNESS = 'BAKER_thickness';
+export const BAKER_CURVATURE = 'BAKER_curvature';
+export const BAKER_SKIN_LUT = 'BAKER_skin_lut';
+export const BAKER_EDGES = 'BAKER_edges';
+export const EXT_EDGE_VISIBILITY = 'EXT_mesh_primitive_edge_visibility';
+export const BAKER_TONAL_ART_MAP = 'BAKER_tonal_art_map';
+export const BAKER_TOON_RAMP = 'BAKER_toon_ramp';
+export const BAKER_GLYPH_ATLAS = 'BAKER_glyph_atlas';
+export const BAKER_TEXT = 'BAKER_text';
+export const BAKER_HAIR = 'BAKER_hair';
+export const BAKER_FUR = 'BAKER_fur';
+
+/** Techniques (switch names, the same as @baker/three's) and the extension each comes from. */
+export const TECHNIQUES = {
+	translucency: { extension: BAKER_THICKNESS, label: 'translucency' },
+	skin: { extension: BAKER_SKIN_LUT, label: 'pre-integrated skin' },
+	toon: { extension: BAKER_TOON_RAMP, label: 'toon ramp' },
+	tam: { extension: BAKER_TONAL_ART_MAP, label: 'hatching (TAM)' },
+	fins: { extension: BAKER_EDGES, label: 'edge fins' },
+	outline: { extension: BAKER_EDGES, label: 'shell outline' },
+	wireframe: { extension: BAKER_EDGES, label: 'wireframe', defaultOff: true },
+	fur: { extension: BAKER_FUR, label: 'fur shells + fins' },
+	hair: { extension: BAKER_HAIR, label: 'hair ribbons' },
+	text: { extension: BAKER_TEXT, label: 'MSDF text' },
+	curvature: { extension: BAKER_CURVATURE, label: 'curvature view', defaultOff: true },
+};
+
+const GLSL_NAMES = {
+	translucency: 'baker_translucency.glsl', skin: 'baker_skin.glsl', toon: 'baker_toon.glsl',
+	hatching: 'baker_hatching.glsl', edges: 'baker_edges.glsl', fur: 'baker_fur.glsl', hair: 'baker_hair.glsl',
+	text: 'baker_text.glsl',
+};
+
+// ------------------------------------------------------------------------------------------------ switches
+/** One per load: every extension adds its technique's on/off handlers; published on the root node's metadata. */
+export class BakerControls {
+	constructor() {
+		this.found = [];
+		this.handlers = new Map();
+		this.enabled = new Map();
+	}
+	add(name, handler) {
+		if (!this.handlers.has(name)) {
+			this.handlers.set(name, []);
+			this.found.push(name);
+			this.enabled.set(name, !TECHNIQUES[name]?.defaultOff);
+		}
+		this.handlers.get(name).push(handler);
+		handler(this.enabled.get(name));
+	}
+	/** The techniques found, in the order of TECHNIQUES. */
+	get techniques() {
+		const order = Object.keys(TECHNIQUES);
+		return [...this.found].sort((a, b) => order.indexOf(a) - order.indexOf(b));
+	}
+	has(name) { return this.handlers.has(name); }
+	isEnabled(name) { return Boolean(this.enabled.get(name)); }
+	setEnabled(name, on) {
+		if (!this.handlers.has(name)) return;
+		this.enabled.set(name, Boolean(on));
+		for (const fn of this.handlers.get(name)) fn(Boolean(on));
+	}
+}
+
+const controlsOf = new WeakMap();
+export function controls(loader) {
+	if (!controlsOf.has(loader)) controlsOf.set(loader, new BakerControls());
+	return controlsOf.get(loader);
+}
+
+/**
+ * A runtime-shaders module as given, less its // comments: Babylon's shader preprocessor does not read a directive
+ * followed by a comment (`#endif // GUARD`) as that directive, which unbalances every #if after it.
+ */
+export function requireShader(shaders, key) {
+	const glsl = shaders[key];
+	if (!glsl) throw new Error(`@baker/babylon: options.shaders.${key} (runtime-shaders/${GLSL_NAMES[key]} as text) is missing`);
+	return glsl.replace(/\/\/[^\n]*/g, '');
+}
+
+// The header of every ShaderMaterial stage: Babylon writes the #version line (WebGL2: GLSL ES 3.00) and converts
+// attribute/varying/gl_FragColor; the modules need highp samplers for 16-bit data.
+export const HEADER = 'precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n';
+
+// ------------------------------------------------------------------------------------------------ glTF lookups
+/**
+ * Every mesh primitive the loader turned into a Babylon mesh: { node, meshIndex, primitiveIndex, primitive, mesh }.
+ * Uses the loader's node -> primitive mesh association (INode._primitiveBabylonMeshes, in primitive order).
+ */
+export function loadedPrimitives(loader) {
+	const out = [];
+	const json = loader.gltf;
+	for (const node of json.nodes || []) {
+		if (node.mesh === undefined || !node._primitiveBabylonMeshes) continue;
+		const primitives = json.meshes[node.mesh].primitives;
+		node._primitiveBabylonMeshes.forEach((mesh, primitiveIndex) => {
+			out.push({ node, meshIndex: node.mesh, primitiveIndex, primitive: primitives[primitiveIndex], mesh });
+		});
+	}
+	return out;
+}
+
+const COMPONENTS = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 };
+const COMPONENT_TYPES = {
+	5120: [1, 'getInt8', 127], 5121: [1, 'getUint8', 255], 5122: [2, 'getInt16', 32767],
+	5123: [2, 'getUint16', 65535], 5125: [4, 'getUint32', 0], 5126: [4, 'getFloat32', 0],
+};
+
+/**
+ * An accessor as floats, read from its declared type and component type (not from what a technique expects, so a
+ * custom attribute may change its component count). Returns { data: Float32Array, size, count } (with `integer`:
+ * a Uint32Array of the raw values, for indices past float precision). Checks that the accessor fits its buffer view
+ * before reading.
+ */
+export async function readAccessor(loader, index, { integer = false } = {}) {
+	const context = `/accessors/${index}`;
+	const accessor = loader.gltf.accessors?.[index];
+	if (!accessor) throw new Error(`${context}: no such accessor`);
+	const size = COMPONENTS[accessor.type];
+	const type = COMPONENT_TYPES[accessor.componentType];
+	if (!size || !type) throw new Error(`${context}: unsupported type ${accessor.type} / ${accessor.componentType}`);
+	const [bytes, getter, max] = type;
+	const count = accessor.count;
+	const data = integer ? new Uint32Array(count * size) : new Float32Array(count * size);
+	if (accessor.bufferView === undefined) return { data, size, count };
+	if (accessor.sparse) throw new Error(`${context}: sparse accessors are not read by @baker/babylon`);
+	const view = loader.gltf.bufferViews[accessor.bufferView];
+	const buffer = await loader.loadBufferViewAsync(`/bufferViews/${accessor.bufferView}`, view);
+	const stride = view.byteStride || size * bytes;
+	const offset = accessor.byteOffset || 0;
+	if (count > 0 && offset + (count - 1) * stride + size * bytes > buffer.byteLength) {
+		throw new Error(`${context}: ${count} elements do not fit buffer view ${accessor.bufferView}`);
+	}
+	const dv = new DataView(buffer.buffer, buffer.byteOffset + offset, buffer.byteLength - offset);
+	const scale = accessor.normalized && max && !integer ? 1 / max : 1;
+	for (let i = 0; i < count; i++) {
+		for (let k = 0; k < size; k++) {
+			const v = dv[getter](i * stride + k * bytes, true) * scale;
+			data[i * size + k] = accessor.normalized && !integer ? Math.max(v, -1) : v; // signed normalized: -128 -> -1
+		}
+	}
+	return { data, size, count };
+}
+
+/** GLSL type of an attribute of `size` components. */
+export function glslType(size) {
+	return size === 1 ? 'float' : `vec${size}`;
+}
+
+/** The first component of a value of `size` components (the scalar a technique reads). */
+export function firstComponent(expression, size) {
+	return size === 1 ? expression : `${expression}.x`;
+}
+
+/**
+ * Put the primitive attribute `name` (glTF semantic, e.g. _THICKNESS) on `mesh` as vertex data `kind`. Returns its
+ * component count, or 0 when the primitive has no such attribute.
+ */
+export async function setAttribute(loader, mesh, primitive, name, kind) {
+	const index = primitive.attributes?.[name];
+	if (index === undefined) return 0;
+	const { data, size, count } = await readAccessor(loader, index);
+	if (count !== mesh.getTotalVertices()) throw new Error(`${name}: ${count} values for ${mesh.getTotalVertices()} vertices`);
+	mesh.setVerticesData(kind, data, false, size);
+	return size;
+}
+
+/** A glTF texture (textureInfo or index) as a Babylon texture holding data: linear, clamped unless `repeat`. */
+export async function dataTexture(loader, info, { repeat = false, mipmaps = false } = {}) {
+	const index = typeof info === 'number' ? info : info?.index;
+	if (index === undefined) return null;
+	// nonColorData: no sRGB texture format (it would decode the values); LUTs, ramps, distance fields are data, and
+	// @baker/three samples the fur textures raw too
+	const texture = await loader.loadTextureInfoAsync(`/textures/${index}`, { index, nonColorData: true }, () => {});
+	texture.gammaSpace = false;
+	texture.wrapU = texture.wrapV = repeat ? Constants.TEXTURE_WRAP_ADDRESSMODE : Constants.TEXTURE_CLAMP_ADDRESSMODE;
+	texture.updateSamplingMode(mipmaps ? Constants.TEXTURE_TRILINEAR_SAMPLINGMODE : Constants.TEXTURE_LINEAR_LINEAR);
+	return texture;
+}
+
+// ------------------------------------------------------------------------------------------------ ShaderMaterials
+export const MAX_LIGHTS = 4;
+// glTF's front faces wind counter-clockwise; the meshes built here keep the file's indices
+export const GLTF_FRONT = Constants.MATERIAL_CounterClockWiseSideOrientation;
+const LIGHT_UNIFORMS = ['u_lightCount', 'u_lightDirection', 'u_lightColor', 'u_ambientLight'];
+
+/**
+ * A ShaderMaterial with the baker module prepended to the stages that use it, the matrices, the eye, the viewport
+ * and the scene's directional lights (u_lightDirection[i] towards the light, world space; u_lightColor[i] = colour x
+ * intensity; u_ambientLight = scene.ambientColor) bound at every draw.
+ */
+export function bakerShaderMaterial(name, scene, { vertex, fragment, attributes, uniforms = [], samplers = [], alpha = false }) {
+	const material = new ShaderMaterial(name, scene, { vertexSource: HEADER + vertex, fragmentSource: HEADER + fragment }, {
+		attributes, samplers, needAlphaBlending: alpha,
+		uniforms: ['world', 'worldView', 'worldViewProjection', 'view', 'projection', 'viewProjection', 'u_eye', 'u_viewport',
+			...LIGHT_UNIFORMS, ...uniforms],
+	});
+	material.onBindObservable.add(() => {
+		const engine = scene.getEngine();
+		const effect = material.getEffect();
+		if (!effect) return;
+		const camera = scene.activeCamera;
+		if (camera) effect.setVector3('u_eye', camera.globalPosition);
+		effect.setFloat2('u_viewport', engine.getRenderWidth(), engine.getRenderHeight());
+		const lights = sceneLights(scene);
+		effect.setInt('u_lightCount', lights.count);
+		effect.setArray3('u_lightDirection', lights.directions);
+		effect.setArray3('u_lightColor', lights.colors);
+		effect.setColor3('u_ambientLight', scene.ambientColor);
+	});
+	return material;
+}
+
+/** The enabled directional lights of a scene, at most MAX_LIGHTS, towards the light, world space. */
+export function sceneLights(scene) {
+	const directions = new Array(MAX_LIGHTS * 3).fill(0);
+	const colors = new Array(MAX_LIGHTS * 3).fill(0);
+	let count = 0;
+	for (const light of scene.lights) {
+		if (count >= MAX_LIGHTS || !light.isEnabled() || light.getClassName() !== 'DirectionalLight') continue;
+		const d = light.direction.normalizeToNew();
+		directions.splice(count * 3, 3, -d.x, -d.y, -d.z);
+		colors.splice(count * 3, 3, light.diffuse.r * light.intensity, light.diffuse.g * light.intensity, light.diffuse.b * light.intensity);
+		count += 1;
+	}
+	return { count, directions, colors };
+}
+
+/** GLSL declarations of the light uniforms and the diffuse sum of the directional lights, for ShaderMaterials. */
+export const LIGHTS_GLSL = `
+uniform int u_lightCount;
+uniform vec3 u_lightDirection[${MAX_LIGHTS}];
+uniform vec3 u_lightColor[${MAX_LIGHTS}];
+uniform vec3 u_ambientLight;
+vec3 baker_directional_diffuse(vec3 N) {
+	vec3 sum = vec3(0.0);
+	for (int i = 0; i < ${MAX_LIGHTS}; i++) {
+		if (i >= u_lightCount) break;
+		sum += u_lightColor[i] * max(dot(N, u_lightDirection[i]), 0.0);
+	}
+	return sum;
+}`;
+
+export { Vector2, Vector3 };

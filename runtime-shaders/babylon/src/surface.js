@@ -1,0 +1,236 @@
+// The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature):
+// each extension builds one part (GLSL module, uniforms, samplers, attributes); one MaterialPluginBase per PBR
+// material composes the parts of that material. Per punctual light, after Babylon's own diffuse
+// (computeDiffuseLighting), the clamped N.L of Lambert's term becomes f (vec3): the skin LUT (Penner) and/or the
+// toon ramp of it, and the translucency is added, both on the base colour as @baker/three does; hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
+// curvature view replaces it. Each part is gated by a uniform, so a switch costs no recompile.
+import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase.js';
+import { controls, glslType, loadedPrimitives } from './common.js';
+
+const PLUGIN_NAME = 'BakerSurface';
+const PART_DEFINES = ['translucency', 'skin', 'toon', 'tam', 'curvature'];
+const define = (name) => `BAKER_${name.toUpperCase()}`;
+// regular expressions (Babylon's "!" points) matched in the PBR fragment shader after its includes are expanded
+const LIGHT_POINT = '!info\\.diffuse=computeDiffuseLighting\\(preInfo,diffuse(\\d+)\\.rgb\\);';
+const OUTGOING_POINT = '!finalColor=applyImageProcessing\\(finalColor\\);';
+const POINTS = {
+	vertex: ['CUSTOM_VERTEX_DEFINITIONS', 'CUSTOM_VERTEX_MAIN_END'],
+	fragment: ['CUSTOM_FRAGMENT_DEFINITIONS', 'CUSTOM_FRAGMENT_BEFORE_LIGHTS', LIGHT_POINT,
+		'CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION', OUTGOING_POINT],
+};
+
+// the first directional light of the scene, towards the light (world space): the key light of hatching
+const KEY_LIGHT = `
+vec3 baker_key_light(vec3 fallback) {
+#if defined(DIRLIGHT0)
+	return normalize(-light0.vLightData.xyz);
+#elif defined(DIRLIGHT1)
+	return normalize(-light1.vLightData.xyz);
+#elif defined(DIRLIGHT2)
+	return normalize(-light2.vLightData.xyz);
+#elif defined(DIRLIGHT3)
+	return normalize(-light3.vLightData.xyz);
+#else
+	return fallback;
+#endif
+}`;
+
+export class BakerSurfacePlugin extends MaterialPluginBase {
+	constructor(material) {
+		const defines = Object.fromEntries(PART_DEFINES.map((n) => [define(n), false]));
+		super(material, PLUGIN_NAME, 300, defines, true, false);
+		this.parts = {};
+		this._enable(true);
+	}
+
+	/** The plugin of a PBR material, created on first use. */
+	static of(material) {
+		return material.pluginManager?.getPlugin(PLUGIN_NAME) ?? new BakerSurfacePlugin(material);
+	}
+
+	getClassName() { return 'BakerSurfacePlugin'; }
+	isCompatible(shaderLanguage) { return shaderLanguage === 0; } // GLSL (WebGL2)
+
+	add(name, part) {
+		this.parts[name] = { ...part, on: 1 };
+		// the uniform block is laid out at the first draw: a part added after it needs a new one
+		if (this._material._uniformBufferLayoutBuilt) {
+			this._material.resetDrawCache();
+			this._material._createUniformBuffer();
+		}
+		this.markAllDefinesAsDirty();
+	}
+
+	setEnabled(name, on) {
+		if (this.parts[name]) this.parts[name].on = on ? 1 : 0;
+	}
+
+	attributes() {
+		const out = new Map();
+		for (const p of Object.values(this.parts || {})) for (const [kind, size] of p.attributes || []) out.set(kind, size);
+		return [...out.entries()].sort((a, b) => (a[0] < b[0] ? -1 : 1));
+	}
+
+	prepareDefinesBeforeAttributes(defines) {
+		if (!this.parts) return;
+		for (const n of PART_DEFINES) defines[define(n)] = Boolean(this.parts[n]);
+		if (this.parts.tam) defines._needUVs = true; // the TAM tiles over TEXCOORD_0 even on an untextured material
+	}
+
+	getAttributes(attributes) {
+		for (const [kind] of this.attributes()) attributes.push(kind);
+	}
+
+	getSamplers(samplers) {
+		for (const p of Object.values(this.parts || {})) samplers.push(...Object.keys(p.samplers || {}));
+	}
+
+	getUniforms() {
+		const ubo = [];
+		for (const [name, p] of Object.entries(this.parts || {})) {
+			ubo.push({ name: `u_baker_${name}_on`, size: 1, type: 'float' });
+			for (const [u, { type }] of Object.entries(p.uniforms || {})) ubo.push({ name: u, size: { float: 1, int: 1, vec2: 2, vec3: 3, vec4: 4 }[type], type });
+		}
+		const declarations = ubo.map((u) => `uniform ${u.type} ${u.name};`).join('\n');
+		return { ubo, vertex: declarations, fragment: declarations };
+	}
+
+	bindForSubMesh(uniformBuffer) {
+		for (const [name, p] of Object.entries(this.parts || {})) {
+			uniformBuffer.updateFloat(`u_baker_${name}_on`, p.on);
+			for (const [u, { type, value }] of Object.entries(p.uniforms || {})) {
+				if (type === 'float') uniformBuffer.updateFloat(u, value);
+				else if (type === 'int') uniformBuffer.updateInt(u, value);
+				else if (type === 'vec2') uniformBuffer.updateFloat2(u, value[0], value[1]);
+				else if (type === 'vec3') uniformBuffer.updateFloat3(u, value[0], value[1], value[2]);
+				else uniformBuffer.updateFloat4(u, value[0], value[1], value[2], value[3]);
+			}
+			for (const [s, texture] of Object.entries(p.samplers || {})) uniformBuffer.setTexture(s, texture);
+		}
+	}
+
+	getActiveTextures(activeTextures) {
+		for (const p of Object.values(this.parts || {})) activeTextures.push(...Object.values(p.samplers || {}));
+	}
+
+	hasTexture(texture) {
+		return Object.values(this.parts || {}).some((p) => Object.values(p.samplers || {}).includes(texture));
+	}
+
+	// Babylon collects the injection points once, when the plugin is added (before any part): every point is
+	// always listed, with empty code where this material's parts need none.
+	getCustomCode(shaderType) {
+		const code = Object.fromEntries(POINTS[shaderType].map((point) => [point, '']));
+		if (!this.parts || !Object.keys(this.parts).length) return code;
+		return Object.assign(code, this.partCode(shaderType));
+	}
+
+	partCode(shaderType) {
+		const p = this.parts;
+		const attributes = this.attributes();
+		// injected after Babylon turned attribute/varying into GLSL ES 3.00's in/out: written as in/out here
+		const io = shaderType === 'vertex' ? 'out' : 'in';
+		const varyings = attributes.map(([kind, size]) => `${io} ${glslType(size)} v_${kind};`).join('\n') + `\n${io} vec2 v_bakerUv;`;
+		if (shaderType === 'vertex') {
+			return {
+				CUSTOM_VERTEX_DEFINITIONS: `${attributes.map(([kind, size]) => `in ${glslType(size)} ${kind};`).join('\n')}
+${varyings}`,
+				CUSTOM_VERTEX_MAIN_END: `${attributes.map(([kind]) => `v_${kind} = ${kind};`).join('\n')}
+#ifdef UV1
+v_bakerUv = uv;
+#else
+v_bakerUv = vec2(0.0);
+#endif`,
+			};
+		}
+		const samplers = Object.values(p).flatMap((x) => Object.keys(x.samplers || {})).map((s) => `uniform sampler2D ${s};`).join('\n');
+		const modules = [...new Set(Object.values(p).map((x) => x.glsl).filter(Boolean))].join('\n');
+		const structs = Object.values(p).map((x) => x.structs || '').join('\n');
+		const diffuse = [];
+		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
+	f = baker_skin_diffuse(${p.skin.struct}, u_bakerSkinLut, normalW, normalW, bakerL, ${p.skin.curvature});
+	bakerReplaced = true;
+}`);
+		if (p.toon) diffuse.push(`if (u_baker_toon_on > 0.5) {
+	// the ramp indexed by the lit shade so far (N.L, or the skin LUT's luminance mapped back to -1..1)
+	float nl = ${p.skin ? 'u_baker_skin_on > 0.5 ? 2.0 * dot(f, vec3(0.2126, 0.7152, 0.0722)) - 1.0 : dotNL' : 'dotNL'};
+	f = vec3(u_bakerToonXtoon < 0.5 ? baker_toon_ramp(u_bakerToonRamp, nl)
+			: baker_xtoon(u_bakerToonRamp, nl, u_bakerToonXtoon < 1.5
+			? baker_xtoon_detail_depth(abs((view * vec4(vPositionW, 1.0)).z), u_bakerToonDepthRange.x, u_bakerToonDepthRange.y)
+			: baker_xtoon_detail_orientation(normalW, viewDirectionW, u_bakerToonOrientationPower)));
+	bakerReplaced = true;
+}`);
+		const code = {
+			CUSTOM_FRAGMENT_DEFINITIONS: `${modules}\n${structs}\n${samplers}\n${varyings}\n${KEY_LIGHT}`,
+		};
+		if (diffuse.length || p.translucency) {
+			// after Babylon's own diffuse of light $1 (directional, point or spot): f replaces the clamped N.L
+			code[LIGHT_POINT] = `info.diffuse=computeDiffuseLighting(preInfo,diffuse$1.rgb);
+{
+	vec3 bakerL = preInfo.L;
+	float dotNL = preInfo.NdotLUnclamped;
+	vec3 f = vec3(clamp(dotNL, 0.0, 1.0));
+	bool bakerReplaced = false;
+	${diffuse.join('\n\t')}
+	// like @baker/three: the change to Lambert's term, and the translucency, on the base colour (not metal-weighted)
+	if (bakerReplaced) bakerDirect += (f - vec3(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb;
+	${p.translucency ? `bakerDirect += u_baker_translucency_on * preInfo.attenuation * diffuse$1.rgb *
+		baker_translucency(${p.translucency.struct}, normalW, viewDirectionW, bakerL, ${p.translucency.thickness});` : ''}
+}`;
+		}
+		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);';
+		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;';
+		let outgoing = '';
+		if (p.tam) outgoing += `
+if (u_baker_tam_on > 0.5) {
+	vec2 tile = baker_tam_coord(v_bakerUv, u_bakerTamScale, u_bakerTamFinestSize);
+	float lod = baker_tam_lod(dFdx(tile), dFdy(tile), u_bakerTamFinestSize, u_bakerTamLevels);
+	float darkness = baker_hatching_darkness(normalW, baker_key_light(viewDirectionW), 1.0);
+	finalColor.rgb *= baker_hatching(u_bakerTam012, u_bakerTam345, tile, lod, darkness, u_bakerTamTonesA, u_bakerTamTonesB);
+}`;
+		if (p.curvature) outgoing += `
+if (u_baker_curvature_on > 0.5) {
+	// diverging map: blue concave, white flat, red convex; curvature * meanLength, saturating at +-1
+	float k = clamp(${p.curvature.value} / u_bakerCurvatureScale, -1.0, 1.0);
+	finalColor.rgb = k > 0.0 ? mix(vec3(1.0), vec3(0.85, 0.1, 0.05), k) : mix(vec3(1.0), vec3(0.05, 0.2, 0.85), -k);
+	finalColor.rgb *= 0.35 + 0.65 * clamp(dot(normalW, baker_key_light(viewDirectionW)), 0.0, 1.0);
+}`;
+		// linear colour, before Babylon's image processing (tone mapping, exposure, gamma)
+		if (outgoing) code[OUTGOING_POINT] = `${outgoing}\nfinalColor=applyImageProcessing(finalColor);`;
+		return code;
+	}
+}
+
+/**
+ * A glTF loader extension for a surface technique: for every material with the extension, build(ext, mesh, json
+ * material) returns the part (or null when this primitive cannot draw it) that the material's BakerSurfacePlugin adds.
+ */
+export function surfaceExtension(technique, extensionName, build) {
+	return class {
+		constructor(loader, options = {}) {
+			this.name = extensionName;
+			this.enabled = true;
+			this.order = 200;
+			this.loader = loader;
+			this.options = options;
+			this.shaders = options.shaders || {};
+		}
+		dispose() { this.loader = null; }
+		async onReady() {
+			const materials = this.loader.gltf.materials || [];
+			const done = new Set();
+			for (const { primitive, mesh } of loadedPrimitives(this.loader)) {
+				const ext = primitive.material !== undefined && materials[primitive.material]?.extensions?.[extensionName];
+				const material = mesh.material;
+				if (!ext || !material || done.has(material) || material.getClassName() !== 'PBRMaterial') continue;
+				if (primitive.extensions?.BAKER_edges?.finsOf !== undefined || primitive.extensions?.BAKER_fur?.finsOf !== undefined) continue;
+				const part = await build.call(this, ext, mesh, primitive, material);
+				if (!part) continue;
+				done.add(material);
+				const plugin = BakerSurfacePlugin.of(material);
+				plugin.add(technique, part);
+				controls(this.loader).add(technique, (on) => plugin.setEnabled(technique, on));
+			}
+		}
+	};
+}

@@ -1,0 +1,38 @@
+// BAKER_thickness: back-lit translucency from the baked per-vertex thickness (GDC 2011 form of RTR4 eq. 14.30).
+import { firstComponent, requireShader, setAttribute, BAKER_THICKNESS } from './common.js';
+import { surfaceExtension } from './surface.js';
+
+/** Translucency parameters of a material's BAKER_thickness, with the extension's defaults filled in. */
+export function thicknessParameters(ext) {
+	return {
+		attenuationDistance: ext.attenuationDistance ?? ext.meanThickness ?? 1,
+		distortion: ext.distortion ?? 0.2,
+		power: ext.power ?? 4,
+		scale: ext.scale ?? 1,
+		ambient: ext.ambient ?? 0,
+		subsurfaceColor: (ext.subsurfaceColor ?? [1, 1, 1]).slice(0, 3),
+		attribute: ext.attribute ?? null,
+	};
+}
+
+/** Loader extension for BAKER_thickness; options.thickness overrides the parameters ({ power, scale, ... }). */
+export const BakerThicknessExtension = surfaceExtension('translucency', BAKER_THICKNESS, async function (ext, mesh, primitive) {
+	const params = { ...thicknessParameters(ext), ...(this.options.thickness || {}) };
+	if (!params.attribute) return null; // texture-only thickness: not drawn by this extension
+	const size = await setAttribute(this.loader, mesh, primitive, params.attribute, 'bakerThickness');
+	if (!size) return null;
+	return {
+		glsl: requireShader(this.shaders, 'translucency'),
+		attributes: [['bakerThickness', size]],
+		thickness: firstComponent('v_bakerThickness', size),
+		struct: 'BakerThickness(u_bakerThAttenuation, u_bakerThDistortion, u_bakerThPower, u_bakerThScale, u_bakerThAmbient, u_bakerThColor)',
+		uniforms: {
+			u_bakerThAttenuation: { type: 'float', value: params.attenuationDistance },
+			u_bakerThDistortion: { type: 'float', value: params.distortion },
+			u_bakerThPower: { type: 'float', value: params.power },
+			u_bakerThScale: { type: 'float', value: params.scale },
+			u_bakerThAmbient: { type: 'float', value: params.ambient },
+			u_bakerThColor: { type: 'vec3', value: params.subsurfaceColor },
+		},
+	};
+});

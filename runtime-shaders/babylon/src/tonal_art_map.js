@@ -1,0 +1,64 @@
+// BAKER_tonal_art_map: hatching with the baked tonal art map, packed layout (Praun et al. 2001; RTR4 15.3).
+import { Constants } from '@babylonjs/core/Engines/constants.js';
+import { BaseTexture } from '@babylonjs/core/Materials/Textures/baseTexture.js';
+import { BAKER_TONAL_ART_MAP, requireShader } from './common.js';
+import { surfaceExtension } from './surface.js';
+
+async function decodeImage(loader, textureIndex) {
+	const texture = loader.gltf.textures[textureIndex];
+	const image = loader.gltf.images[texture.source];
+	const bytes = await loader.loadImageAsync(`/images/${texture.source}`, image);
+	const blob = new Blob([bytes], { type: image.mimeType || 'image/png' });
+	return createImageBitmap(blob, { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
+}
+
+/**
+ * The TAM's packed textures as two textures whose mip chains are the TAM's own levels: level i of the extension is
+ * uploaded as mip level i (TEXTURE_MAX_LEVEL = levels - 1), as baker_hatching.glsl expects, repeating, trilinear.
+ */
+export async function tamTextures(loader, ext) {
+	const levels = ext.levels || [];
+	const images = await Promise.all(levels.map((l) => Promise.all((l.textures || []).map((t) => decodeImage(loader, t.index ?? t)))));
+	const engine = loader.babylonScene.getEngine();
+	const gl = engine._gl;
+	return [0, 1].map((k) => {
+		const handle = gl.createTexture();
+		gl.bindTexture(gl.TEXTURE_2D, handle);
+		engine._unpackFlipY(false);
+		gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, false);
+		gl.pixelStorei(gl.UNPACK_COLORSPACE_CONVERSION_WEBGL, gl.NONE);
+		images.forEach((pair, level) => gl.texImage2D(gl.TEXTURE_2D, level, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, pair[k]));
+		gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_BASE_LEVEL, 0);
+		gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAX_LEVEL, images.length - 1);
+		gl.bindTexture(gl.TEXTURE_2D, null);
+		engine.resetTextureCache();
+		const size = levels[0].size;
+		const internal = engine.wrapWebGLTexture(handle, true, Constants.TEXTURE_TRILINEAR_SAMPLINGMODE, size, size);
+		const texture = new BaseTexture(loader.babylonScene, internal);
+		texture.name = `baker TAM tones ${k ? '3-5' : '0-2'}`;
+		texture.gammaSpace = false;
+		texture.wrapU = texture.wrapV = Constants.TEXTURE_WRAP_ADDRESSMODE;
+		return texture;
+	});
+}
+
+/** Loader extension for BAKER_tonal_art_map (packed layout): hatching strokes, tone from the key light. */
+export const BakerTonalArtMapExtension = surfaceExtension('tam', BAKER_TONAL_ART_MAP, async function (ext) {
+	if ((ext.layout ?? 'packed') !== 'packed' || !ext.levels?.length) {
+		console.warn('@baker/babylon: BAKER_tonal_art_map: only the packed layout is drawn by this extension');
+		return null;
+	}
+	const [t012, t345] = await tamTextures(this.loader, ext);
+	const tones = ext.tones;
+	return {
+		glsl: requireShader(this.shaders, 'hatching'),
+		samplers: { u_bakerTam012: t012, u_bakerTam345: t345 },
+		uniforms: {
+			u_bakerTamScale: { type: 'float', value: ext.scale ?? ext.levels[0].size },
+			u_bakerTamFinestSize: { type: 'float', value: ext.levels[0].size },
+			u_bakerTamLevels: { type: 'float', value: ext.levels.length },
+			u_bakerTamTonesA: { type: 'vec3', value: tones.slice(0, 3) },
+			u_bakerTamTonesB: { type: 'vec3', value: tones.slice(3, 6) },
+		},
+	};
+});
