@@ -260,10 +260,19 @@ def bake_atlas(font: Font, options: GlyphOptions = GlyphOptions()) -> GlyphAtlas
         entry.plane = (left / options.size, bottom / options.size, (left + w) / options.size,
                        (bottom + h) / options.size)
         entry.atlas = (float(x), float(height - y - h), float(x + w), float(height - y))
-    image = np.rint(field_image * 255.0).astype(np.uint8)
+    image = quantize(field_image)
     u = float(font.metrics.units_per_em)
     kerning = sorted((a, b, v / u) for (a, b), v in font.kerning.items() if v)
     return GlyphAtlas(image, entries, kerning, font, options, field_image)
+
+
+def quantize(values: np.ndarray) -> np.ndarray:
+    """Field values in [0, 1] -> bytes as msdfgen writes them (``pixelFloatToByte``: 256 v truncated, clamped to
+    255). Near the edge (v = 0.5) the decoded b / 255 is unbiased and keeps the sign exactly, like rounding 255 v; the
+    difference is which texels a sub-step distance sends up or down. Choosing msdfgen's makes an atlas byte-equal to
+    msdfgen's wherever the fields agree, so comparisons with it measure the fields rather than the rounding (on
+    DejaVu Serif, rounding alone moved the mean coverage error by 13%, all of it on texels within one 8-bit step)."""
+    return np.clip(np.floor(values * 256.0), 0.0, 255.0).astype(np.uint8)
 
 
 def _batch(shapes: list, options: GlyphOptions) -> tuple[GlyphBatch, list]:
