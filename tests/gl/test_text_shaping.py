@@ -30,6 +30,7 @@ from baker.gltf.document import GltfDocument
 from baker.gltf.images import decode_image
 
 from .glsl import HEADERS
+from .test_text import QUAD_VS
 
 REPO = Path(__file__).parents[2]
 MODULE = (REPO / "runtime-shaders" / "baker_text.glsl").read_text()
@@ -42,31 +43,9 @@ PPEM = 40.0  # render scale, pixels per em (the atlas is 32 px/em: magnified 1.2
 MARGIN = 6  # pixels around the label
 EDGE_ERROR = 0.1  # mean edge distance, pixels (see the module docstring)
 
-VS = """
-in vec2 a_position;  // pixels
-in vec2 a_uv;
-uniform vec2 u_viewport;
-out vec2 v_uv;
-void main() {
-    v_uv = a_uv;
-    gl_Position = vec4(a_position / u_viewport * 2.0 - 1.0, 0.0, 1.0);
-}
-"""
-
-FS = """
-in vec2 v_uv;
-uniform sampler2D u_atlas;
-uniform vec2 u_atlasSize;
-uniform float u_distanceRange;
-uniform int u_fieldType;
-uniform BakerTextStyle u_style;
-layout(location = 0) out vec4 o_color;
-void main() {
-    vec4 texel = texture(u_atlas, v_uv);
-    float screenPxRange = baker_text_screen_px_range(u_distanceRange, u_atlasSize, fwidth(v_uv));
-    o_color = baker_text_shade(u_style, texel, texel, u_fieldType, u_distanceRange, screenPxRange);
-}
-"""
+# the quad vertex shader of tests/gl/test_text.py (u_bounds = the image in pixels) and baker preview's host fragment
+# shader for BAKER_text (runtime-shaders/hosts/text.frag.glsl), with the module in place of its marker
+HOST_FS = (REPO / "runtime-shaders" / "hosts" / "text.frag.glsl").read_text()
 
 STYLE = {"color": (1.0, 1.0, 1.0, 1.0), "softness": 0.0, "outlineColor": (0.0, 0.0, 0.0, 0.0), "outlineWidth": 0.0,
          "glowColor": (0.0, 0.0, 0.0, 0.0), "glowWidth": 0.0, "shadowColor": (0.0, 0.0, 0.0, 0.0),
@@ -175,14 +154,16 @@ def render(ctx, label: dict, shape: tuple, origin: tuple) -> np.ndarray:
 
     height, width = shape
     header = HEADERS["330 core"]
-    prog = ctx.program(vertex_shader=header + MODULE + VS, fragment_shader=header + MODULE + FS)
+    assert "// @baker:modules" in HOST_FS
+    prog = ctx.program(vertex_shader=header + QUAD_VS, fragment_shader=header + HOST_FS.replace("// @baker:modules",
+                                                                                                MODULE))
     img = label["atlas"]
     atlas = ctx.texture((img.shape[1], img.shape[0]), img.shape[2], np.ascontiguousarray(img).tobytes())
     atlas.filter = (moderngl.LINEAR, moderngl.LINEAR)
     atlas.repeat_x = atlas.repeat_y = False
     atlas.use(0)
     prog["u_atlas"].value = 0
-    prog["u_viewport"].value = (float(width), float(height))
+    prog["u_bounds"].value = (0.0, 0.0, float(width), float(height))  # vertices in pixels
     prog["u_atlasSize"].value = (float(img.shape[1]), float(img.shape[0]))
     prog["u_distanceRange"].value = float(label["font"]["distanceRange"])
     prog["u_fieldType"].value = 2  # msdf
@@ -232,16 +213,20 @@ def check_coverage(gl_context, label: dict, paths: list) -> float:
     return error
 
 
+def one_font_label(tmp_path, text: str, path: Path, direction: str, script: str):
+    """Bake ``text`` with one font, check its glyphs and positions against HarfBuzz; (label, FreeType face)."""
+    import freetype
+
+    label = bake(tmp_path, script, text, [str(path)])
+    check_positions(label, [(0, g, x, y) for g, x, y, _ in harfbuzz_run(path, 0, text, direction, script)])
+    return label, freetype.Face(str(path))
+
+
 # ---------------------------------------------------------------------------------------------------- tests
 def test_english_ligature_and_kerning(gl_context, tmp_path):
     text = "fine AVA"
-    label = bake(tmp_path, "en", text, [str(DEJAVU)])
-    truth = harfbuzz_run(DEJAVU, 0, text, "ltr", "Latn")
-    check_positions(label, [(0, g, x, y) for g, x, y, _ in truth])
+    label, ft = one_font_label(tmp_path, text, DEJAVU, "ltr", "Latn")
     # the ligature: "fi" is one glyph, and not the glyph of "f" or of "i"
-    import freetype
-
-    ft = freetype.Face(str(DEJAVU))
     f_id, i_id = ft.get_char_index("f"), ft.get_char_index("i")
     assert len(label["gid"]) == len(text) - 1 and label["gid"][0] not in (f_id, i_id)
     # kerning: A to V is closer than A's advance
@@ -257,12 +242,7 @@ def test_english_ligature_and_kerning(gl_context, tmp_path):
 
 def test_arabic_joined_right_to_left(gl_context, tmp_path):
     text = "مرحبا بكم"
-    label = bake(tmp_path, "ar", text, [str(ARABIC)])
-    truth = harfbuzz_run(ARABIC, 0, text, "rtl", "Arab")
-    check_positions(label, [(0, g, x, y) for g, x, y, _ in truth])
-    import freetype
-
-    ft = freetype.Face(str(ARABIC))
+    label, ft = one_font_label(tmp_path, text, ARABIC, "rtl", "Arab")
     nominal = {ft.get_char_index(c) for c in text}
     joined = [g for g in label["gid"] if g not in nominal]
     assert len(joined) >= 5, "initial/medial/final forms replace the isolated ones"

@@ -195,17 +195,10 @@ def check_atlas(doc: GltfDocument, places: list, issues) -> None:
                               ("atlasBounds", "VEC4"), ("glyphIndex", "SCALAR"), ("face", "SCALAR")):
                 if key in ("glyphIndex", "face") and key not in table:
                     continue  # optional
-                a = table.get(key)
-                if not is_index(a, accessors):
-                    issues.error("UNRESOLVED_REFERENCE", f"accessor {a!r} does not exist", f"{ptr}/glyphs/{key}")
-                    continue
-                acc = accessors[a]
-                if acc.get("componentType") != 5126 or acc.get("type") != kind or acc.get("count") != count:
-                    issues.error("BAKER_GLYPH_ATLAS_ACCESSOR", f"glyphs.{key} must be FLOAT {kind} with count "
-                                 f"{count}, not {acc.get('componentType')} {acc.get('type')} x {acc.get('count')}",
-                                 pointer("accessors", a))
-                    continue
-                arrays[key] = doc.accessor(a).astype(np.float64)
+                values = _float_accessor(doc, table.get(key), kind, count, f"{ptr}/glyphs/{key}",
+                                         "BAKER_GLYPH_ATLAS_ACCESSOR", f"glyphs.{key}", issues)
+                if values is not None:
+                    arrays[key] = values
             if "unicode" in arrays:
                 u = arrays["unicode"]
                 if (u != np.round(u)).any() or (u < -1).any() or (u > 0x10FFFF).any():
@@ -280,24 +273,32 @@ def check_text(doc: GltfDocument, places: list, issues) -> None:
                                f"table: {''.join(absent)!r}", ptr + "/text")
 
 
-def _check_shaped(doc: GltfDocument, shaped: dict, table: dict, ptr: str, issues) -> None:
-    """BAKER_text.glyphs: FLOAT accessors of ``count`` elements, glyph indices into the table, finite positions."""
-    from baker.checks import is_index
+def _float_accessor(doc: GltfDocument, index, kind: str, count, ptr: str, code: str, what: str, issues):
+    """The float64 values of accessor ``index`` when it exists and is FLOAT ``kind`` x ``count``; else report, None."""
+    from baker.checks import is_index, pointer
 
     accessors = doc.json.get("accessors") or []
+    if not is_index(index, accessors):
+        issues.error("UNRESOLVED_REFERENCE", f"accessor {index!r} does not exist", ptr)
+        return None
+    acc = accessors[index]
+    if acc.get("componentType") != 5126 or acc.get("type") != kind or acc.get("count") != count:
+        issues.error(code, f"{what} must be FLOAT {kind} with count {count}, not {acc.get('componentType')} "
+                           f"{acc.get('type')} x {acc.get('count')}", pointer("accessors", index))
+        return None
+    return doc.accessor(index).astype(np.float64)
+
+
+def _check_shaped(doc: GltfDocument, shaped: dict, table: dict, ptr: str, issues) -> None:
+    """BAKER_text.glyphs: FLOAT accessors of ``count`` elements, glyph indices into the table, finite positions."""
     count = shaped.get("count")
     arrays = {}
     for key, kind in (("glyph", "SCALAR"), ("position", "VEC2")):
-        a = shaped.get(key)
-        if not is_index(a, accessors):
-            issues.error("UNRESOLVED_REFERENCE", f"accessor {a!r} does not exist", f"{ptr}/{key}")
+        values = _float_accessor(doc, shaped.get(key), kind, count, f"{ptr}/{key}", "BAKER_TEXT_GLYPHS_ACCESSOR",
+                                 f"glyphs.{key}", issues)
+        if values is None:
             return
-        acc = accessors[a]
-        if acc.get("componentType") != 5126 or acc.get("type") != kind or acc.get("count") != count:
-            issues.error("BAKER_TEXT_GLYPHS_ACCESSOR", f"glyphs.{key} must be FLOAT {kind} with count {count}, not "
-                         f"{acc.get('componentType')} {acc.get('type')} x {acc.get('count')}", f"{ptr}/{key}")
-            return
-        arrays[key] = doc.accessor(a).astype(np.float64)
+        arrays[key] = values
     g = arrays["glyph"]
     size = table.get("count") if isinstance(table.get("count"), int) else 0
     if (g != np.round(g)).any() or (g < 0).any() or (g >= size).any():
