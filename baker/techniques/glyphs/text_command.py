@@ -63,7 +63,13 @@ def run(args) -> int:
                    line_spacing=args.line_spacing, **shaping)
     glyph_ids = shaped_glyph_ids(shaped)
     if not glyph_ids and not args.glyphs__charset:
-        raise BakerError(args.font[0], "no character of the text has a glyph in the font(s)")
+        chars = sorted(set(text) - {"\n"})
+        if not chars:
+            raise BakerError(None, "empty charset: the text has no characters to bake")
+        shown = ", ".join(f"U+{ord(c):04X}" for c in chars[:5]) + (" ..." if len(chars) > 5 else "")
+        raise BakerError(args.font[0] if len(args.font) == 1 else ", ".join(args.font),
+                         f"none of the {len(chars)} requested characters has a glyph in "
+                         f"{'this font' if len(args.font) == 1 else 'these fonts'} ({shown})")
     atlas = font_atlas(args.font, options, charset=options.charset if args.glyphs__charset else None,
                        glyph_ids=glyph_ids, warn=False)
     if shaped.missing:
