@@ -14,6 +14,7 @@ import pytest
 from baker.cli import main
 from baker.gltf.document import GltfDocument
 from baker.validate import validate_file
+from conftest import assert_khronos_clean
 
 DEJAVU = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
 NOTO = Path("/usr/share/fonts/truetype/noto/NotoSans-Regular.ttf")
@@ -51,6 +52,7 @@ def test_issue_repro_three_fonts_every_script_drawn(tmp_path):
     assert char_index(CJK, "你", 2) in lab["gid"][lab["face"] == 2]
     report = validate_file(out, khronos=False)
     assert report["issues"]["numErrors"] == 0 and report["issues"]["numWarnings"] == 0, report["issues"]
+    assert_khronos_clean(out)
 
 
 def test_bidi_mixed_line_visual_order(tmp_path):
