@@ -1,6 +1,6 @@
 """Glyph atlases: baker vs msdfgen (npm ``@circuitly/msdfgen``, a prebuilt N-API build of libmsdfgen), same run.
 
-    python benchmarks/glyphs.py [--font PATH] [--size 48] [--range 4] [--repeat 3]
+    python benchmarks/glyphs.py [--font PATH] [--size 48] [--range 4] [--repeat 3] [--coloring simple|inktrap]
 
 Both generate the MSDF of every printable ASCII glyph of the font at the same scale, range and box (baker's boxes:
 the glyph bounds grown by range/2, on the pixel grid of the origin), with the same edge-coloring threshold (3 rad).
@@ -94,6 +94,8 @@ def main(argv=None) -> int:
     ap.add_argument("--size", type=float, default=48.0)
     ap.add_argument("--range", type=float, default=4.0)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--coloring", default="simple", choices=("simple", "inktrap"),
+                    help="baker's edge coloring (msdfgen's npm build has edgeColoringSimple only)")
     args = ap.parse_args(argv)
     if not Path(args.font).is_file():
         print(f"font not found: {args.font}", file=sys.stderr)
@@ -102,7 +104,7 @@ def main(argv=None) -> int:
     import numba
 
     font = load_font(args.font, "ascii")
-    options = GlyphOptions(type="msdf", size=args.size, range=args.range)
+    options = GlyphOptions(type="msdf", size=args.size, range=args.range, coloring=args.coloring)
     bake_atlas(font, options)  # compile the kernels
     rows = []
     t2, atlas = best_of(args.repeat, lambda: bake_atlas(font, options))
@@ -168,7 +170,7 @@ def main(argv=None) -> int:
                 rows.append(("msdfgen 1.x (@circuitly/msdfgen, native, 1 thread)", seconds, score(blocks, items)))
 
     print(f"font: {Path(args.font).name}, {n} ASCII glyphs with outlines, {args.size:g} px/em, range {args.range:g} "
-          f"px; {os.cpu_count()} cores; best of {args.repeat}")
+          f"px; baker coloring {args.coloring}; {os.cpu_count()} cores; best of {args.repeat}")
     print()
     print("| implementation | time (s) | glyphs/s | mean error | max error (glyph) | mean error without ties |")
     print("|---|---:|---:|---:|---:|---:|")

@@ -53,9 +53,10 @@ REFS = {
                   "fins/*": "mesh-primitive"},
     "BAKER_glyph_atlas": {"fonts/*/texture": "texture-index", "fonts/*/glyphs/unicode": "accessor",
                           "fonts/*/glyphs/advance": "accessor", "fonts/*/glyphs/planeBounds": "accessor",
-                          "fonts/*/glyphs/atlasBounds": "accessor", "fonts/*/kerning/pairs": "accessor",
+                          "fonts/*/glyphs/atlasBounds": "accessor", "fonts/*/glyphs/glyphIndex": "accessor",
+                          "fonts/*/glyphs/face": "accessor", "fonts/*/kerning/pairs": "accessor",
                           "fonts/*/kerning/advance": "accessor"},
-    "BAKER_text": {},
+    "BAKER_text": {"glyphs/glyph": "accessor", "glyphs/position": "accessor"},
     "BAKER_thickness": {},
 }
 SAMPLER_DEFAULTS = {"wrapS": 10497, "wrapT": 10497}

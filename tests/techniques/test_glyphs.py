@@ -449,6 +449,8 @@ def test_validator_catches_broken_atlas(tmp_path):
     font = doc.json["extensions"]["BAKER_glyph_atlas"]["fonts"][0]
     font["width"] += 3
     doc.json["nodes"][0]["extensions"]["BAKER_text"]["text"] = "ok?"
+    # without the shaped run a runtime lays the text out by code point: "?" is in no glyph table
+    del doc.json["nodes"][0]["extensions"]["BAKER_text"]["glyphs"]
     bad = tmp_path / "bad.glb"
     doc.save(bad)
     report = validate_file(bad, khronos=False)

@@ -58,7 +58,12 @@ def write_glyph_atlas(doc: GltfDocument, atlas, name: str = "atlas") -> int:
                                         name="glyph planeBounds"),
         "atlasBounds": doc.add_accessor(np.array([g.atlas or zero for g in entries], np.float32), target=None,
                                         name="glyph atlasBounds"),
+        "glyphIndex": doc.add_accessor(np.array([g.index for g in entries], np.float32), target=None,
+                                       name="glyph index"),
     }
+    if len(atlas.font.faces) > 1:
+        table["face"] = doc.add_accessor(np.array([g.face for g in entries], np.float32), target=None,
+                                         name="glyph face")
     font = {
         "name": atlas.font.family,
         "texture": texture,
@@ -71,6 +76,8 @@ def write_glyph_atlas(doc: GltfDocument, atlas, name: str = "atlas") -> int:
         "metrics": {k: float(v) for k, v in atlas.metrics_em().items()},
         "glyphs": table,
     }
+    if atlas.font.faces:
+        font["faces"] = atlas.faces_json()
     if atlas.kerning:
         font["kerning"] = {
             "count": len(atlas.kerning),
@@ -87,7 +94,7 @@ def write_glyph_atlas(doc: GltfDocument, atlas, name: str = "atlas") -> int:
 
 def write_text_node(doc: GltfDocument, atlas, quads, *, text: str, font: int, em_size: float, align: str,
                     color: tuple, outline_width: float = 0.0, outline_color: tuple = (0.0, 0.0, 0.0, 1.0),
-                    line_spacing: float = 1.0, name: str = "text") -> int:
+                    line_spacing: float = 1.0, name: str = "text", shaping: dict | None = None) -> int:
     """Add a node with the text's quads (plain glTF) and ``BAKER_text``; returns the node index."""
     n = len(quads.positions)
     positions = np.zeros((n * 4, 3), np.float32)
@@ -127,6 +134,14 @@ def write_text_node(doc: GltfDocument, atlas, quads, *, text: str, font: int, em
            "color": [float(c) for c in color], "lineSpacing": float(line_spacing)}
     if outline_width > 0:
         ext["outline"] = {"width": float(outline_width), "color": [float(c) for c in outline_color]}
+    if quads.table is not None:  # shaped: the runtime draws these glyphs there, it does not lay out by code point
+        ext["glyphs"] = {
+            "count": int(len(quads.table)),
+            "glyph": doc.add_accessor(quads.table.astype(np.float32), target=None, name="text glyph"),
+            "position": doc.add_accessor(quads.origins.astype(np.float32), target=None, name="text glyph position"),
+        }
+        if shaping:
+            ext["shaping"] = dict(shaping)
     nodes = doc.json.setdefault("nodes", [])
     nodes.append({"name": name, "mesh": len(meshes) - 1, "extensions": {TEXT_NAME: ext}})
     doc.use_extension(TEXT_NAME)
@@ -177,24 +192,19 @@ def check_atlas(doc: GltfDocument, places: list, issues) -> None:
             count = table.get("count")
             arrays = {}
             for key, kind in (("unicode", "SCALAR"), ("advance", "SCALAR"), ("planeBounds", "VEC4"),
-                              ("atlasBounds", "VEC4")):
-                a = table.get(key)
-                if not is_index(a, accessors):
-                    issues.error("UNRESOLVED_REFERENCE", f"accessor {a!r} does not exist", f"{ptr}/glyphs/{key}")
-                    continue
-                acc = accessors[a]
-                if acc.get("componentType") != 5126 or acc.get("type") != kind or acc.get("count") != count:
-                    issues.error("BAKER_GLYPH_ATLAS_ACCESSOR", f"glyphs.{key} must be FLOAT {kind} with count "
-                                 f"{count}, not {acc.get('componentType')} {acc.get('type')} x {acc.get('count')}",
-                                 pointer("accessors", a))
-                    continue
-                arrays[key] = doc.accessor(a).astype(np.float64)
+                              ("atlasBounds", "VEC4"), ("glyphIndex", "SCALAR"), ("face", "SCALAR")):
+                if key in ("glyphIndex", "face") and key not in table:
+                    continue  # optional
+                values = _float_accessor(doc, table.get(key), kind, count, f"{ptr}/glyphs/{key}",
+                                         "BAKER_GLYPH_ATLAS_ACCESSOR", f"glyphs.{key}", issues)
+                if values is not None:
+                    arrays[key] = values
             if "unicode" in arrays:
                 u = arrays["unicode"]
-                if (u != np.round(u)).any() or (u < 0).any() or (u > 0x10FFFF).any():
-                    issues.error("BAKER_GLYPH_ATLAS_UNICODE", "glyph code points must be integers in 0..0x10FFFF",
-                                 f"{ptr}/glyphs/unicode")
-                elif len(np.unique(u)) != len(u):
+                if (u != np.round(u)).any() or (u < -1).any() or (u > 0x10FFFF).any():
+                    issues.error("BAKER_GLYPH_ATLAS_UNICODE", "glyph code points must be integers in 0..0x10FFFF "
+                                 "(-1: none)", f"{ptr}/glyphs/unicode")
+                elif len(np.unique(u[u >= 0])) != int((u >= 0).sum()):
                     issues.error("BAKER_GLYPH_ATLAS_UNICODE", "a code point appears twice in the glyph table",
                                  f"{ptr}/glyphs/unicode")
             for key in ("planeBounds", "atlasBounds"):
@@ -208,6 +218,19 @@ def check_atlas(doc: GltfDocument, places: list, issues) -> None:
                 if (b < 0).any() or (b[:, 2] > width).any() or (b[:, 3] > height).any():
                     issues.error("BAKER_GLYPH_ATLAS_BOUNDS", "atlasBounds reach outside the atlas",
                                  f"{ptr}/glyphs/atlasBounds")
+            faces = font.get("faces")
+            for key, limit in (("glyphIndex", 65535), ("face", (len(faces) if isinstance(faces, list) else 1) - 1)):
+                if key in arrays:
+                    v = arrays[key]
+                    if (v != np.round(v)).any() or (v < 0).any() or (v > limit).any():
+                        issues.error("BAKER_GLYPH_ATLAS_GLYPH_INDEX", f"glyphs.{key} must hold integers in 0..{limit}",
+                                     f"{ptr}/glyphs/{key}")
+            if "glyphIndex" in arrays:
+                face = arrays.get("face", np.zeros_like(arrays["glyphIndex"]))
+                ids = set(zip(face.tolist(), arrays["glyphIndex"].tolist()))
+                if len(ids) != len(face):
+                    issues.error("BAKER_GLYPH_ATLAS_GLYPH_INDEX", "a (face, glyph id) appears twice in the glyph "
+                                 "table", f"{ptr}/glyphs/glyphIndex")
             kerning = font.get("kerning")
             if isinstance(kerning, dict) and "unicode" in arrays:
                 pairs = kerning.get("pairs")
@@ -238,13 +261,51 @@ def check_text(doc: GltfDocument, places: list, issues) -> None:
             issues.info("BAKER_TEXT_NO_MESH", "the node has no mesh: viewers without BAKER_text show nothing", ptr)
         table = fonts[font].get("glyphs") or {}
         a = table.get("unicode")
-        if is_index(a, gltf.get("accessors") or []):
+        shaped = ext.get("glyphs")
+        if isinstance(shaped, dict):
+            _check_shaped(doc, shaped, table, ptr + "/glyphs", issues)
+        elif is_index(a, gltf.get("accessors") or []):
             known = set(doc.accessor(a).astype(np.int64).tolist())
             text = ext.get("text") if isinstance(ext.get("text"), str) else ""
             absent = sorted({c for c in text if c != "\n" and ord(c) not in known})
             if absent:
                 issues.warning("BAKER_TEXT_GLYPH_MISSING", f"{len(absent)} characters are not in the font's glyph "
                                f"table: {''.join(absent)!r}", ptr + "/text")
+
+
+def _float_accessor(doc: GltfDocument, index, kind: str, count, ptr: str, code: str, what: str, issues):
+    """The float64 values of accessor ``index`` when it exists and is FLOAT ``kind`` x ``count``; else report, None."""
+    from baker.checks import is_index, pointer
+
+    accessors = doc.json.get("accessors") or []
+    if not is_index(index, accessors):
+        issues.error("UNRESOLVED_REFERENCE", f"accessor {index!r} does not exist", ptr)
+        return None
+    acc = accessors[index]
+    if acc.get("componentType") != 5126 or acc.get("type") != kind or acc.get("count") != count:
+        issues.error(code, f"{what} must be FLOAT {kind} with count {count}, not {acc.get('componentType')} "
+                           f"{acc.get('type')} x {acc.get('count')}", pointer("accessors", index))
+        return None
+    return doc.accessor(index).astype(np.float64)
+
+
+def _check_shaped(doc: GltfDocument, shaped: dict, table: dict, ptr: str, issues) -> None:
+    """BAKER_text.glyphs: FLOAT accessors of ``count`` elements, glyph indices into the table, finite positions."""
+    count = shaped.get("count")
+    arrays = {}
+    for key, kind in (("glyph", "SCALAR"), ("position", "VEC2")):
+        values = _float_accessor(doc, shaped.get(key), kind, count, f"{ptr}/{key}", "BAKER_TEXT_GLYPHS_ACCESSOR",
+                                 f"glyphs.{key}", issues)
+        if values is None:
+            return
+        arrays[key] = values
+    g = arrays["glyph"]
+    size = table.get("count") if isinstance(table.get("count"), int) else 0
+    if (g != np.round(g)).any() or (g < 0).any() or (g >= size).any():
+        issues.error("BAKER_TEXT_GLYPHS_INDEX", f"glyphs.glyph must index the font's glyph table (0..{size - 1})",
+                     ptr + "/glyph")
+    if not np.isfinite(arrays["position"]).all():
+        issues.error("BAKER_TEXT_GLYPHS_POSITION", "glyph positions must be finite", ptr + "/position")
 
 
 # ---------------------------------------------------------------------------------------------------- reading back
@@ -261,8 +322,10 @@ class Font:
     height: int
     y_origin: str = "bottom"
     metrics: dict = field(default_factory=dict)  # em units
-    glyphs: dict = field(default_factory=dict)  # "unicode", "advance", "planeBounds", "atlasBounds" -> arrays
+    glyphs: dict = field(default_factory=dict)  # "unicode", "advance", "planeBounds", "atlasBounds" (and
+    # "glyphIndex", "face" when written) -> arrays
     kerning: dict = field(default_factory=dict)  # "pairs", "advance" -> arrays (empty: no kerning)
+    faces: tuple = ()  # the fallback list: dicts (name, file, faceIndex, unitsPerEm); glyphs["face"] indexes it
 
 
 @dataclass(frozen=True)
@@ -278,6 +341,9 @@ class TextLabel:
     line_spacing: float = 1.0
     outline_width: float = 0.0  # em units
     outline_color: tuple = (0.0, 0.0, 0.0, 1.0)
+    glyphs: object = None  # shaped text: (n,) glyph-table indices (None: lay out by code point)
+    positions: object = None  # (n, 2) em, each glyph's origin
+    shaping: dict = field(default_factory=dict)
 
 
 def read_atlas(doc: GltfDocument) -> list[Font]:
@@ -290,8 +356,11 @@ def read_atlas(doc: GltfDocument) -> list[Font]:
             name=f.get("name"), texture=int(f["texture"]), type=f["type"], distance_range=float(f["distanceRange"]),
             size=float(f["size"]), width=int(f["width"]), height=int(f["height"]), y_origin=f.get("yOrigin", "bottom"),
             metrics=dict(f.get("metrics", {})),
-            glyphs={k: doc.accessor(table[k]) for k in ("unicode", "advance", "planeBounds", "atlasBounds") if k in table},
-            kerning={k: doc.accessor(kerning[k]) for k in ("pairs", "advance") if k in kerning}))
+            glyphs={k: doc.accessor(table[k]) for k in ("unicode", "advance", "planeBounds", "atlasBounds", "glyphIndex",
+                                                    "face")
+                    if k in table},
+            kerning={k: doc.accessor(kerning[k]) for k in ("pairs", "advance") if k in kerning},
+            faces=tuple(dict(x) for x in f.get("faces") or ())))
     return out
 
 
@@ -304,12 +373,16 @@ def read_text(doc: GltfDocument, node: int, fonts: list | None = None) -> TextLa
     fonts = read_atlas(doc) if fonts is None else fonts
     index = int(ext.get("font", 0))
     outline = ext.get("outline") or {}
+    shaped = ext.get("glyphs") if isinstance(ext.get("glyphs"), dict) else None
     return TextLabel(
         text=ext.get("text", ""), font_index=index, font=fonts[index] if 0 <= index < len(fonts) else None,
         em_size=float(ext.get("emSize", 1.0)), align=ext.get("align", "left"),
         color=tuple(float(c) for c in ext.get("color", (1.0, 1.0, 1.0, 1.0))),
         line_spacing=float(ext.get("lineSpacing", 1.0)), outline_width=float(outline.get("width", 0.0)),
-        outline_color=tuple(float(c) for c in outline.get("color", (0.0, 0.0, 0.0, 1.0))))
+        outline_color=tuple(float(c) for c in outline.get("color", (0.0, 0.0, 0.0, 1.0))),
+        glyphs=doc.accessor(shaped["glyph"]).astype(np.int64) if shaped else None,
+        positions=doc.accessor(shaped["position"]).astype(np.float64) if shaped else None,
+        shaping=dict(ext.get("shaping") or {}))
 
 
 read = read_text

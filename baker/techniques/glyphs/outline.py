@@ -41,13 +41,25 @@ class FontMetrics:
 
 @dataclass
 class Glyph:
-    """One character: its code point, glyph name and id, advance (font units) and outline."""
+    """One glyph: its code point (-1: a glyph no code point maps to, e.g. a ligature), glyph name and id in its
+    face, advance (font units of the first face) and outline (same units), and its face in the fallback list."""
 
     codepoint: int
     name: str
     index: int
     advance: float
     shape: Shape
+    face: int = 0
+
+
+@dataclass(frozen=True)
+class FaceInfo:
+    """One font of an atlas' fallback list: the file (its name only leaves baker), face index, family, units/em."""
+
+    path: str
+    face_index: int
+    family: str
+    units_per_em: int
 
 
 @dataclass
@@ -58,6 +70,7 @@ class Font:
     glyphs: list  # [Glyph], in charset order
     kerning: dict = field(default_factory=dict)  # (codepoint1, codepoint2) -> advance adjustment, font units
     missing: list = field(default_factory=list)  # code points of the charset the font has no glyph for
+    faces: list = field(default_factory=list)  # [FaceInfo] the fallback list (one entry for a single font)
 
 
 # ---------------------------------------------------------------------------------------------------- charsets
@@ -155,6 +168,20 @@ def _instance_location(font, instance: str, path) -> dict:
     raise BakerError(path, f"no named instance {instance!r} (instances: {', '.join(names)})")
 
 
+def variation_location(path, font_number: int = 0, instance: str | None = None) -> dict:
+    """Axis values ({tag: value}) of a variable font's named instance or ``axis=value,...`` string ({}: none)."""
+    if not instance:
+        return {}
+    font, _ = open_font(path, font_number)
+    return _instance_location(font, instance, path)
+
+
+def face_metrics(path, font_number: int = 0) -> FontMetrics:
+    """The metrics of one face (font units), without reading any glyph."""
+    font, _ = open_font(path, font_number)
+    return font_metrics(font)
+
+
 def font_metrics(font) -> FontMetrics:
     upem = int(font["head"].unitsPerEm)
     hhea = font["hhea"]
@@ -215,12 +242,15 @@ class _OutlinePen:
         self.current = self.start
 
 
-def glyph_shape(glyph_set, name: str) -> Shape:
-    """The outline of glyph ``name`` in font units."""
+def glyph_shape(glyph_set, name: str, scale: float = 1.0) -> Shape:
+    """The outline of glyph ``name`` in font units (times ``scale``)."""
     pen = _OutlinePen(glyph_set)
     glyph_set[name].draw(pen.pen)
     pen._close()
-    return from_contours(pen.contours)
+    contours = pen.contours
+    if scale != 1.0:
+        contours = [[(d, [(x * scale, y * scale) for x, y in pts]) for d, pts in c] for c in contours]
+    return from_contours(contours)
 
 
 def load_font(path, charset=None, *, font_number: int = 0, instance: str | None = None,
@@ -242,8 +272,10 @@ def load_font(path, charset=None, *, font_number: int = 0, instance: str | None 
                 continue
             g = glyph_set[name]
             glyphs.append(Glyph(cp, name, glyph_ids.get(name, 0), float(g.width), glyph_shape(glyph_set, name)))
-        family = font["name"].getDebugName(1) or Path(path).stem if "name" in font else Path(path).stem
-        result = Font(str(path), family, font_metrics(font), glyphs, missing=missing)
+        family = _family(font, path)
+        metrics = font_metrics(font)
+        result = Font(str(path), family, metrics, glyphs, missing=missing,
+                      faces=[FaceInfo(str(path), font_number, family, metrics.units_per_em)])
         if kerning and glyphs:
             result.kerning = kerning_pairs(font, [(g.codepoint, g.name) for g in glyphs])
     except BakerError:
@@ -251,6 +283,94 @@ def load_font(path, charset=None, *, font_number: int = 0, instance: str | None 
     except Exception as exc:  # noqa: BLE001 (fontTools raises struct.error, TTLibError, IndexError, KeyError, ...)
         detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise BakerError(path, f"damaged or truncated font: {detail}") from None
+    return result
+
+
+def _family(font, path) -> str:
+    return (font["name"].getDebugName(1) or Path(path).stem) if "name" in font else Path(path).stem
+
+
+def load_fonts(sources: list, charset=None, glyph_ids=(), *, instance: str | None = None,
+               kerning: bool = True) -> Font:
+    """Glyphs from a fallback list of fonts, as one :class:`Font` in the first face's units.
+
+    ``sources``: [(path, face index)]. ``charset`` (spec or code points): each code point comes from the first face
+    whose cmap maps it (reported in ``missing`` when none does). ``glyph_ids``: [(face, glyph id)] wanted as well
+    (shaped text: ligatures, contextual forms); such a glyph carries the code point its face maps to it when that
+    face is the code point's first face (so code points stay unique), else -1. Outlines and advances of the other
+    faces are scaled to the first face's units per em; kerning pairs are read per face among its own glyphs.
+    ``instance`` applies to the first font (a variable font's named instance or axis values).
+    """
+    if not sources:
+        raise BakerError(None, "no font given")
+    codepoints = [] if charset is None and glyph_ids else (
+        parse_charset(charset) if charset is None or isinstance(charset, str) else list(charset))
+    if not codepoints and not glyph_ids:
+        raise BakerError(None, f"empty charset {charset!r}: no characters to bake")
+    opened = []
+    for k, (path, number) in enumerate(sources):
+        font, glyph_set = open_font(path, number, instance if k == 0 else None)
+        opened.append((path, number, font, glyph_set))
+    glyphs, missing, taken, faces, cmaps, orders = [], [], set(), [], [], []
+    upem0 = None
+    try:
+        for path, number, font, glyph_set in opened:
+            metrics = font_metrics(font)
+            upem0 = upem0 or metrics.units_per_em
+            faces.append(FaceInfo(str(path), number, _family(font, path), metrics.units_per_em))
+            cmaps.append(font.getBestCmap() or {})
+            orders.append(font.getGlyphOrder())
+        owner = {}  # code point -> its first face
+
+        def owner_of(cp):
+            if cp not in owner:
+                owner[cp] = next((k for k, cmap in enumerate(cmaps) if cp in cmap and cmap[cp] in opened[k][3]), -1)
+            return owner[cp]
+
+        def add(face, gid, cp):
+            if (face, gid) in taken:
+                return
+            taken.add((face, gid))
+            _, _, font, glyph_set = opened[face]
+            name = orders[face][gid]
+            scale = upem0 / faces[face].units_per_em
+            glyphs.append(Glyph(cp, name, gid, float(glyph_set[name].width) * scale,
+                                glyph_shape(glyph_set, name, scale), face))
+
+        for cp in codepoints:
+            face = owner_of(cp)
+            if face < 0:
+                missing.append(cp)
+                continue
+            add(face, opened[face][2].getGlyphID(cmaps[face][cp]), cp)
+        reverse = [None] * len(opened)
+        for face, gid in sorted(set((int(f), int(g)) for f, g in glyph_ids)):
+            if not 0 <= face < len(opened):
+                raise BakerError(None, f"glyph ids of font {face} asked for, {len(opened)} font(s) given")
+            if not 0 <= gid < len(orders[face]):
+                raise BakerError(sources[face][0], f"glyph id {gid} does not exist (the font has "
+                                                   f"{len(orders[face])} glyphs)")
+            if reverse[face] is None:
+                reverse[face] = {}
+                for cp, name in sorted(cmaps[face].items()):
+                    reverse[face].setdefault(name, []).append(cp)
+            cps = [c for c in reverse[face].get(orders[face][gid], []) if owner_of(c) == face]
+            add(face, gid, cps[0] if cps else -1)
+        primary = opened[0]
+        result = Font(str(primary[0]), faces[0].family, font_metrics(primary[2]), glyphs, missing=missing,
+                      faces=faces)
+        if kerning:
+            for face in range(len(opened)):
+                own = [(g.codepoint, g.name) for g in glyphs if g.face == face and g.codepoint >= 0]
+                if own:
+                    scale = upem0 / faces[face].units_per_em
+                    for pair, v in kerning_pairs(opened[face][2], own).items():
+                        result.kerning[pair] = v * scale
+    except BakerError:
+        raise
+    except Exception as exc:  # noqa: BLE001 (fontTools raises struct.error, TTLibError, IndexError, KeyError, ...)
+        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise BakerError(sources[0][0], f"damaged or truncated font: {detail}") from None
     return result
 
 
@@ -271,14 +391,28 @@ def kerning_pairs(font, chars: list) -> dict:
     return {(chars[a][0], chars[b][0]): float(matrix[a, b]) for a, b in zip(i.tolist(), j.tolist())}
 
 
+def _kern_features(table) -> list:
+    """The ``kern`` feature records a shaper applies to Latin text: those of the ``latn`` script's default language
+    system, else ``DFLT``'s, else every ``kern`` feature. A font may hold one kern feature per script, with lookups
+    shared between them (DejaVu Sans: latn [15], arab [14, 15]); their union would apply a pair twice."""
+    records = table.FeatureList.FeatureRecord
+    scripts = {r.ScriptTag: r.Script for r in (table.ScriptList.ScriptRecord if table.ScriptList else [])}
+    for tag in ("latn", "DFLT"):
+        langsys = scripts[tag].DefaultLangSys if tag in scripts else None
+        if langsys is not None:
+            chosen = [records[i] for i in langsys.FeatureIndex if records[i].FeatureTag == "kern"]
+            if chosen:
+                return chosen
+    return [r for r in records if r.FeatureTag == "kern"]
+
+
 def _gpos_kerning(font, names: list):
     if "GPOS" not in font:
         return None
     table = font["GPOS"].table
     if not table.FeatureList or not table.LookupList:
         return None
-    lookups = sorted({i for rec in table.FeatureList.FeatureRecord if rec.FeatureTag == "kern"
-                      for i in rec.Feature.LookupListIndex})
+    lookups = sorted({i for rec in _kern_features(table) for i in rec.Feature.LookupListIndex})
     if not lookups:
         return None
     n = len(names)

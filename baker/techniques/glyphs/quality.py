@@ -174,11 +174,10 @@ def atlas_errors(atlas, magnify: int = 8, supersample: int = 5, topology: bool =
     pixels within one 8-bit step of distance (range / 255 pixels) of the outline."""
     values = atlas.image.astype(np.float64) / 255.0
     scale = atlas.options.size / atlas.font.metrics.units_per_em
-    shapes = {g.codepoint: g.shape for g in atlas.font.glyphs}
     items = []
-    for g in atlas.glyphs:
+    for g, source in zip(atlas.glyphs, atlas.font.glyphs):  # bake_atlas keeps the font's glyph order
         if g.atlas is None:
             continue
         left, bottom = g.plane[0] * atlas.options.size, g.plane[1] * atlas.options.size
-        items.append((g.codepoint, shapes[g.codepoint], scale, g.atlas, (left, bottom)))
+        items.append((g.codepoint, source.shape, scale, g.atlas, (left, bottom)))
     return glyph_errors(values, items, magnify, supersample, topology, tie=atlas.options.range / 255.0)

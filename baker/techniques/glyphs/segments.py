@@ -173,7 +173,12 @@ def signed_distance(P, deg, px, py):
     a2y = 3.0 * (P[2, 1] - 2.0 * P[1, 1] + P[0, 1])
     a3x = P[3, 0] - 3.0 * P[2, 0] + 3.0 * P[1, 0] - P[0, 0]
     a3y = P[3, 1] - 3.0 * P[2, 1] + 3.0 * P[1, 1] - P[0, 1]
-    starts = 8
+    # starts: one per ~6 units of control-polygon length (texels in the kernels), 3..8: the closest-point function of
+    # a short segment has at most a couple of basins, a long one may have more; Newton stops once the step is tiny
+    poly = 0.0
+    for k in range(3):
+        poly += math.sqrt((P[k + 1, 0] - P[k, 0]) ** 2 + (P[k + 1, 1] - P[k, 1]) ** 2)
+    starts = min(8, max(3, int(math.ceil(poly / 6.0))))
     for k in range(starts + 1):
         t = k / starts
         for _ in range(8):
@@ -185,8 +190,9 @@ def signed_distance(P, deg, px, py):
             h = d1x * d1x + d1y * d1y + bx * d2x + by * d2y
             if h == 0.0:
                 break
-            t -= g / h
-            if not (0.0 < t < 1.0):
+            step = g / h
+            t -= step
+            if not (0.0 < t < 1.0) or abs(step) < 1e-12:
                 break
         if 0.0 < t < 1.0:
             x, y = point_at(P, 3, t)

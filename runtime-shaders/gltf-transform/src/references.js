@@ -36,6 +36,8 @@ export const REFERENCES = {
 		"glTF": [
 			["fonts/*/texture", "texture-index"],
 			["fonts/*/glyphs/unicode", "accessor"],
+			["fonts/*/glyphs/glyphIndex", "accessor"],
+			["fonts/*/glyphs/face", "accessor"],
 			["fonts/*/glyphs/advance", "accessor"],
 			["fonts/*/glyphs/planeBounds", "accessor"],
 			["fonts/*/glyphs/atlasBounds", "accessor"],
@@ -63,7 +65,10 @@ export const REFERENCES = {
 		],
 	},
 	"BAKER_text": {
-		"node": [],
+		"node": [
+			["glyphs/glyph", "accessor"],
+			["glyphs/position", "accessor"],
+		],
 	},
 	"BAKER_thickness": {
 		"material": [],

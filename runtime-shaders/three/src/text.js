@@ -29,7 +29,10 @@ void main() {
 
 const FIELD_TYPES = { sdf: 0, psdf: 1, msdf: 2, mtsdf: 3 };
 
-/** GLTFLoader plugin for BAKER_text: the label's glyph quads drawn with the distance-field shader (outline, glow, shadow). */
+/** GLTFLoader plugin for BAKER_text: the label's glyph quads drawn with the distance-field shader (outline, glow, shadow).
+ * The quads are baker's shaped run (BAKER_text.glyphs: ligatures, bidi, fallback fonts), and glyphs from every font of
+ * the fallback list share the one atlas texture of BAKER_glyph_atlas.fonts[font], so a mixed-script label is one
+ * material and one draw. */
 export class BakerTextPlugin {
 	constructor(parser, options = {}) {
 		this.parser = parser;
