@@ -363,3 +363,30 @@ def test_addon_leaves_the_untouched_look_unchanged(blender_python, baked, tmp_pa
     stock, addon = np.load(stock), np.load(addon)
     assert stock[..., 3].sum() > 100 and stock[..., :3].max() > 0.05, "the render shows nothing"
     np.testing.assert_allclose(addon, stock, atol=1e-6)
+
+
+def test_addon_accessor_table_matches_the_schemas():
+    """The add-on renumbers every accessor an extension references; a path missing from its table would leave a
+    dangling index after export. Its table must name exactly the accessor references that tools/references.mjs
+    derives from the schemas (runtime-shaders/gltf-transform/src/references.js, itself checked against them)."""
+    import importlib.util
+    import re
+
+    refs_path = ROOT / "runtime-shaders" / "blender" / "baker_blender" / "refs.py"
+    spec = importlib.util.spec_from_file_location("baker_blender_refs", refs_path)
+    refs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(refs)  # refs.py is plain Python: no bpy needed
+    generated = (ROOT / "runtime-shaders" / "gltf-transform" / "src" / "references.js").read_text()
+    from_schemas: dict[str, set[str]] = {}
+    extension = None
+    for line in generated.splitlines():
+        head = re.match(r'^\t"([A-Za-z0-9_]+)": \{$', line)
+        if head:
+            extension = head.group(1)
+        entry = re.match(r'^\t\t\t\["([^"]+)", "accessor"', line)
+        if entry:
+            path = entry.group(1).replace("/*/", "[].").replace("/", ".")
+            from_schemas.setdefault(extension, set()).add(path)
+    assert from_schemas, "no accessor reference parsed from references.js"
+    table = {name: set(paths) for name, paths in refs.ACCESSORS.items()}
+    assert table == from_schemas

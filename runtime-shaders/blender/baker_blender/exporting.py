@@ -244,7 +244,11 @@ class Rewriter:
             payload = json.loads(obj[key])
             for node in gltf.get("nodes") or []:
                 if node.get("name") == obj.name:
-                    node.setdefault("extensions", {}).update(copy.deepcopy(payload["extensions"]))
+                    exts = copy.deepcopy(payload["extensions"])
+                    for name, ext in exts.items():
+                        for container, slot, _ in list(refs.accessor_slots(name, ext)):
+                            container[slot] = self.add_accessor(payload["accessors"][str(container[slot])])
+                    node.setdefault("extensions", {}).update(exts)
                     self.used.update(payload["extensions"])
         if not self.used and not self.removed:
             return  # nothing of baker's in this scene: leave Blender's file as it wrote it

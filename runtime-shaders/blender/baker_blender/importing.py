@@ -153,7 +153,11 @@ def import_meshes(gltf_importer, gltf: dict, binary: bytes) -> None:
             continue
         node_exts = {k: v for k, v in (node.get("extensions") or {}).items() if refs.ours(k)}
         if node_exts:
-            obj[PROPERTY + "_node"] = json.dumps({"index": node_index, "extensions": node_exts})
+            accessors = {}
+            for name, ext in node_exts.items():  # BAKER_text's shaped run: glyph and position accessors
+                accessors.update(store_accessors(gltf, binary, name, ext))
+            obj[PROPERTY + "_node"] = json.dumps({"index": node_index, "extensions": node_exts,
+                                                  "accessors": accessors})
         if "mesh" not in node or obj.type != "MESH":
             continue
         mesh_json = gltf["meshes"][node["mesh"]]

@@ -8,10 +8,13 @@ EDGE_VISIBILITY = "EXT_mesh_primitive_edge_visibility"
 # accessor-valued properties; "a.b" = nested object, "a[].b" = each item of an array
 ACCESSORS = {
     "BAKER_edges": ("edges", "oppositeVertices", "flags", "dihedralAngles", "wireframeMask"),
-    EDGE_VISIBILITY: ("visibility", "silhouetteMates"),
-    "BAKER_hair": ("widthScale", "ribbonIndices", "guides.ids", "guides.weights"),
-    "BAKER_glyph_atlas": ("fonts[].glyphs.unicode", "fonts[].glyphs.advance", "fonts[].glyphs.planeBounds",
-                          "fonts[].glyphs.atlasBounds", "fonts[].kerning.pairs", "fonts[].kerning.advance"),
+    EDGE_VISIBILITY: ("visibility", "silhouetteMates", "lineStrings[].indices"),
+    "BAKER_hair": ("widthScale", "ribbonIndices", "guides.ids", "guides.weights", "rootBinding.primitives",
+                   "rootBinding.triangles", "rootBinding.barycentrics"),
+    "BAKER_glyph_atlas": ("fonts[].glyphs.unicode", "fonts[].glyphs.glyphIndex", "fonts[].glyphs.face",
+                          "fonts[].glyphs.advance", "fonts[].glyphs.planeBounds", "fonts[].glyphs.atlasBounds",
+                          "fonts[].kerning.pairs", "fonts[].kerning.advance"),
+    "BAKER_text": ("glyphs.glyph", "glyphs.position"),
 }
 # accessors holding vertex indices of their primitive (remapped by position when Blender renumbers vertices)
 VERTEX_INDEX_ACCESSORS = {("BAKER_edges", "edges"), ("BAKER_edges", "oppositeVertices"),
