@@ -31,7 +31,9 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-BUNNY = ROOT.parent / "shared" / "assets" / "meshes" / "stanford-bunny.obj"
+# the shared assets sit beside the checkout (/work/main) or two levels up (a worktree /work/wt/N)
+BUNNY = next((p / "shared" / "assets" / "meshes" for p in ROOT.parents if (p / "shared" / "assets").is_dir()),
+             ROOT.parent / "shared" / "assets" / "meshes") / "stanford-bunny.obj"
 
 PEERS = {
     "edges": r'''
