@@ -52,10 +52,16 @@ def run(asset: Asset, options: EdgesOptions, seed: int = 0, progress: Progress =
             continue
         v_off = np.cumsum([0] + [len(x[1]) for x in members])
         f_off = np.cumsum([0] + [int(x[3].sum()) for x in members])
-        positions = np.concatenate([x[1] for x in members])
-        faces = np.concatenate([x[2][x[3]] + v_off[i] for i, x in enumerate(members)])
-        # a face's group: its primitive, so faces drawn by different primitives (materials) meet at material edges
-        group = np.repeat(np.arange(len(members)), np.diff(f_off))
+        if len(members) == 1:  # the common large case: no copies, and no material edges to look for
+            positions = members[0][1]
+            faces = members[0][2] if members[0][3].all() else members[0][2][members[0][3]]
+            group = None
+        else:
+            positions = np.concatenate([x[1] for x in members])
+            faces = np.concatenate([x[2][x[3]] + v_off[i] for i, x in enumerate(members)])
+            # a face's group: its primitive, so faces drawn by different primitives (materials) meet at material
+            # edges
+            group = np.repeat(np.arange(len(members)), np.diff(f_off))
         # per-corner attributes only where a primitive has them: no seam work on a mesh without UVs or normals
         has_uv = any("TEXCOORD_0" in (prims[p].get("attributes") or {}) for p, *_ in members)
         has_normals = all("NORMAL" in (prims[p].get("attributes") or {}) for p, *_ in members)
