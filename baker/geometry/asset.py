@@ -15,7 +15,6 @@ from baker.errors import BakerError
 from baker.gltf.compression import NOT_DECODED, decompress
 from baker.gltf.document import GltfDocument
 from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, faces_from_indices, is_derived_fins, to_float
-from baker.geometry.welding import weld
 
 GLTF_SUFFIXES = {".gltf", ".glb"}
 TRIMESH_SUFFIXES = {".obj", ".ply", ".stl"}
@@ -137,6 +136,8 @@ class Asset:
         """Primitives ``primitives`` of ``mesh`` welded into one mesh (cached)."""
         key = ("welded", tuple(self.primitive_key(mesh, p) for p in primitives))
         if key not in self.cache:
+            from baker.geometry.welding import weld  # numba: not loaded by validate/inspect, which never weld
+
             geoms = [self.primitive(mesh, p) for p in primitives]
             positions = np.concatenate([g.positions for g in geoms])
             welded, inverse = weld(positions)

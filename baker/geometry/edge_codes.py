@@ -68,22 +68,31 @@ class EdgeSettings:
 def weld_positions(positions: np.ndarray, tolerance: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
     """Merge vertices that round to the same cell of a grid of ``tolerance`` x the bounding-box diagonal.
 
-    :func:`baker.geometry.welding.weld` (welded vertices numbered by first occurrence); tolerance 0 merges only
-    equal positions.
+    The same cells and the same result as :func:`baker.geometry.welding.weld` (welded vertices numbered by first occurrence),
+    with the three cell coordinates packed into one int64 so the sort is a 1D integer argsort.
     """
     positions = np.asarray(positions, np.float64)
     n = len(positions)
     if n == 0:
         return positions.copy(), np.zeros(0, np.int64)
-    if tolerance > 0:
-        from baker.geometry.welding import weld  # numba: loaded only when a weld runs, not for validation
-
-        return weld(positions, tolerance)
-    # exact positions (tolerance 0): sort rows (values compare, so -0.0 and 0.0 are one position)
-    order = np.lexsort(positions.T[::-1])
-    sorted_rows = positions[order]
-    start = np.ones(n, bool)
-    start[1:] = np.any(sorted_rows[1:] != sorted_rows[:-1], axis=1)
+    diag = float(np.linalg.norm(positions.max(0) - positions.min(0))) or 1.0
+    cell = diag * tolerance if tolerance > 0 else 0.0
+    if cell > 0:
+        keys = np.round(positions / cell).astype(np.int64)
+        keys -= keys.min(0)
+        span = keys.max(0) + 1
+    if cell > 0 and float(span[0]) * float(span[1]) * float(span[2]) < 2.0**62:
+        packed = (keys[:, 0] * span[1] + keys[:, 1]) * span[2] + keys[:, 2]
+        order = np.argsort(packed, kind="stable")
+        sorted_keys = packed[order]
+        start = np.ones(n, bool)
+        start[1:] = sorted_keys[1:] != sorted_keys[:-1]
+    else:  # exact positions (tolerance 0) or a grid too fine for 62 bits: sort rows
+        rows = keys if cell > 0 else positions
+        order = np.lexsort(rows.T[::-1])
+        sorted_rows = rows[order]
+        start = np.ones(n, bool)
+        start[1:] = np.any(sorted_rows[1:] != sorted_rows[:-1], axis=1)
     group = np.cumsum(start) - 1  # group of each sorted vertex; stable sort: a group's first entry is its first use
     first = order[start]
     # number groups by first occurrence in the input, so the order does not depend on coordinates

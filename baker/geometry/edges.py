@@ -36,6 +36,7 @@ from baker.geometry.edge_codes import (  # noqa: F401  (re-exported: the edge vo
     BOUNDARY, CREASE, FLAG_NAMES, INCONSISTENT_WINDING, MATERIAL, NON_MANIFOLD, NORMAL_SEAM, PLANAR, QUAD_DIAGONAL,
     RIDGE, UV_SEAM, VALLEY, VIS_HARD, VIS_HIDDEN, VIS_REPEATED_HARD, VIS_SILHOUETTE, EdgeSettings, pack_visibility,
     unpack_visibility, weld_positions)
+from baker.geometry.welding import weld
 
 # a quad diagonal is opposite an angle of at least this much in both triangles (90 in a rectangle; 60 in an
 # equilateral pair, which therefore keeps its shared edge)
@@ -423,7 +424,9 @@ def analyze_mesh(positions: np.ndarray, faces: np.ndarray, *, face_group: np.nda
     """
     positions = np.asarray(positions, np.float64)
     faces = np.asarray(faces, np.int64)
-    welded, inverse = weld_positions(positions, options.weld_tolerance)
+    # the compiled hash weld (same cells, same numbering as weld_positions, which validation uses without numba)
+    welded, inverse = weld(positions, options.weld_tolerance) if options.weld_tolerance > 0 else \
+        weld_positions(positions, 0.0)
     faces_welded = inverse[faces]
     topology = edge_topology(faces_welded, len(welded))
     classes = classify_edges(welded, faces_welded, topology, crease_angle=options.crease_angle,
