@@ -26,8 +26,11 @@ MIB = 1 << 20
 # Measured (benchmarks/bake_memory.py, peak RSS above a load-only process, slope between 5,856 and 374,784 triangles):
 # thickness 162 B/triangle + 101 MiB (its 1024^2 texture), curvature 244, edges 951 (1,064 between the two larger
 # meshes), skin 108, tam 117, toon 3, fur 1,368; loading 134 B/triangle above a 270 MiB process. The figures below are
-# those, rounded up by about half again.
-PER_TRIANGLE = {"thickness": 250, "curvature": 400, "edges": 1600, "skin": 160, "tam": 180, "toon": 8, "fur": 2000}
+# those, rounded up by about half again. Edges since issue 18 (no UV/normal corner arrays without those attributes, no
+# fin corners unless fins are written, one compiled pass per primitive): 96 B/triangle above the load on Spot (UVs
+# and normals), 450 B/triangle for the whole process on the 4.4M-triangle bunny PLY (benchmarks/scale.py), load
+# included; 400 covers both.
+PER_TRIANGLE = {"thickness": 250, "curvature": 400, "edges": 400, "skin": 160, "tam": 180, "toon": 8, "fur": 2000}
 # fixed cost per bake (kernels, tables, default-size textures), bytes
 FIXED = {"thickness": 110 * MIB, "curvature": 16 * MIB, "edges": 8 * MIB, "skin": 8 * MIB, "tam": 8 * MIB,
          "toon": 4 * MIB, "fur": 16 * MIB}

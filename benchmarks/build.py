@@ -18,8 +18,14 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
+import test_build  # noqa: E402
 from baker.commands.build import build, load_recipe  # noqa: E402
-from test_build import SHARED, make_thirty  # noqa: E402
+from test_build import make_thirty  # noqa: E402
+
+# the shared meshes sit beside the checkout (/work/main) or two levels up (a worktree /work/wt/N)
+SHARED = next((p / "shared" / "assets" / "meshes" for p in ROOT.parents if (p / "shared" / "assets").is_dir()),
+              test_build.SHARED)
+test_build.SHARED = SHARED
 
 
 def main(argv=None) -> int:

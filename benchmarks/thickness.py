@@ -27,7 +27,8 @@ sys.path.insert(0, str(ROOT))
 from baker.geometry.normals import vertex_normals
 from baker.geometry.welding import weld  # noqa: E402
 from baker.geometry.raycast import RayScene
-from baker.techniques.thickness.kernel import _make_rays, hemisphere_samples, local_thickness, morton_order  # noqa: E402
+from baker.techniques.thickness.kernel import (SAMPLERS, _make_rays, hemisphere_samples, local_thickness,  # noqa: E402
+                                               morton_order)
 from common import best_of  # noqa: E402
 
 DEFAULT_MESH = ROOT.parent / "shared" / "assets" / "meshes" / "stanford-bunny.obj"
@@ -75,8 +76,11 @@ def main(argv=None) -> int:
     directions = np.empty((total, 3), np.float32)
     cos_t = np.empty(total)
     order = morton_order(welded)  # the order baker traces in
-    _make_rays(welded[order], -normals[order], hemisphere_samples(rays, 0),
-               np.random.default_rng(0).random((n, 2))[order], True, 1.0, 0.0, 1e-5 * diag, origins, directions, cos_t)
+    rng = np.random.default_rng(0)  # the per-point numbers local_thickness draws for seed 0
+    shifts = rng.random((n, 2))
+    seeds = rng.integers(0, 1 << 32, (n, 2), dtype=np.uint64)
+    _make_rays(welded[order], -normals[order], SAMPLERS.index("hammersley"), hemisphere_samples(rays, 0), shifts[order],
+               seeds[order], True, 1.0, 0.0, 1e-5 * diag, origins, directions, cos_t)
     embreex_scene = RayScene(welded, faces, backend="embreex")
     chunks = [(s, min(total, s + (1 << 19))) for s in range(0, total, 1 << 19)]
     for threads in (1, 2):

@@ -342,10 +342,32 @@ def _payload(root: Path, task: Task) -> dict:
             "files": {rel: (root / rel).read_bytes() for rel in task.inputs}}
 
 
-def _init_worker() -> None:
-    # one process per core: keep each process to one thread of rays and numba
-    os.environ["BAKER_THREADS"] = "1"
-    os.environ["NUMBA_NUM_THREADS"] = "1"
+def worker_threads(jobs: int) -> int:
+    """Kernel threads per worker process: the cores shared out between the jobs (never oversubscribed)."""
+    return max(1, (os.cpu_count() or 1) // max(1, jobs))
+
+
+def _init_worker(threads: int) -> None:
+    os.environ["BAKER_THREADS"] = str(threads)
+    os.environ["NUMBA_NUM_THREADS"] = str(threads)
+
+
+def warm_kernels(bakes) -> None:
+    """Run ``bakes`` once on a small sphere in this process, so numba's on-disk cache holds every compiled kernel
+    before worker processes start: each worker then loads them instead of compiling the same code at once."""
+    import trimesh
+
+    from baker.geometry.asset import Asset
+    from baker.pipeline import bake
+
+    with tempfile.TemporaryDirectory(prefix="baker-warm-") as scratch:
+        path = Path(scratch) / "warm.glb"
+        trimesh.creation.icosphere(2).export(path)
+        options = {"thickness": {"per_texel": False}} if "thickness" in bakes else {}
+        try:
+            bake(Asset.load(path), bakes=list(bakes), options=options)
+        except BakerError:  # a bake that needs more than a plain sphere (e.g. UVs): it compiles in the workers
+            pass
 
 
 def _execute(payloads: list, jobs: int, scheduler: str | None, fail_fast: bool):
@@ -366,9 +388,12 @@ def _execute(payloads: list, jobs: int, scheduler: str | None, fail_fast: bool):
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor, as_completed
 
+        bakes = sorted({b for p in payloads if p["kind"] == "bake" for b in p["bakes"]})
+        if bakes:
+            warm_kernels(bakes)
         # spawn: Embree, numba and OpenImageIO hold threads and state that fork would copy half-way
         with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
-                                 initializer=_init_worker) as pool:
+                                 initializer=_init_worker, initargs=(worker_threads(jobs),)) as pool:
             futures = [pool.submit(run_task, p) for p in payloads]
             for future in as_completed(futures):
                 result = future.result()

@@ -15,7 +15,6 @@ from baker.errors import BakerError
 from baker.gltf.compression import NOT_DECODED, decompress
 from baker.gltf.document import GltfDocument
 from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, faces_from_indices, is_derived_fins, to_float
-from baker.geometry.welding import weld
 
 GLTF_SUFFIXES = {".gltf", ".glb"}
 TRIMESH_SUFFIXES = {".obj", ".ply", ".stl"}
@@ -77,7 +76,7 @@ class Asset:
 
             doc = _doc_from_trimesh_scene(path, read_usd(path))
         else:
-            doc = _doc_from_trimesh_scene(path, _load_trimesh(path))
+            doc = _read_direct(path) or _doc_from_trimesh_scene(path, _load_trimesh(path))
         asset = cls(doc=doc, source=path)
         asset.check_supported()
         asset.check_has_triangles()
@@ -137,6 +136,8 @@ class Asset:
         """Primitives ``primitives`` of ``mesh`` welded into one mesh (cached)."""
         key = ("welded", tuple(self.primitive_key(mesh, p) for p in primitives))
         if key not in self.cache:
+            from baker.geometry.welding import weld  # numba: not loaded by validate/inspect, which never weld
+
             geoms = [self.primitive(mesh, p) for p in primitives]
             positions = np.concatenate([g.positions for g in geoms])
             welded, inverse = weld(positions)
@@ -195,6 +196,26 @@ class Asset:
 def _read_only(array: np.ndarray) -> np.ndarray:
     array.setflags(write=False)
     return array
+
+
+def _read_direct(path: Path) -> GltfDocument | None:
+    """A binary PLY of triangles read straight into a document (:func:`baker.geometry.mesh_files.read_ply_triangles`);
+    None for every other file (trimesh reads it). Positions, normals and UVs the file has are kept as float32; no
+    normals are computed."""
+    from baker.geometry.mesh_files import check_mesh_file, non_finite_location, read_ply_triangles
+
+    if path.suffix.lower() != ".ply":
+        return None
+    check_mesh_file(path)  # header counts against the file size, before anything is allocated
+    arrays = read_ply_triangles(path)
+    if arrays is None:
+        return None
+    indices = arrays.pop("indices")
+    for name, values in arrays.items():
+        if not np.isfinite(values).all():  # float32 already: a double beyond float32 became an infinity
+            where = non_finite_location(path) or f"{name}: NaN, infinite or beyond float32"
+            raise BakerError(path, f"{where} (NaN and infinite coordinates, normals and UVs are refused)")
+    return GltfDocument.from_triangles(path, path.name, arrays, indices, "baker (converted from ply)")
 
 
 def _load_trimesh(path: Path):

@@ -36,6 +36,7 @@ from baker.geometry.edge_codes import (  # noqa: F401  (re-exported: the edge vo
     BOUNDARY, CREASE, FLAG_NAMES, INCONSISTENT_WINDING, MATERIAL, NON_MANIFOLD, NORMAL_SEAM, PLANAR, QUAD_DIAGONAL,
     RIDGE, UV_SEAM, VALLEY, VIS_HARD, VIS_HIDDEN, VIS_REPEATED_HARD, VIS_SILHOUETTE, EdgeSettings, pack_visibility,
     unpack_visibility, weld_positions)
+from baker.geometry.welding import weld
 
 # a quad diagonal is opposite an angle of at least this much in both triangles (90 in a rectangle; 60 in an
 # equilateral pair, which therefore keeps its shared edge)
@@ -276,27 +277,36 @@ def classify_edges(positions: np.ndarray, faces: np.ndarray, topology: EdgeTopol
     return EdgeClasses(flags, angle, int(inconsistent))
 
 
-def _corner_of(faces_welded: np.ndarray, halfedge: np.ndarray, vertex: np.ndarray) -> np.ndarray:
-    """Corner index (0-2) of welded ``vertex`` in the face of each half-edge (one of the half-edge's two ends)."""
-    f, k = halfedge // 3, halfedge % 3
-    return np.where(faces_welded[f, k] == vertex, k, (k + 1) % 3)
+@numba.njit(cache=True, nogil=True)
+def _seams(faces_welded, edges, halfedges, edge_start, corner_values, tolerance, flag, out):
+    """One pass over the manifold edges: ``flag`` where the two faces' corner values differ at either end."""
+    for e in range(edges.shape[0]):
+        if edge_start[e + 1] - edge_start[e] != 2:
+            continue
+        h0, h1 = halfedges[edge_start[e]], halfedges[edge_start[e] + 1]
+        f0, f1 = h0 // 3, h1 // 3
+        for end in range(2):
+            v = edges[e, end]
+            k0 = h0 % 3 if faces_welded[f0, h0 % 3] == v else (h0 % 3 + 1) % 3
+            k1 = h1 % 3 if faces_welded[f1, h1 % 3] == v else (h1 % 3 + 1) % 3
+            for c in range(corner_values.shape[2]):
+                a, b = corner_values[f0, k0, c], corner_values[f1, k1, c]
+                if a != a:  # NaN (no such attribute on this primitive) compares as 0, never a seam by itself
+                    a = 0.0
+                if b != b:
+                    b = 0.0
+                if abs(a - b) > tolerance:
+                    out[e] = flag
+                    break
 
 
 def seam_flags(faces_welded: np.ndarray, topology: EdgeTopology, corner_values: np.ndarray, flag: int,
                tolerance: float = 1e-6) -> np.ndarray:
-    """``flag`` on manifold edges where a per-corner attribute (F, 3, n) differs between the two faces."""
+    """``flag`` on manifold edges where a per-corner attribute (F, 3, n) differs between the two faces (NaN reads
+    as 0)."""
     out = np.zeros(len(topology.edges), np.uint16)
-    h1 = topology.second_halfedge
-    manifold = (topology.face_count == 2) & (h1 >= 0)
-    e = np.flatnonzero(manifold)
-    h0, h1 = topology.first_halfedge[e], h1[e]
-    differs = np.zeros(len(e), bool)
-    for end in (0, 1):
-        v = topology.edges[e, end]
-        a = corner_values[h0 // 3, _corner_of(faces_welded, h0, v)]
-        b = corner_values[h1 // 3, _corner_of(faces_welded, h1, v)]
-        differs |= np.abs(a - b).max(axis=1) > tolerance
-    out[e[differs]] = flag
+    _seams(np.ascontiguousarray(faces_welded, np.int64), topology.edges, topology.halfedges, topology.edge_start,
+           np.ascontiguousarray(corner_values, np.float64), float(tolerance), flag, out)
     return out
 
 
@@ -414,7 +424,9 @@ def analyze_mesh(positions: np.ndarray, faces: np.ndarray, *, face_group: np.nda
     """
     positions = np.asarray(positions, np.float64)
     faces = np.asarray(faces, np.int64)
-    welded, inverse = weld_positions(positions, options.weld_tolerance)
+    # the compiled hash weld (same cells, same numbering as weld_positions, which validation uses without numba)
+    welded, inverse = weld(positions, options.weld_tolerance) if options.weld_tolerance > 0 else \
+        weld_positions(positions, 0.0)
     faces_welded = inverse[faces]
     topology = edge_topology(faces_welded, len(welded))
     classes = classify_edges(welded, faces_welded, topology, crease_angle=options.crease_angle,
@@ -423,7 +435,7 @@ def analyze_mesh(positions: np.ndarray, faces: np.ndarray, *, face_group: np.nda
     if face_group is not None:
         flags |= material_flags(topology, np.asarray(face_group))
     if corner_uv is not None:
-        flags |= seam_flags(faces_welded, topology, np.nan_to_num(corner_uv, nan=0.0), UV_SEAM, 1e-6)
+        flags |= seam_flags(faces_welded, topology, corner_uv, UV_SEAM, 1e-6)
     if corner_normals is not None:
         flags |= seam_flags(faces_welded, topology, corner_normals, NORMAL_SEAM, 1e-4)
     flags |= quad_diagonal_flags(welded, faces_welded, topology, flags, classes.angle, options.quad_angle)
@@ -470,7 +482,8 @@ class PrimitiveEdges:
     flags: np.ndarray  # (E_p,) uint16
     angle: np.ndarray  # (E_p,) float32 signed dihedral angle, radians
     wireframe_mask: np.ndarray  # (F_p,) uint8, bit k set: draw edge (v_k : v_k+1) in the wireframe
-    fin_corners: np.ndarray  # (E_p, 4, 3) positions v0, v1, v2, v3 (v3 = v2 mirrored over the edge when absent)
+    fin_corners: np.ndarray | None  # (E_p, 4, 3) positions v0, v1, v2, v3 (v3 = v2 mirrored over the edge when
+    # absent); None when not asked for
     outline_normals: np.ndarray  # (V_p, 3)
 
 
@@ -479,77 +492,93 @@ def hard_mask(flags: np.ndarray, hard_uv_seams: bool = False) -> np.ndarray:
     return (flags & hard) != 0
 
 
+@numba.njit(cache=True, nogil=True)
+def _primitive_pass(halfedges, edge_start, edge_of_half, faces, hard, silhouette_ok, f_lo, f_hi, v_lo):
+    """One pass over the half-edges of faces [f_lo, f_hi): visibility codes, silhouette mates, and per edge of the
+    primitive (its first half-edge inside, in triangle order) the vertices v0..v3 and the global far vertex."""
+    h_lo, h_hi = 3 * f_lo, 3 * f_hi
+    n_half = h_hi - h_lo
+    codes = np.zeros(n_half, np.uint8)
+    mates = np.empty(n_half, np.int64)
+    rep = np.empty(n_half, np.int64)
+    n_mates = 0
+    n_rep = 0
+    for h in range(h_lo, h_hi):
+        e = edge_of_half[h]
+        s, t = edge_start[e], edge_start[e + 1]
+        first = halfedges[s]
+        inside_first = h
+        for i in range(s, t):  # groups are sorted by h: the first entry inside the range
+            if halfedges[i] >= h_lo and halfedges[i] < h_hi:
+                inside_first = halfedges[i]
+                break
+        is_rep = inside_first == h
+        if is_rep:
+            rep[n_rep] = h
+            n_rep += 1
+        if hard[e]:
+            codes[h - h_lo] = VIS_HARD if is_rep else VIS_REPEATED_HARD
+        elif silhouette_ok[e] and h == first:
+            second = halfedges[s + 1]
+            if first >= h_lo and first < h_hi and second >= h_lo and second < h_hi:
+                codes[h - h_lo] = VIS_SILHOUETTE
+                mates[n_mates] = faces[second // 3, (second % 3 + 2) % 3] - v_lo
+                n_mates += 1
+    rep = rep[:n_rep]
+    corners = np.empty((n_rep, 4), np.int64)  # v0, v1, v2 (local), v3 (local or -1)
+    far = np.empty(n_rep, np.int64)  # the other face's opposite vertex (global), -1 when none
+    for i in range(n_rep):
+        h = rep[i]
+        e = edge_of_half[h]
+        f, k = h // 3, h % 3
+        corners[i, 0] = faces[f, k] - v_lo
+        corners[i, 1] = faces[f, (k + 1) % 3] - v_lo
+        corners[i, 2] = faces[f, (k + 2) % 3] - v_lo
+        s, t = edge_start[e], edge_start[e + 1]
+        far[i] = -1
+        corners[i, 3] = -1
+        if t - s == 2:
+            other = halfedges[s + 1] if halfedges[s] == h else halfedges[s]
+            far[i] = faces[other // 3, (other % 3 + 2) % 3]
+            if other >= h_lo and other < h_hi:
+                corners[i, 3] = far[i] - v_lo
+    return codes, mates[:n_mates], rep, corners, far
+
+
 def primitive_edges(mesh: MeshEdges, face_range: tuple[int, int], vertex_range: tuple[int, int],
-                    options: EdgeSettings = EdgeSettings()) -> PrimitiveEdges:
-    """Per-primitive data for the faces ``face_range`` and vertices ``vertex_range`` of ``mesh``'s input arrays."""
+                    options: EdgeSettings = EdgeSettings(), fins: bool = True) -> PrimitiveEdges:
+    """Per-primitive data for the faces ``face_range`` and vertices ``vertex_range`` of ``mesh``'s input arrays.
+    ``fins``: also the fin corner positions (``fin_corners`` is None without)."""
     f_lo, f_hi = face_range
     v_lo, v_hi = vertex_range
     topo = mesh.topology
     flags = mesh.flags
-    n_faces = f_hi - f_lo
-    h_all = np.arange(3 * f_lo, 3 * f_hi)
-    edge = topo.edge_of_halfedge[h_all]
-    count = topo.face_count
-    h0, h1 = topo.first_halfedge, topo.second_halfedge
-    in_range = (h1 >= 3 * f_lo) & (h1 < 3 * f_hi) & (h0 >= 3 * f_lo) & (h0 < 3 * f_hi)
-
-    # first half-edge of each edge inside this primitive: ``halfedges`` is sorted by h within each edge
-    sorted_h = topo.halfedges
-    inside = (sorted_h >= 3 * f_lo) & (sorted_h < 3 * f_hi)
-    # the first inside entry of each edge group: a running count of inside entries, restarted per group
-    cum = np.cumsum(inside)
-    group_base = np.repeat(cum[topo.edge_start[:-1]] - inside[topo.edge_start[:-1]], count)
-    first_inside = inside & (cum - group_base == 1)
-    rep = sorted_h[first_inside]  # one half-edge per edge of this primitive, grouped by edge id
-    rep = np.sort(rep)  # triangle order
-    rep_edge = topo.edge_of_halfedge[rep]
-
-    # ---- EXT_mesh_primitive_edge_visibility codes
     hard = hard_mask(flags, options.hard_uv_seams)
-    silhouette = (count == 2) & in_range & ~hard & ((flags & PLANAR) == 0)
-    is_rep = np.zeros(3 * n_faces, bool)
-    is_rep[rep - 3 * f_lo] = True
-    codes = np.zeros(3 * n_faces, np.uint8)
-    e_hard = hard[edge]
-    codes[e_hard] = np.where(is_rep[e_hard], VIS_HARD, VIS_REPEATED_HARD)
-    sil_here = silhouette[edge] & (h_all == h0[edge])
-    codes[sil_here] = VIS_SILHOUETTE
-    other = h1[edge[sil_here]]
-    mates = mesh.faces[other // 3, (other % 3 + 2) % 3] - v_lo
+    silhouette_ok = (topo.face_count == 2) & ~hard & ((flags & PLANAR) == 0)
+    codes, mates, rep, corners, far = _primitive_pass(
+        topo.halfedges, topo.edge_start, topo.edge_of_halfedge, np.ascontiguousarray(mesh.faces, np.int64), hard,
+        silhouette_ok, int(f_lo), int(f_hi), int(v_lo))
+    rep_edge = topo.edge_of_halfedge[rep]
+    edges = np.ascontiguousarray(corners[:, :2])
+    opposite = np.ascontiguousarray(corners[:, 2:])
 
-    # ---- edge list with opposite vertices (v0, v1 in the winding of the representative face)
-    f, k = rep // 3, rep % 3
-    faces = mesh.faces
-    v0 = faces[f, k]
-    v1 = faces[f, (k + 1) % 3]
-    v2 = faces[f, (k + 2) % 3]
-    other_h = np.where(rep == h0[rep_edge], h1[rep_edge], h0[rep_edge])
-    has_other = (count[rep_edge] == 2) & (other_h >= 0)
-    other_h = np.where(has_other, other_h, 0)
-    v3_global = faces[other_h // 3, (other_h % 3 + 2) % 3]
-    v3_here = has_other & (other_h >= 3 * f_lo) & (other_h < 3 * f_hi)
-    v3 = np.where(v3_here, v3_global - v_lo, -1)
-    edges = np.stack([v0 - v_lo, v1 - v_lo], axis=1)
-    opposite = np.stack([v2 - v_lo, v3], axis=1)
-
-    # ---- fin corners: positions; a missing far face is replaced by v2 mirrored across the edge (a flat fold)
-    positions = mesh.welded[mesh.vertex_to_welded]
-    p0, p1, p2 = positions[v0], positions[v1], positions[v2]
-    axis = p1 - p0
-    t = np.einsum("ij,ij->i", p2 - p0, axis) / np.maximum(np.einsum("ij,ij->i", axis, axis), 1e-300)
-    foot = p0 + axis * t[:, None]
-    p3 = np.where(has_other[:, None], positions[v3_global], 2.0 * foot - p2)
-    fins = np.stack([p0, p1, p2, p3], axis=1)
+    fin_corners = None
+    if fins:  # positions; a missing far face is replaced by v2 mirrored across the edge (a flat fold)
+        to_welded = mesh.vertex_to_welded
+        p0, p1, p2 = (mesh.welded[to_welded[corners[:, c] + v_lo]] for c in range(3))
+        axis = p1 - p0
+        t = np.einsum("ij,ij->i", p2 - p0, axis) / np.maximum(np.einsum("ij,ij->i", axis, axis), 1e-300)
+        foot = p0 + axis * t[:, None]
+        has_other = far >= 0
+        p3 = np.where(has_other[:, None], mesh.welded[to_welded[np.where(has_other, far, 0)]], 2.0 * foot - p2)
+        fin_corners = np.stack([p0, p1, p2, p3], axis=1)
 
     # ---- wireframe mask (Baerentzen et al.): hide quad diagonals or every planar edge
+    edge = topo.edge_of_halfedge[3 * f_lo: 3 * f_hi]
     hide_bits = {"quad-diagonals": QUAD_DIAGONAL, "planar": PLANAR | QUAD_DIAGONAL}.get(options.wireframe, 0)
     drawn = ((flags[edge] & hide_bits) == 0) | hard[edge]
-    wire = (drawn.reshape(-1, 3) * np.array([1, 2, 4])).sum(axis=1).astype(np.uint8)
+    wire = (drawn.reshape(-1, 3) * np.array([1, 2, 4], np.uint8)).sum(axis=1, dtype=np.uint8)
 
-    return PrimitiveEdges(codes.reshape(-1, 3), mates.astype(np.int64), edges, opposite, flags[rep_edge],
-                          mesh.angle[rep_edge].astype(np.float32), wire, fins,
+    return PrimitiveEdges(codes.reshape(-1, 3), mates, edges, opposite, flags[rep_edge],
+                          mesh.angle[rep_edge].astype(np.float32), wire, fin_corners,
                           mesh.outline_normals[v_lo:v_hi])
-
-
-
-

@@ -1,4 +1,5 @@
-"""Checks on OBJ, PLY and STL files that run before (and after) trimesh reads them.
+"""Checks on OBJ, PLY and STL files that run before (and after) trimesh reads them, and a direct reader for the
+common large case (a binary PLY of triangles: scans, sculpts, subdivided meshes).
 
 Before: a count written in a header is not trusted. A PLY header's element counts and a binary STL's triangle count
 are compared with the size of the file; a count the file cannot hold (``element vertex 1000000000000`` in a 200-byte
@@ -32,6 +33,7 @@ class PlyElement:
     count: int
     scalars: list = field(default_factory=list)  # (name, byte size)
     lists: list = field(default_factory=list)  # (name, count byte size, item byte size)
+    types: dict = field(default_factory=dict)  # property name -> PLY type name, or (count type, item type) of a list
 
     def min_bytes(self, binary: bool) -> int:
         """The fewest bytes one element can take: every scalar, and every list empty (its count only). In ASCII,
@@ -99,8 +101,10 @@ def read_ply_header(path: Path) -> PlyHeader:
                 if words[2] not in PLY_TYPES or words[3] not in PLY_TYPES:
                     raise BakerError(path, f"{where}: unknown list type in {line.strip()!r}")
                 elements[-1].lists.append((words[4], PLY_TYPES[words[2]], PLY_TYPES[words[3]]))
+                elements[-1].types[words[4]] = (words[2], words[3])
             elif len(words) == 3 and words[1] in PLY_TYPES:
                 elements[-1].scalars.append((words[2], PLY_TYPES[words[1]]))
+                elements[-1].types[words[2]] = words[1]
             else:
                 raise BakerError(path, f"{where}: cannot read property {line.strip()!r}")
     if fmt is None:
@@ -140,6 +144,69 @@ def check_stl(path: Path) -> dict:
     problem = "truncated file or a corrupt count" if needed > size else "trailing data or a corrupt count"
     raise BakerError(path, f"binary STL header says {count} triangles ({needed} bytes) but the file has {size} "
                            f"bytes: {problem}")
+
+
+# ---------------------------------------------------------------------------------------------------------- reading
+PLY_DTYPES = {"char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
+              "ushort": "u2", "uint16": "u2", "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4",
+              "float": "f4", "float32": "f4", "double": "f8", "float64": "f8"}
+PLY_VERTEX_GROUPS = {"POSITION": ("x", "y", "z"), "NORMAL": ("nx", "ny", "nz")}
+PLY_UV_NAMES = (("s", "t"), ("u", "v"), ("texture_u", "texture_v"))
+PLY_FACE_LISTS = ("vertex_indices", "vertex_index")
+
+
+def read_ply_triangles(path, header: PlyHeader | None = None) -> dict | None:
+    """A binary PLY holding only vertices (positions, optionally normals and one UV pair) and triangles, read with
+    one ``numpy.frombuffer`` per element: ``{"POSITION": (n, 3) float32, "NORMAL": ..., "TEXCOORD_0": ...,
+    "indices": (3m,) uint32}`` with only what the file has, or None when the file holds anything else (ASCII, other
+    properties such as colors, polygons, strips, other elements): that file goes through trimesh, which keeps it.
+    The header is checked (:func:`check_ply`) first; indices are checked against the vertex count here."""
+    import numpy as np
+
+    path = Path(path)
+    header = header or check_ply(path)
+    if not header.binary or [e.name for e in header.elements] != ["vertex", "face"]:
+        return None
+    vertex, face = header.elements
+    if vertex.lists or face.scalars or len(face.lists) != 1 or face.lists[0][0] not in PLY_FACE_LISTS:
+        return None
+    names = [n for n, _ in vertex.scalars]
+    wanted = {group: cols for group, cols in PLY_VERTEX_GROUPS.items() if all(c in names for c in cols)}
+    uv = next((pair for pair in PLY_UV_NAMES if all(c in names for c in pair)), None)
+    used = {c for cols in wanted.values() for c in cols} | set(uv or ())
+    if "POSITION" not in wanted or used != set(names) or len(names) != len(set(names)):
+        return None  # another vertex property (colors, quality, ...): trimesh keeps it
+    order = ">" if header.format == "binary_big_endian" else "<"
+    vertex_dtype = np.dtype([(n, order + PLY_DTYPES[vertex.types[n]]) for n in names])
+    count_name, index_name = face.types[face.lists[0][0]]
+    if PLY_DTYPES[index_name][0] == "f" or PLY_DTYPES[count_name][0] == "f":
+        return None
+    face_dtype = np.dtype([("n", order + PLY_DTYPES[count_name]), ("v", order + PLY_DTYPES[index_name], 3)])
+    with open(path, "rb") as f:
+        f.seek(header.header_bytes)
+        vertex_data = f.read(vertex_dtype.itemsize * vertex.count)
+        face_bytes = face_dtype.itemsize * face.count
+        face_data = f.read(face_bytes)
+    if len(vertex_data) < vertex_dtype.itemsize * vertex.count:
+        raise BakerError(path, "binary PLY is truncated inside its vertex element")
+    if len(face_data) < face_bytes:
+        return None  # not all triangles (or truncated): trimesh's reader decides
+    faces = np.frombuffer(face_data, face_dtype, count=face.count)
+    if face.count and not (faces["n"] == 3).all():
+        return None  # polygons: trimesh triangulates them
+    vertices = np.frombuffer(vertex_data, vertex_dtype, count=vertex.count)
+    with np.errstate(over="ignore"):  # a double beyond float32 becomes an infinity, which the caller refuses
+        out = {group: np.column_stack([vertices[c] for c in cols]).astype(np.float32) for group, cols in wanted.items()}
+        if uv is not None:
+            out["TEXCOORD_0"] = np.column_stack([vertices[uv[0]], 1.0 - vertices[uv[1]].astype(np.float64)]) \
+                .astype(np.float32)  # PLY's t runs up, glTF's v runs down (as trimesh converts it)
+    del vertices, vertex_data
+    indices = faces["v"].reshape(-1)
+    if len(indices) and (int(indices.min()) < 0 or int(indices.max()) >= vertex.count):
+        bad = int(np.argmax((indices < 0) | (indices >= vertex.count))) // 3
+        raise BakerError(path, f"face {bad}: vertex index out of range ({vertex.count} vertices)")
+    out["indices"] = indices.astype(np.uint32)
+    return out
 
 
 # ---------------------------------------------------------------------------------------------------------- numbers

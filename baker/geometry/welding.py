@@ -1,7 +1,51 @@
-"""Welding: one vertex per position, so split copies (UV, normal or primitive seams) agree."""
+"""Welding: one vertex per position, so split copies (UV, normal or primitive seams) agree.
+
+Vertices are merged when they round to the same cell of a grid of ``tolerance`` x the bounding-box diagonal. One
+compiled pass over the vertices with an open-addressing hash table of the cells (O(n), no sort): a 17.8M-triangle
+scan welds in about a second, where sorting the cells (``np.unique(axis=0)``) took tens.
+"""
 from __future__ import annotations
 
+import numba
 import numpy as np
+
+
+@numba.njit(cache=True, nogil=True)
+def _weld_cells(keys, table):
+    """Welded id of each row of ``keys`` (n, 3) int64 cells, numbered by first occurrence, and the first row of each
+    id. Linear probing in ``table`` (2^k slots filled with -1, at least twice the rows, so probes stay short)."""
+    n = keys.shape[0]
+    mask = np.uint64(table.shape[0] - 1)
+    first = np.empty(n, np.int64)
+    inverse = np.empty(n, np.int64)
+    count = 0
+    for i in range(n):
+        a, b, c = keys[i, 0], keys[i, 1], keys[i, 2]
+        h = (np.uint64(a) * np.uint64(0x9E3779B97F4A7C15)) ^ (np.uint64(b) * np.uint64(0xC2B2AE3D27D4EB4F)) \
+            ^ (np.uint64(c) * np.uint64(0x165667B19E3779F9))
+        slot = (h ^ (h >> np.uint64(29))) & mask
+        while True:
+            w = table[slot]
+            if w < 0:
+                table[slot] = count
+                first[count] = i
+                inverse[i] = count
+                count += 1
+                break
+            j = first[w]
+            if keys[j, 0] == a and keys[j, 1] == b and keys[j, 2] == c:
+                inverse[i] = w
+                break
+            slot = (slot + np.uint64(1)) & mask
+    return first[:count].copy(), inverse
+
+
+def weld_cells(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(first row of each distinct row of ``keys``, id of each row), ids numbered by first occurrence."""
+    keys = np.ascontiguousarray(keys, np.int64)
+    slots = 1 << max(4, int(2 * len(keys)).bit_length())
+    table = np.full(slots, -1, np.int32 if len(keys) < 2**31 - 1 else np.int64)
+    return _weld_cells(keys, table)
 
 
 def weld(positions: np.ndarray, tolerance: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
@@ -13,11 +57,5 @@ def weld(positions: np.ndarray, tolerance: float = 1e-6) -> tuple[np.ndarray, np
     if len(positions) == 0:
         return positions.copy(), np.zeros(0, np.int64)
     diag = float(np.linalg.norm(positions.max(0) - positions.min(0))) or 1.0
-    keys = np.round(positions / (diag * tolerance)).astype(np.int64)
-    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    inverse = inverse.reshape(-1)
-    # renumber by first occurrence so the order does not depend on coordinates' sort order
-    order = np.argsort(first, kind="stable")
-    rank = np.empty_like(order)
-    rank[order] = np.arange(len(order))
-    return positions[first[order]], rank[inverse]
+    first, inverse = weld_cells(np.round(positions / (diag * tolerance)).astype(np.int64))
+    return positions[first], inverse

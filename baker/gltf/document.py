@@ -95,6 +95,21 @@ class GltfDocument:
         doc._read_external_images()
         return doc
 
+    @classmethod
+    def from_triangles(cls, path, name: str, attributes: dict, indices: np.ndarray, generator: str) -> "GltfDocument":
+        """A one-mesh, one-node document holding a triangle primitive: ``attributes`` maps glTF attribute names to
+        (n, k) arrays (float32 stays float32), ``indices`` is (3m,) uint32. Built straight from a mesh file's arrays:
+        no exporter round trip, and nothing the file did not have (no computed normals)."""
+        doc = cls(json={"asset": {"version": "2.0", "generator": generator}, "scene": 0,
+                        "scenes": [{"nodes": [0]}], "nodes": [{"name": name, "mesh": 0}]}, path=Path(path))
+        prim = {"attributes": {}, "mode": 4}
+        prim["indices"] = doc.add_accessor(np.asarray(indices, np.uint32), target=TARGET_ELEMENT_ARRAY_BUFFER,
+                                           min_max=True)
+        for key, values in attributes.items():
+            prim["attributes"][key] = doc.add_accessor(values, min_max=key == "POSITION")
+        doc.json["meshes"] = [{"name": name, "primitives": [prim]}]
+        return doc
+
     def _resolve_uri(self, uri: str, ptr: str) -> bytes:
         if uri[:5].lower() == "data:":
             try:

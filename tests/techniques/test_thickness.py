@@ -9,7 +9,7 @@ import trimesh
 
 import baker
 from baker.geometry.raycast import RayScene
-from baker.techniques.thickness.kernel import _make_rays, hemisphere_samples, local_thickness
+from baker.techniques.thickness.kernel import SAMPLERS, _make_rays, hemisphere_samples, local_thickness
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import decode_image
 from baker.pipeline import save
@@ -65,21 +65,24 @@ def test_misses_count_as_max_distance():
     assert values[0] == pytest.approx(7.5)
 
 
+@pytest.mark.parametrize("sampler", SAMPLERS)
 @pytest.mark.parametrize("distribution", ["cosine", "uniform"])
-def test_ray_directions_follow_their_distribution(distribution):
+def test_ray_directions_follow_their_distribution(distribution, sampler):
     axes = np.array([[0.0, 0.0, -1.0]])
     samples = hemisphere_samples(4096, 0)
     origins = np.empty((4096, 3), np.float32)
     d = np.empty((4096, 3), np.float32)
     cos_t = np.empty(4096)
-    _make_rays(np.zeros((1, 3)), axes, samples, np.zeros((1, 2)), distribution == "cosine", 1.0, 0.0, 0.0,
-               origins, d, cos_t)
+    _make_rays(np.zeros((1, 3)), axes, SAMPLERS.index(sampler), samples, np.zeros((1, 2)),
+               np.array([[12345, 678910]], np.uint64), distribution == "cosine", 1.0, 0.0, 0.0, origins, d, cos_t)
     assert np.allclose(np.linalg.norm(d, axis=-1), 1.0, atol=1e-6)
     cos_along = -d[:, 2]
     assert np.allclose(cos_along, cos_t, atol=1e-6)
     assert cos_along.min() >= -1e-6
-    # E[cos] is 2/3 for cosine-weighted and 1/2 for uniform directions on the hemisphere
-    assert cos_along.mean() == pytest.approx(2 / 3 if distribution == "cosine" else 0.5, abs=2e-3)
+    # E[cos] is 2/3 for cosine-weighted and 1/2 for uniform directions on the hemisphere; 4096 independent random
+    # rays estimate it within ~0.004 (one standard deviation), the stratified patterns far closer
+    tolerance = 0.015 if sampler == "random" else 2e-3
+    assert cos_along.mean() == pytest.approx(2 / 3 if distribution == "cosine" else 0.5, abs=tolerance)
 
 
 def _box_mean_chord(half: np.ndarray, origin: np.ndarray, axis: int, sign: float, n: int = 1500) -> float:

@@ -52,20 +52,31 @@ def run(asset: Asset, options: EdgesOptions, seed: int = 0, progress: Progress =
             continue
         v_off = np.cumsum([0] + [len(x[1]) for x in members])
         f_off = np.cumsum([0] + [int(x[3].sum()) for x in members])
-        positions = np.concatenate([x[1] for x in members])
-        faces = np.concatenate([x[2][x[3]] + v_off[i] for i, x in enumerate(members)])
-        # a face's group: its primitive, so faces drawn by different primitives (materials) meet at material edges
-        group = np.repeat(np.arange(len(members)), np.diff(f_off))
-        uv = np.concatenate([_corner_attribute(asset, prims[p], "TEXCOORD_0", t[k], 2) for p, _, t, k in members])
-        normals = np.concatenate([_corner_attribute(asset, prims[p], "NORMAL", t[k], 3) for p, _, t, k in members])
+        if len(members) == 1:  # the common large case: no copies, and no material edges to look for
+            positions = members[0][1]
+            faces = members[0][2] if members[0][3].all() else members[0][2][members[0][3]]
+            group = None
+        else:
+            positions = np.concatenate([x[1] for x in members])
+            faces = np.concatenate([x[2][x[3]] + v_off[i] for i, x in enumerate(members)])
+            # a face's group: its primitive, so faces drawn by different primitives (materials) meet at material
+            # edges
+            group = np.repeat(np.arange(len(members)), np.diff(f_off))
+        # per-corner attributes only where a primitive has them: no seam work on a mesh without UVs or normals
+        has_uv = any("TEXCOORD_0" in (prims[p].get("attributes") or {}) for p, *_ in members)
         has_normals = all("NORMAL" in (prims[p].get("attributes") or {}) for p, *_ in members)
+        uv = np.concatenate([_corner_attribute(asset, prims[p], "TEXCOORD_0", t[k], 2) for p, _, t, k in members]) \
+            if has_uv else None
+        normals = np.concatenate([_corner_attribute(asset, prims[p], "NORMAL", t[k], 3) for p, _, t, k in members]) \
+            if has_normals else None
         with progress.task(f"edges mesh {m}", 1) as advance:
-            analysis = analyze_mesh(positions, faces, face_group=group, corner_uv=uv,
-                                    corner_normals=normals if has_normals else None, options=options)
+            analysis = analyze_mesh(positions, faces, face_group=group, corner_uv=uv, corner_normals=normals,
+                                    options=options)
             advance(1)
+        del uv, normals, positions, faces, group
         for i, (p, pos, triangles, keep) in enumerate(members):
             pe = primitive_edges(analysis, (int(f_off[i]), int(f_off[i + 1])), (int(v_off[i]), int(v_off[i + 1])),
-                                 options)
+                                 options, fins=options.fins)
             # back to every triangle of the primitive (repeated-index triangles: hidden, not in the wireframe)
             codes = np.zeros((len(triangles), 3), np.uint8)
             codes[keep] = pe.visibility_codes

@@ -66,6 +66,7 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, max_
     ext = {
         "rays": int(options.rays),
         "distribution": options.distribution,
+        "sampler": options.sampler,
         "spreadAngle": math.radians(options.spread),
         "maxDistance": float(max_distance),
         "bias": float(bias),

@@ -29,7 +29,8 @@ def run(asset: Asset, options: ThicknessOptions, seed: int = 0, progress: Progre
         with progress.task(label, len(points)) as advance:
             return local_thickness(scenes[mesh], points, normals, rays=options.rays,
                                    distribution=options.distribution, spread=options.spread,
-                                   max_distance=max_distance, bias=bias, seed=seed, progress=advance)
+                                   max_distance=max_distance, bias=bias, seed=seed, sampler=options.sampler,
+                                   progress=advance)
 
     groups = material_groups(asset)  # also gives material-less primitives a default material
     sums = {mat: [0.0, 0] for mat in groups}
