@@ -23,7 +23,6 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from baker.cli import main as baker_main
 from baker.gltf.document import GltfDocument
