@@ -1,4 +1,5 @@
 // BAKER_text: a label's glyph quads drawn with the distance-field shader (outline, glow, shadow; RTR4 15.5).
+import { textFieldType, textShadowOffset, textStyle as sharedTextStyle } from '@baker/shared';
 import { BAKER_TEXT, bakerShaderMaterial, controls, requireShader } from './common.js';
 import { premultiplied } from './geometry.js';
 import { glyphAtlasFont } from './glyph_atlas.js';
@@ -41,27 +42,9 @@ void main() {
 	gl_FragColor = color;  // premultiplied
 }`;
 
-const FIELD_TYPES = { sdf: 0, psdf: 1, msdf: 2, mtsdf: 3 };
-
 /** BAKER_text style in atlas pixels (em x font size), the extension's defaults filled in, the outline capped by the range. */
 export function textStyle(ext, font) {
-	const size = font.size ?? 32;
-	const rgba = (a, d) => (a ?? d).concat([1, 1, 1, 1]).slice(0, 4);
-	const style = {
-		color: rgba(ext.color, [1, 1, 1, 1]), softness: ext.softness ?? 0,
-		outlineColor: rgba(ext.outline?.color, [0, 0, 0, 1]), outlineWidth: (ext.outline?.width ?? 0) * size,
-		glowColor: rgba(ext.glow?.color, [1, 1, 1, 0]), glowWidth: (ext.glow?.width ?? 0) * size,
-		shadowColor: rgba(ext.shadow?.color, [0, 0, 0, 0]), shadowSoftness: (ext.shadow?.softness ?? 0) * size,
-	};
-	if (!ext.shadow) style.shadowColor[3] = 0;
-	// the field saturates half a range outside the glyph: a wider outline would fill the whole quad
-	const widest = 0.5 * (font.distanceRange ?? 4) - 0.5;
-	if (style.outlineWidth > widest) {
-		console.warn(`@baker/babylon: BAKER_text outline (${style.outlineWidth.toFixed(2)} atlas px) is wider than the ` +
-			`atlas distance range allows; drawn ${widest} px wide`);
-		style.outlineWidth = widest;
-	}
-	return style;
+	return sharedTextStyle(ext, font, '@baker/babylon');
 }
 
 /** Loader extension for BAKER_text: each label node's quads get the distance-field material; off: glTF's alpha-tested fallback. */
@@ -85,9 +68,8 @@ export class BakerTextExtension {
 			const atlas = await glyphAtlasFont(loader, ext.font ?? 0);
 			if (!atlas) continue;
 			const { font, texture } = atlas;
-			const size = font.size ?? 32;
 			const style = textStyle(ext, font);
-			const offset = ext.shadow?.offset ?? [0, 0];
+			const offset = textShadowOffset(ext, font);
 			const material = premultiplied(bakerShaderMaterial('baker MSDF text', scene, {
 				vertex: TEXT_VERTEX, fragment: requireShader(this.shaders, 'text') + TEXT_FRAGMENT,
 				attributes: ['position', 'uv'], samplers: ['u_atlas'], alpha: true,
@@ -99,9 +81,9 @@ export class BakerTextExtension {
 				if (Array.isArray(v)) material.setVector4(`u_${f}`, { x: v[0], y: v[1], z: v[2], w: v[3] });
 				else material.setFloat(`u_${f}`, v);
 			}
-			material.setInt('u_fieldType', FIELD_TYPES[font.type] ?? 2);
+			material.setInt('u_fieldType', textFieldType(font));
 			material.setFloat('u_distanceRange', font.distanceRange ?? 4);
-			material.setVector2('u_shadowOffset', { x: offset[0] * size / (font.width ?? 1), y: offset[1] * size / (font.height ?? 1) });
+			material.setVector2('u_shadowOffset', { x: offset[0], y: offset[1] });
 			material.backFaceCulling = false;
 			for (const mesh of node._primitiveBabylonMeshes) {
 				const fallback = mesh.material; // glTF's alpha-tested single-channel field

@@ -1,19 +1,10 @@
 // BAKER_thickness: back-lit translucency from the baked per-vertex thickness (GDC 2011 form of RTR4 eq. 14.30).
+import { thicknessParameters } from '@baker/shared';
 import { firstComponent, requireShader, setAttribute, BAKER_THICKNESS } from './common.js';
 import { surfaceExtension } from './surface.js';
 
-/** Translucency parameters of a material's BAKER_thickness, with the extension's defaults filled in. */
-export function thicknessParameters(ext) {
-	return {
-		attenuationDistance: ext.attenuationDistance ?? ext.meanThickness ?? 1,
-		distortion: ext.distortion ?? 0.2,
-		power: ext.power ?? 4,
-		scale: ext.scale ?? 1,
-		ambient: ext.ambient ?? 0,
-		subsurfaceColor: (ext.subsurfaceColor ?? [1, 1, 1]).slice(0, 3),
-		attribute: ext.attribute ?? null,
-	};
-}
+// the extension's parameters with defaults are engine-neutral (@baker/shared)
+export { thicknessParameters };
 
 /** Loader extension for BAKER_thickness; options.thickness overrides the parameters ({ power, scale, ... }). */
 export const BakerThicknessExtension = surfaceExtension('translucency', BAKER_THICKNESS, async function (ext, mesh, primitive) {

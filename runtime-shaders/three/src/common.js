@@ -3,80 +3,16 @@
 // viewport uniform). Not an entry point: import from index.js.
 import * as THREE from 'three';
 
-export const BAKER_THICKNESS = 'BAKER_thickness';
-export const BAKER_CURVATURE = 'BAKER_curvature';
-export const BAKER_SKIN_LUT = 'BAKER_skin_lut';
-export const BAKER_EDGES = 'BAKER_edges';
-export const BAKER_TONAL_ART_MAP = 'BAKER_tonal_art_map';
-export const BAKER_TOON_RAMP = 'BAKER_toon_ramp';
-export const BAKER_GLYPH_ATLAS = 'BAKER_glyph_atlas';
-export const BAKER_TEXT = 'BAKER_text';
-export const BAKER_HAIR = 'BAKER_hair';
-export const BAKER_FUR = 'BAKER_fur';
+import { shaderText } from '@baker/shared';
 
-/** Techniques (switch names) and the extension each comes from. Techniques off by default are debug views. */
-export const TECHNIQUES = {
-	translucency: { extension: BAKER_THICKNESS, label: 'translucency' },
-	skin: { extension: BAKER_SKIN_LUT, label: 'pre-integrated skin' },
-	toon: { extension: BAKER_TOON_RAMP, label: 'toon ramp' },
-	tam: { extension: BAKER_TONAL_ART_MAP, label: 'hatching (TAM)' },
-	fins: { extension: BAKER_EDGES, label: 'edge fins' },
-	outline: { extension: BAKER_EDGES, label: 'shell outline' },
-	wireframe: { extension: BAKER_EDGES, label: 'wireframe', defaultOff: true },
-	fur: { extension: BAKER_FUR, label: 'fur shells + fins' },
-	hair: { extension: BAKER_HAIR, label: 'hair ribbons' },
-	text: { extension: BAKER_TEXT, label: 'MSDF text' },
-	curvature: { extension: BAKER_CURVATURE, label: 'curvature view', defaultOff: true },
-};
-
-const GLSL_NAMES = {
-	translucency: 'baker_translucency.glsl', skin: 'baker_skin.glsl', toon: 'baker_toon.glsl',
-	hatching: 'baker_hatching.glsl', edges: 'baker_edges.glsl', fur: 'baker_fur.glsl', hair: 'baker_hair.glsl',
-	text: 'baker_text.glsl',
-};
-
-// ------------------------------------------------------------------------------------------------ shared state
-// One registry per loaded asset (parser): every plugin adds its technique's on/off handler to it; afterRoot of the
-// last plugin publishes it as gltf.userData.baker.
-class BakerControls {
-	constructor() {
-		this.found = [];           // names, in discovery order
-		this.handlers = new Map(); // name -> [fn(on)]
-		this.enabled = new Map();
-	}
-	add(name, handler) {
-		if (!this.handlers.has(name)) {
-			this.handlers.set(name, []);
-			this.found.push(name);
-			this.enabled.set(name, !TECHNIQUES[name]?.defaultOff);
-		}
-		this.handlers.get(name).push(handler);
-		handler(this.enabled.get(name));
-	}
-	/** The techniques found, in the order of TECHNIQUES (plugins finish in any order). */
-	get techniques() {
-		const order = Object.keys(TECHNIQUES);
-		return [...this.found].sort((a, b) => order.indexOf(a) - order.indexOf(b));
-	}
-	has(name) { return this.handlers.has(name); }
-	isEnabled(name) { return Boolean(this.enabled.get(name)); }
-	setEnabled(name, on) {
-		if (!this.handlers.has(name)) return;
-		this.enabled.set(name, Boolean(on));
-		for (const fn of this.handlers.get(name)) fn(Boolean(on));
-	}
-}
-
-const controlsOf = new WeakMap();
-export function controls(parser) {
-	if (!controlsOf.has(parser)) controlsOf.set(parser, new BakerControls());
-	return controlsOf.get(parser);
-}
+// the extension names, TECHNIQUES and the switch registry are engine-neutral: @baker/shared, re-exported here
+export {
+	BAKER_THICKNESS, BAKER_CURVATURE, BAKER_SKIN_LUT, BAKER_EDGES, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
+	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, TECHNIQUES, BakerControls, controls,
+} from '@baker/shared';
 
 export function requireShader(shaders, key) {
-	const glsl = shaders[key];
-	if (!glsl) throw new Error(`@baker/three: options.shaders.${key} (runtime-shaders/${GLSL_NAMES[key]} as text) is missing`);
-	return glsl;
+	return shaderText(shaders, key, '@baker/three');
 }
 
 export function materialsOf(object) {

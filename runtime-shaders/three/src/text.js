@@ -1,5 +1,6 @@
 // BAKER_text: a label's glyph quads drawn with the distance-field shader (outline, glow, shadow).
 import * as THREE from 'three';
+import { textFieldType, textShadowOffset, textStyle } from '@baker/shared';
 import { BAKER_TEXT, controls, requireShader } from './common.js';
 import { BakerGlyphAtlasPlugin } from './glyph_atlas.js';
 
@@ -27,8 +28,6 @@ void main() {
 	gl_FragColor = color;  // premultiplied
 }`;
 
-const FIELD_TYPES = { sdf: 0, psdf: 1, msdf: 2, mtsdf: 3 };
-
 /** GLTFLoader plugin for BAKER_text: the label's glyph quads drawn with the distance-field shader (outline, glow, shadow).
  * The quads are baker's shaped run (BAKER_text.glyphs: ligatures, bidi, fallback fonts), and glyphs from every font of
  * the fallback list share the one atlas texture of BAKER_glyph_atlas.fonts[font], so a mixed-script label is one
@@ -54,27 +53,14 @@ export class BakerTextPlugin {
 			const atlas = await this.atlas.font(ext.font ?? 0);
 			if (!atlas) continue;
 			const { font, texture } = atlas;
-			const size = font.size ?? 32;
-			const rgba = (a, d) => new THREE.Vector4(...(a ?? d).concat([1, 1, 1, 1]).slice(0, 4));
-			const style = {
-				color: rgba(ext.color, [1, 1, 1, 1]), softness: ext.softness ?? 0,
-				outlineColor: rgba(ext.outline?.color, [0, 0, 0, 1]), outlineWidth: (ext.outline?.width ?? 0) * size,
-				glowColor: rgba(ext.glow?.color, [1, 1, 1, 0]), glowWidth: (ext.glow?.width ?? 0) * size,
-				shadowColor: rgba(ext.shadow?.color, [0, 0, 0, 0]), shadowSoftness: (ext.shadow?.softness ?? 0) * size,
-			};
-			if (!ext.shadow) style.shadowColor.w = 0;
-			// the field saturates half a range outside the glyph: a wider outline would fill the whole quad
-			const widest = 0.5 * (font.distanceRange ?? 4) - 0.5;
-			if (style.outlineWidth > widest) {
-				console.warn(`@baker/three: BAKER_text outline (${style.outlineWidth.toFixed(2)} atlas px) is wider than the ` +
-					`atlas distance range allows; drawn ${widest} px wide`);
-				style.outlineWidth = widest;
-			}
-			const offset = ext.shadow?.offset ?? [0, 0];
+			// the BakerTextStyle struct: the shared style with its [r, g, b, a] colours as vec4 values
+			const style = textStyle(ext, font, '@baker/three');
+			for (const key of ['color', 'outlineColor', 'glowColor', 'shadowColor']) style[key] = new THREE.Vector4(...style[key]);
+			const offset = textShadowOffset(ext, font);
 			const uniforms = {
-				u_atlas: { value: texture }, u_style: { value: style }, u_fieldType: { value: FIELD_TYPES[font.type] ?? 2 },
+				u_atlas: { value: texture }, u_style: { value: style }, u_fieldType: { value: textFieldType(font) },
 				u_distanceRange: { value: font.distanceRange ?? 4 },
-				u_shadowOffset: { value: new THREE.Vector2(offset[0] * size / (font.width ?? 1), offset[1] * size / (font.height ?? 1)) },
+				u_shadowOffset: { value: new THREE.Vector2(...offset) },
 			};
 			const material = new THREE.ShaderMaterial({
 				name: 'baker MSDF text', uniforms, vertexShader: TEXT_VERTEX,

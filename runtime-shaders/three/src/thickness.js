@@ -1,21 +1,11 @@
 // BAKER_thickness: back-lit translucency from the baked per-vertex thickness.
 import * as THREE from 'three';
+import { thicknessParameters } from '@baker/shared';
 import { geometryHas, requireShader } from './common.js';
 import { surfacePlugin } from './surface.js';
 
-/** Translucency parameters of a material's BAKER_thickness, with the extension's defaults filled in. */
-export function thicknessParameters(ext) {
-	const color = ext.subsurfaceColor ?? [1, 1, 1];
-	return {
-		attenuationDistance: ext.attenuationDistance ?? ext.meanThickness ?? 1,
-		distortion: ext.distortion ?? 0.2,
-		power: ext.power ?? 4,
-		scale: ext.scale ?? 1,
-		ambient: ext.ambient ?? 0,
-		subsurfaceColor: color.slice(0, 3),
-		attribute: ext.attribute ?? null,
-	};
-}
+// the extension's parameters with defaults are engine-neutral (@baker/shared)
+export { thicknessParameters };
 
 /** GLTFLoader plugin for BAKER_thickness: back-lit translucency (GDC 2011 form of RTR4 eq. 14.30) per directional light. */
 export const BakerThicknessPlugin = surfacePlugin('translucency', function (ext, object, material) {
