@@ -22,16 +22,8 @@ Failing frames leave three.png, babylon.png and diff.png (|difference| x 4) in .
 """
 from __future__ import annotations
 
-import functools
-import http.server
 import json
-import os
-import shutil
-import struct
-import subprocess
-import threading
 import urllib.parse
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -40,83 +32,27 @@ from skimage.metrics import structural_similarity
 
 import baker
 from baker import registry
-from baker.cli import main as baker_main
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
+from browser import (BACKGROUND_RGB, ROOT, SPOT, build_viewer, gltf_json, require_tools, serve, shoot,
+                     techniques_in, write_label_and_groom)
 
-ROOT = Path(__file__).parents[1]
-VIEWER = ROOT / "examples" / "viewer"
-SPOT = ROOT / "examples" / "spot" / "spot.obj"
-FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_babylon"
 W, H = 400, 300
-BACKGROUND = np.array([0x29, 0x2B, 0x30]) / 255.0
+BACKGROUND = np.array(BACKGROUND_RGB) / 255.0
 FRAME_MAD = 16 / 255
 FRAME_SSIM = 0.95
 TIGHT_MAD = 2 / 255
 DELTA_RATIO = 0.35
 BLUR = 1.5
-DEFAULT_OFF = {"curvature", "wireframe"}  # debug views, off until asked for (both plugins)
-
-
-def _require_tools():
-    problems = []
-    if shutil.which("node") is None:
-        problems.append("node")
-    for package in ("playwright-core", "three", "@babylonjs/core", "@babylonjs/loaders"):
-        if not (VIEWER / "node_modules" / package).is_dir():
-            problems.append(f"examples/viewer/node_modules/{package} (scripts/install-node-tools)")
-    if not Path(os.environ.get("CHROMIUM", "/usr/bin/chromium")).exists():
-        problems.append("chromium (apt-get install chromium)")
-    if problems:
-        if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
-            pytest.fail(f"babylon test needs {', '.join(problems)} in CI (scripts/test installs them)")
-        pytest.skip(f"missing {', '.join(problems)}")
-
-
-def _gltf_json(path):
-    data = Path(path).read_bytes()
-    assert data[:4] == b"glTF"
-    length = struct.unpack("<I", data[12:16])[0]
-    return json.loads(data[20:20 + length])
-
-
-def _techniques_in(doc):
-    """The switches a glTF document's extensions imply, read from the document (not from either plugin)."""
-    found = set()
-    per_material = {"BAKER_thickness": "translucency", "BAKER_skin_lut": "skin", "BAKER_toon_ramp": "toon",
-                    "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature"}
-    for material in doc.get("materials", []):
-        found |= {per_material[name] for name in material.get("extensions", {}) if name in per_material}
-    for mesh in doc.get("meshes", []):
-        for primitive in mesh["primitives"]:
-            extensions = primitive.get("extensions", {})
-            edges = extensions.get("BAKER_edges")
-            if edges is not None and "finsOf" in edges:
-                found.add("fins")
-            elif edges is not None:
-                if edges.get("outlineNormal") in primitive["attributes"]:
-                    found.add("outline")
-                if "wireframeMask" in edges:
-                    found.add("wireframe")
-            if "BAKER_hair" in extensions:
-                found.add("hair")
-    if any("BAKER_text" in node.get("extensions", {}) for node in doc.get("nodes", [])):
-        found.add("text")
-    return found
 
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     """The built viewer (both engines' bundles) and the three assets, served on the loopback."""
-    _require_tools()
-    build = subprocess.run(["npm", "run", "build"], cwd=VIEWER, capture_output=True, text=True, timeout=300)
-    assert build.returncode == 0, build.stderr
+    require_tools("babylon", ("playwright-core", "three", "@babylonjs/core", "@babylonjs/loaders"))
     root = tmp_path_factory.mktemp("babylon-site")
-    shutil.copy(VIEWER / "index.html", root / "index.html")
-    (root / "dist").mkdir()
-    for bundle in ("viewer.js", "babylon.js"):
-        shutil.copy(VIEWER / "dist" / bundle, root / "dist" / bundle)
+    build_viewer(root, ("viewer.js", "babylon.js"))
     bakes = tuple(registry.bakes())  # every bake there is
     asset = baker.bake(SPOT, bakes=bakes, options={
         "thickness": {"rays": 8, "per_texel": False},
@@ -127,30 +63,11 @@ def site(tmp_path_factory):
         "fur": {"shells": 4, "texture_size": 64},
     })
     save(asset, root / "spot_all.glb")
-    assert baker_main(["text", "Baker", "--font", str(FONT), "-o", str(root / "label.glb"), "--outline-width", "0.02",
-                       "-q"]) == 0
-    assert baker_main(["hair", str(SPOT), "-o", str(root / "hair.glb"), "--guides", "40", "--children", "4",
-                       "--segments", "6", "-q"]) == 0
-    assets = {name: _techniques_in(_gltf_json(root / name)) for name in ("spot_all.glb", "label.glb", "hair.glb")}
-
-    class Quiet(http.server.SimpleHTTPRequestHandler):
-        def log_message(self, *args):
-            pass
-
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet, directory=str(root)))
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    yield {"url": f"http://127.0.0.1:{server.server_address[1]}", "assets": assets, "bakes": bakes}
+    write_label_and_groom(root)
+    assets = {name: techniques_in(gltf_json(root / name)) for name in ("spot_all.glb", "label.glb", "hair.glb")}
+    server, url = serve(root)
+    yield {"url": url, "assets": assets, "bakes": bakes}
     server.shutdown()
-
-
-def _shoot(jobs, spec):
-    spec.write_text(json.dumps(jobs))
-    result = subprocess.run(["node", str(VIEWER / "test" / "screenshots.mjs"), str(spec)],
-                            capture_output=True, text=True, timeout=600, cwd=VIEWER)
-    assert result.returncode == 0, result.stderr
-    infos = [json.loads(line) for line in result.stdout.strip().splitlines() if line.startswith("{")]
-    assert len(infos) == len(jobs), result.stdout
-    return infos
 
 
 def _image(path):
@@ -223,8 +140,8 @@ def frames(site, tmp_path_factory):
                 {"on": on, "off": off, "out": str(out / f"{engine}-{name}-{key}.png")} for key, on, off in shots]})
         return out_jobs
 
-    three = _shoot(jobs("three"), out / "three.json")
-    babylon = _shoot(jobs("babylon", [info["view"] for info in three]), out / "babylon.json")
+    three = shoot(jobs("three"), out / "three.json")
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), out / "babylon.json")
     images = {(engine, name, key): _image(out / f"{engine}-{name}-{key}.png")
               for engine in ("three", "babylon") for name, _, shots in loads for key, _, _ in shots}
     return {"three": three, "babylon": babylon, "images": images, "loads": loads, "baselines": baselines}

@@ -5,15 +5,8 @@ Then every technique of @baker/three (runtime-shaders/three): assets with many b
 every technique the asset's extensions imply, and switching each one (?off= / ?on=) changes the picture."""
 from __future__ import annotations
 
-import functools
-import http.server
 import json
-import os
-import shutil
 import subprocess
-import struct
-import threading
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,40 +15,20 @@ from scipy import ndimage
 import baker
 from baker.preview import core as pv
 from baker.gltf.images import read_image
-from baker.cli import main as baker_main
 from baker.pipeline import save
+from browser import (BACKGROUND_RGB, DEFAULT_OFF, SPOT, VIEWER, build_viewer, gltf_json, require_tools, serve, shoot,
+                     techniques_in, write_label_and_groom)
 from conftest import assert_khronos_clean
 
-ROOT = Path(__file__).parents[1]
-VIEWER = ROOT / "examples" / "viewer"
-SPOT = ROOT / "examples" / "spot" / "spot.obj"
 SIZE = 256
-
-
-def _require_tools():
-    problems = []
-    if shutil.which("node") is None:
-        problems.append("node")
-    if not (VIEWER / "node_modules" / "playwright-core").is_dir():
-        problems.append("examples/viewer/node_modules (npm ci)")
-    if not Path(os.environ.get("CHROMIUM", "/usr/bin/chromium")).exists():
-        problems.append("chromium (apt-get install chromium)")
-    if problems:
-        if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
-            pytest.fail(f"viewer test needs {', '.join(problems)} in CI (scripts/test installs them)")
-        pytest.skip(f"missing {', '.join(problems)}")
 
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     """A served folder with the built viewer, a baked asset, and the preview panel's shader and setup."""
-    _require_tools()
-    build = subprocess.run(["npm", "run", "build"], cwd=VIEWER, capture_output=True, text=True, timeout=300)
-    assert build.returncode == 0, build.stderr
+    require_tools("viewer")
     root = tmp_path_factory.mktemp("site")
-    shutil.copy(VIEWER / "index.html", root / "index.html")
-    (root / "dist").mkdir()
-    shutil.copy(VIEWER / "dist" / "viewer.js", root / "dist" / "viewer.js")
+    build_viewer(root)
     asset = baker.bake(SPOT, options={"thickness": {"rays": 16, "per_texel": False}})
     save(asset, root / "spot.glb")
 
@@ -76,15 +49,8 @@ def site(tmp_path_factory):
     finally:
         ctx.release()
 
-    class Quiet(http.server.SimpleHTTPRequestHandler):
-        def log_message(self, *args):
-            pass
-
-    handler = functools.partial(Quiet, directory=str(root))
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    thread = threading.Thread(target=server.serve_forever, daemon=True)
-    thread.start()
-    yield {"url": f"http://127.0.0.1:{server.server_address[1]}", "root": root, "reference": reference}
+    server, url = serve(root)
+    yield {"url": url, "root": root, "reference": reference}
     server.shutdown()
 
 
@@ -101,7 +67,7 @@ def test_viewer_loads_baked_asset_without_errors(site, tmp_path):
     info, image = _screenshot(f"{site['url']}/index.html?src=spot.glb", tmp_path / "viewer.png", 480, 360)
     assert info["ready"] and not info["errors"], info
     assert "translucency" in info["status"]
-    background = np.array([0x29, 0x2B, 0x30]) / 255.0
+    background = np.array(BACKGROUND_RGB) / 255.0
     drawn = np.abs(image - background).max(axis=2) > 0.03
     assert 0.03 < drawn.mean() < 0.9  # the model is on screen
 
@@ -124,44 +90,7 @@ def test_viewer_matches_baker_preview(site, tmp_path):
 
 
 # ------------------------------------------------------------------------------------------ every technique
-FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
 W, H = 400, 300
-
-
-def _gltf_json(path):
-    data = Path(path).read_bytes()
-    assert data[:4] == b"glTF"
-    length = struct.unpack("<I", data[12:16])[0]
-    return json.loads(data[20:20 + length])
-
-
-def _expected_techniques(doc):
-    """The viewer's switches implied by the extensions in a glTF document (independent of the plugin's code)."""
-    found = set()
-    materials = [m.get("extensions", {}) for m in doc.get("materials", [])]
-    per_material = {"BAKER_thickness": "translucency", "BAKER_skin_lut": "skin", "BAKER_toon_ramp": "toon",
-                    "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature"}
-    for ext in materials:
-        found |= {technique for name, technique in per_material.items() if name in ext}
-    for mesh in doc.get("meshes", []):
-        for prim in mesh["primitives"]:
-            edges = prim.get("extensions", {}).get("BAKER_edges")
-            if edges is not None:
-                if "finsOf" in edges:
-                    found.add("fins")
-                else:
-                    if edges.get("outlineNormal") in prim["attributes"]:
-                        found.add("outline")
-                    if "wireframeMask" in edges:
-                        found.add("wireframe")
-            if "BAKER_hair" in prim.get("extensions", {}):
-                found.add("hair")
-    if any("BAKER_text" in n.get("extensions", {}) for n in doc.get("nodes", [])):
-        found.add("text")
-    return found
-
-
-DEFAULT_OFF = {"curvature", "wireframe"}  # debug views: off until asked for
 
 
 @pytest.fixture(scope="module")
@@ -176,24 +105,15 @@ def assets(site):
         "fur": {"shells": 4, "texture_size": 64},
     })
     save(asset, root / "spot_all.glb")
-    assert baker_main(["text", "Baker", "--font", str(FONT), "-o", str(root / "label.glb"), "--outline-width", "0.02",
-                       "-q"]) == 0
-    assert baker_main(["hair", str(SPOT), "-o", str(root / "hair.glb"), "--guides", "40", "--children", "4",
-                       "--segments", "6", "-q"]) == 0
+    write_label_and_groom(root)
     names = ["spot_all.glb", "label.glb", "hair.glb"]
     for name in names:
         assert_khronos_clean(root / name)
-    return {name: _expected_techniques(_gltf_json(root / name)) for name in names}
+    return {name: techniques_in(gltf_json(root / name)) for name in names}
 
 
 def _shoot(jobs, tmp_path):
-    spec = tmp_path / "jobs.json"
-    spec.write_text(json.dumps(jobs))
-    result = subprocess.run(["node", str(VIEWER / "test" / "screenshots.mjs"), str(spec)],
-                            capture_output=True, text=True, timeout=600, cwd=VIEWER)
-    assert result.returncode == 0, result.stderr
-    infos = [json.loads(line) for line in result.stdout.strip().splitlines() if line.startswith("{")]
-    assert len(infos) == len(jobs), result.stdout
+    infos = shoot(jobs, tmp_path / "jobs.json")
     images = [read_image(job["out"])[..., :3].astype(np.float32) / 255.0 for job in jobs]
     return infos, images
 
@@ -215,7 +135,7 @@ def test_viewer_switches_every_technique(site, assets, tmp_path):
             keys.append((name, technique))
     infos, images = _shoot(jobs, tmp_path)
     shots = dict(zip(keys, zip(infos, images)))
-    background = np.array([0x29, 0x2B, 0x30]) / 255.0
+    background = np.array(BACKGROUND_RGB) / 255.0
     changed = {}
     for (name, technique), (info, image) in shots.items():
         assert info["ready"] and not info["errors"] and not info["warnings"], info

@@ -1,0 +1,116 @@
+"""What the browser tests of the web runtimes share (tests/test_viewer.py: @baker/three, tests/test_babylon.py:
+@baker/babylon against it): the tool check, the viewer's build, a loopback server for the built site, the screenshot
+driver (examples/viewer/test/screenshots.mjs), the label and groom assets, and the switches a glTF document's
+extensions imply, read from the document (not from either plugin)."""
+from __future__ import annotations
+
+import functools
+import http.server
+import json
+import os
+import shutil
+import struct
+import subprocess
+import threading
+from pathlib import Path
+
+import pytest
+
+from baker.cli import main as baker_main
+
+ROOT = Path(__file__).parents[1]
+VIEWER = ROOT / "examples" / "viewer"
+SPOT = ROOT / "examples" / "spot" / "spot.obj"
+FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
+BACKGROUND_RGB = (0x29, 0x2B, 0x30)  # the viewer's clear colour, 8-bit sRGB
+DEFAULT_OFF = {"curvature", "wireframe"}  # debug views, off until asked for (both plugins)
+
+
+def require_tools(test, packages=("playwright-core",)):
+    """node, chromium and the viewer's node_modules `packages`: skipped without them, failed in CI."""
+    problems = []
+    if shutil.which("node") is None:
+        problems.append("node")
+    for package in packages:
+        if not (VIEWER / "node_modules" / package).is_dir():
+            problems.append(f"examples/viewer/node_modules/{package} (scripts/install-node-tools)")
+    if not Path(os.environ.get("CHROMIUM", "/usr/bin/chromium")).exists():
+        problems.append("chromium (apt-get install chromium)")
+    if problems:
+        if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
+            pytest.fail(f"{test} test needs {', '.join(problems)} in CI (scripts/test installs them)")
+        pytest.skip(f"missing {', '.join(problems)}")
+
+
+def build_viewer(root, bundles=("viewer.js",)):
+    """`npm run build` of examples/viewer, then index.html and the `bundles` copied into the site folder `root`."""
+    build = subprocess.run(["npm", "run", "build"], cwd=VIEWER, capture_output=True, text=True, timeout=300)
+    assert build.returncode == 0, build.stderr
+    shutil.copy(VIEWER / "index.html", root / "index.html")
+    (root / "dist").mkdir()
+    for bundle in bundles:
+        shutil.copy(VIEWER / "dist" / bundle, root / "dist" / bundle)
+
+
+def serve(root):
+    """A quiet HTTP server of the folder `root` on the loopback, in a daemon thread: (server, url)."""
+
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):
+            pass
+
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet, directory=str(root)))
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server, f"http://127.0.0.1:{server.server_address[1]}"
+
+
+def shoot(jobs, spec):
+    """Run the screenshot driver on `jobs` (written to the file `spec`): one info dict per job."""
+    spec.write_text(json.dumps(jobs))
+    result = subprocess.run(["node", str(VIEWER / "test" / "screenshots.mjs"), str(spec)],
+                            capture_output=True, text=True, timeout=600, cwd=VIEWER)
+    assert result.returncode == 0, result.stderr
+    infos = [json.loads(line) for line in result.stdout.strip().splitlines() if line.startswith("{")]
+    assert len(infos) == len(jobs), result.stdout
+    return infos
+
+
+def write_label_and_groom(root):
+    """A `baker text` label (root/label.glb) and a small `baker hair` groom of the spot (root/hair.glb)."""
+    assert baker_main(["text", "Baker", "--font", str(FONT), "-o", str(root / "label.glb"), "--outline-width", "0.02",
+                       "-q"]) == 0
+    assert baker_main(["hair", str(SPOT), "-o", str(root / "hair.glb"), "--guides", "40", "--children", "4",
+                       "--segments", "6", "-q"]) == 0
+
+
+def gltf_json(path):
+    """The JSON chunk of a GLB file."""
+    data = Path(path).read_bytes()
+    assert data[:4] == b"glTF"
+    length = struct.unpack("<I", data[12:16])[0]
+    return json.loads(data[20:20 + length])
+
+
+def techniques_in(doc):
+    """The switches a glTF document's extensions imply, read from the document (not from either plugin)."""
+    found = set()
+    per_material = {"BAKER_thickness": "translucency", "BAKER_skin_lut": "skin", "BAKER_toon_ramp": "toon",
+                    "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature"}
+    for material in doc.get("materials", []):
+        found |= {per_material[name] for name in material.get("extensions", {}) if name in per_material}
+    for mesh in doc.get("meshes", []):
+        for primitive in mesh["primitives"]:
+            extensions = primitive.get("extensions", {})
+            edges = extensions.get("BAKER_edges")
+            if edges is not None and "finsOf" in edges:
+                found.add("fins")
+            elif edges is not None:
+                if edges.get("outlineNormal") in primitive["attributes"]:
+                    found.add("outline")
+                if "wireframeMask" in edges:
+                    found.add("wireframe")
+            if "BAKER_hair" in extensions:
+                found.add("hair")
+    if any("BAKER_text" in node.get("extensions", {}) for node in doc.get("nodes", [])):
+        found.add("text")
+    return found
