@@ -9,7 +9,8 @@ import sys
 
 import bpy
 import numpy as np
-from mathutils import Vector
+
+from blender_scene import add_sun, camera_in_front, cycles_exr, flat_world, render_pixels
 
 addon, source, out = sys.argv[1:4]
 sys.path.insert(0, addon)
@@ -28,49 +29,22 @@ mix.inputs["Fac"].default_value = 1.0
 group = tree.nodes["BAKER Translucency"]
 group.inputs["Ambient"].default_value = 0.0
 
-corners = [obj.matrix_world @ Vector(c) for c in obj.bound_box]
-center = sum(corners, Vector()) / 8
-size = max((max(c[i] for c in corners) - min(c[i] for c in corners)) for i in range(3))
-camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-scene.collection.objects.link(camera)
-camera.location = center - Vector((0.0, 2.0 * size, 0.0))
-camera.rotation_euler = (math.pi / 2, 0.0, 0.0)  # looks along +Y
+camera = camera_in_front(scene, obj)
 camera.data.lens = 50
-scene.camera = camera
-sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-scene.collection.objects.link(sun)
-sun.rotation_euler = (-math.pi / 2, 0.0, 0.0)  # light travels along -Y: from behind the object toward the camera
+sun = add_sun(scene, (-math.pi / 2, 0.0, 0.0))  # light travels along -Y: from behind the object toward the camera
 sun.data.energy = 5.0
-world = bpy.data.worlds.new("black")
-world.color = (0.0, 0.0, 0.0)
-scene.world = world
-
-scene.render.engine = "CYCLES"
-scene.cycles.device = "CPU"
-scene.cycles.samples = 16
-scene.cycles.use_denoising = False
-scene.render.resolution_x = scene.render.resolution_y = 64
+flat_world(scene, "black", (0.0, 0.0, 0.0))
+cycles_exr(scene, samples=16, resolution=64)
 scene.render.film_transparent = True
 scene.view_settings.view_transform = "Standard"
-scene.render.image_settings.file_format = "OPEN_EXR"
-scene.render.image_settings.color_depth = "32"
 
 
-def render(path):
-    scene.render.filepath = path
-    bpy.ops.render.render(write_still=True)
-    image = bpy.data.images.load(path)
-    pixels = np.array(image.pixels[:], np.float32).reshape(image.size[1], image.size[0], 4)
-    bpy.data.images.remove(image)
-    return pixels
-
-
-lit = render(out + ".lit.exr")
+lit = render_pixels(scene, out + ".lit.exr")
 # control: the same light and group with zero thickness (transmittance 1 everywhere): lit / control = exp(-t / d)
 for link in list(group.inputs["Thickness"].links):
     tree.links.remove(link)
 group.inputs["Thickness"].default_value = 0.0
-control = render(out + ".control.exr")
+control = render_pixels(scene, out + ".control.exr")
 # the thickness itself, same camera: an emission of the attribute's x
 output = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output)
 attribute = tree.nodes.new("ShaderNodeAttribute")
@@ -80,6 +54,6 @@ emission = tree.nodes.new("ShaderNodeEmission")
 tree.links.new(attribute.outputs["Vector"], emission.inputs["Color"])
 tree.links.new(emission.outputs[0], output.inputs["Surface"])
 scene.cycles.samples = 4
-thickness = render(out + ".thickness.exr")
+thickness = render_pixels(scene, out + ".thickness.exr")
 np.savez(out, lit=lit, control=control, thickness=thickness[..., 0], alpha=thickness[..., 3],
          attenuation=group.inputs["Attenuation Distance"].default_value)
