@@ -1,6 +1,7 @@
 // BAKER_edges: fins (McGuire & Hughes 2004), shell outline (RTR4 15.2.2) and wireframe (Baerentzen et al. 2006);
 // EXT_mesh_primitive_edge_visibility: the wireframe's mask when BAKER_edges has none.
 import { Constants } from '@babylonjs/core/Engines/constants.js';
+import { wireframeCorners } from '@baker/shared';
 import { BAKER_EDGES, EXT_EDGE_VISIBILITY, GLTF_FRONT, bakerShaderMaterial, controls, loadedPrimitives, readAccessor, requireShader } from './common.js';
 import { asComponents, bakerMesh, premultiplied, primitiveAttributes, primitiveIndices } from './geometry.js';
 
@@ -76,14 +77,8 @@ void main() {
 export function wireframeArrays(positions, indices, mask) {
 	const count = indices.length;
 	const flat = new Float32Array(count * 3);
-	const bary = new Float32Array(count * 3);
-	const masks = new Float32Array(count);
-	for (let v = 0; v < count; v++) {
-		flat.set(positions.subarray(indices[v] * 3, indices[v] * 3 + 3), v * 3);
-		bary[v * 3 + (v % 3)] = 1;
-		masks[v] = mask ? mask[Math.floor(v / 3)] : 7;
-	}
-	return { positions: flat, bary, masks };
+	for (let v = 0; v < count; v++) flat.set(positions.subarray(indices[v] * 3, indices[v] * 3 + 3), v * 3);
+	return { positions: flat, ...wireframeCorners(count, mask) };
 }
 
 /** EXT_mesh_primitive_edge_visibility (2 bits per edge v0:v1, v1:v2, v2:v0, LSB first) -> wireframe mask: bit k set when edge k is not hidden. */

@@ -84,3 +84,4 @@ export function controls(owner) {
 
 export { thicknessParameters } from './thickness.js';
 export { textFieldType, textShadowOffset, textStyle } from './text.js';
+export { wireframeCorners } from './edges.js';

@@ -1,5 +1,6 @@
 // BAKER_edges: fins (McGuire & Hughes 2004), shell outline (RTR4 15.2.2) and wireframe (Baerentzen et al. 2006).
 import * as THREE from 'three';
+import { wireframeCorners } from '@baker/shared';
 import { BAKER_EDGES, controls, geometryHas, primitiveOf, requireShader, trackViewport } from './common.js';
 
 const FIN_VERTEX = `
@@ -68,13 +69,7 @@ void main() {
  */
 export function wireframeGeometry(geometry, mask) {
 	const flat = geometry.index ? geometry.toNonIndexed() : geometry.clone();
-	const count = flat.attributes.position.count;
-	const bary = new Float32Array(count * 3);
-	const masks = new Float32Array(count);
-	for (let v = 0; v < count; v++) {
-		bary[v * 3 + (v % 3)] = 1;
-		masks[v] = mask ? mask[Math.floor(v / 3)] : 7;
-	}
+	const { bary, masks } = wireframeCorners(flat.attributes.position.count, mask);
 	const out = new THREE.BufferGeometry();
 	out.setAttribute('position', flat.attributes.position);
 	out.setAttribute('baker_bary', new THREE.BufferAttribute(bary, 3));
