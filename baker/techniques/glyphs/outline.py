@@ -1,4 +1,5 @@
-"""Fonts -> glyph outlines, metrics and kerning (fontTools).
+"""Fonts -> glyph outlines (HarfBuzz's draw API where it gives fontTools' segments, see :class:`OutlineReader`),
+metrics and kerning (fontTools).
 
 Reads TrueType/OpenType (``.ttf .otf``, quadratic or cubic outlines), collections (``.ttc``, by ``font_number``) and
 named instances of variable fonts (``instance``: the instance's subfamily name, e.g. "Bold Condensed", or axis
@@ -253,6 +254,57 @@ def glyph_shape(glyph_set, name: str, scale: float = 1.0) -> Shape:
     return from_contours(contours)
 
 
+class OutlineReader:
+    """Glyph outlines of one opened face: HarfBuzz's compiled interpreters (:mod:`.harfbuzz_outline`) wherever they
+    give exactly the segments fontTools' pen gives, fontTools' pen elsewhere.
+
+    CFF outlines (the slow case: fontTools interprets charstrings in Python) always come from HarfBuzz. TrueType
+    glyphs come from HarfBuzz when they are simple glyphs whose contours start on an on-curve point and whose
+    ``hmtx`` left side bearing equals their ``xMin``: fontTools starts a contour at its first on-curve point and
+    shifts a glyph by ``lsb - xMin`` (as FreeType does), HarfBuzz does neither; composites (component offsets and
+    rounding flags) stay with fontTools. A variable font at a location other than its default also stays with
+    fontTools (HarfBuzz interpolates in C floats, fontTools in doubles: the last bits may differ).
+    """
+
+    def __init__(self, font, glyph_set, path, face_index: int = 0, location: dict | None = None):
+        from baker.techniques.glyphs.harfbuzz_outline import HarfBuzzOutlines
+
+        self.glyph_set = glyph_set
+        self.glyf = font["glyf"] if "glyf" in font else None
+        self.hmtx = font["hmtx"] if self.glyf is not None and "hmtx" in font else None
+        cff = "CFF " in font or "CFF2" in font
+        usable = (self.glyf is not None and self.hmtx is not None) or cff
+        self.harfbuzz = HarfBuzzOutlines(path, face_index) if usable and not location else None
+
+    def shape(self, name: str, glyph_id: int, scale: float = 1.0) -> Shape:
+        """The outline of glyph ``name`` (id ``glyph_id``) in font units, times ``scale``."""
+        if self.harfbuzz is not None:
+            single, count = self._single_point_contours(name) if self.glyf is not None else ((), None)
+            if single is not None:
+                shape = self.harfbuzz.shape(glyph_id, scale, drop_contours=single, contours=count)
+                if shape is not None:
+                    return shape
+        # fontTools: what HarfBuzz does not draw the same way, and glyphs HarfBuzz drew nothing for (empty glyphs,
+        # or a table HarfBuzz's sanitizer rejected: fontTools then raises the damaged-font error)
+        return glyph_shape(self.glyph_set, name, scale)
+
+    def _single_point_contours(self, name: str):
+        """For a TrueType glyph HarfBuzz draws as fontTools would: (the indices of its one-point contours (fontTools'
+        pen draws nothing for them, HarfBuzz a zero-length line), its contour count); (None, 0) when fontTools must
+        draw the glyph."""
+        glyph = self.glyf[name]  # parsed by fontTools (arrays, no pen): raises on a damaged glyph
+        if glyph.isComposite() or getattr(glyph, "numberOfContours", 0) <= 0:
+            return None, 0
+        if self.hmtx[name][1] != glyph.xMin:
+            return None, 0
+        ends = list(glyph.endPtsOfContours)
+        starts = [0] + [e + 1 for e in ends[:-1]]
+        flags = glyph.flags
+        if any(not flags[s] & 1 for s in starts):
+            return None, 0
+        return tuple(k for k, (s, e) in enumerate(zip(starts, ends)) if s == e), len(ends)
+
+
 def load_font(path, charset=None, *, font_number: int = 0, instance: str | None = None,
               kerning: bool = True) -> Font:
     """Read the glyphs of ``charset`` (a spec string or a list of code points) from a font file."""
@@ -262,6 +314,8 @@ def load_font(path, charset=None, *, font_number: int = 0, instance: str | None 
     font, glyph_set = open_font(path, font_number, instance)
     try:
         # fontTools reads tables lazily: a truncated or damaged glyf, cmap, name or kerning table fails only here
+        reader = OutlineReader(font, glyph_set, path, font_number,
+                               _instance_location(font, instance, path) if instance else None)
         cmap = font.getBestCmap() or {}
         glyph_ids = {name: i for i, name in enumerate(font.getGlyphOrder())}
         glyphs, missing = [], []
@@ -271,7 +325,8 @@ def load_font(path, charset=None, *, font_number: int = 0, instance: str | None 
                 missing.append(cp)
                 continue
             g = glyph_set[name]
-            glyphs.append(Glyph(cp, name, glyph_ids.get(name, 0), float(g.width), glyph_shape(glyph_set, name)))
+            gid = glyph_ids.get(name, 0)
+            glyphs.append(Glyph(cp, name, gid, float(g.width), reader.shape(name, gid)))
         family = _family(font, path)
         metrics = font_metrics(font)
         result = Font(str(path), family, metrics, glyphs, missing=missing,
@@ -307,10 +362,12 @@ def load_fonts(sources: list, charset=None, glyph_ids=(), *, instance: str | Non
         parse_charset(charset) if charset is None or isinstance(charset, str) else list(charset))
     if not codepoints and not glyph_ids:
         raise BakerError(None, f"empty charset {charset!r}: no characters to bake")
-    opened = []
+    opened, readers = [], []
     for k, (path, number) in enumerate(sources):
         font, glyph_set = open_font(path, number, instance if k == 0 else None)
         opened.append((path, number, font, glyph_set))
+        location = _instance_location(font, instance, path) if instance and k == 0 else None
+        readers.append(OutlineReader(font, glyph_set, path, number, location))
     glyphs, missing, taken, faces, cmaps, orders = [], [], set(), [], [], []
     upem0 = None
     try:
@@ -335,7 +392,7 @@ def load_fonts(sources: list, charset=None, glyph_ids=(), *, instance: str | Non
             name = orders[face][gid]
             scale = upem0 / faces[face].units_per_em
             glyphs.append(Glyph(cp, name, gid, float(glyph_set[name].width) * scale,
-                                glyph_shape(glyph_set, name, scale), face))
+                                readers[face].shape(name, gid, scale), face))
 
         for cp in codepoints:
             face = owner_of(cp)
