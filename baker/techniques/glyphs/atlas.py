@@ -13,7 +13,7 @@ for msdf-atlas-gen load it unchanged. ``bmfont_json`` writes the BMFont JSON tha
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -47,7 +47,6 @@ class GlyphAtlas:
     kerning: list  # [(codepoint1, codepoint2, advance em)] sorted
     font: Font
     options: GlyphOptions
-    values: np.ndarray | None = field(default=None, repr=False)  # float field before quantization (H, W, C)
 
     @property
     def width(self) -> int:
@@ -228,8 +227,7 @@ def bake_atlas(font: Font, options: GlyphOptions = GlyphOptions()) -> GlyphAtlas
     """Bake the distance-field atlas of every glyph of ``font`` (see the module docstring)."""
     scale = options.size / font.metrics.units_per_em
     entries, shapes, boxes = [], [], []
-    for g in font.glyphs:
-        shape = prepare(g.shape)
+    for g, shape in zip(font.glyphs, _prepared([g.shape for g in font.glyphs])):
         advance = g.advance / font.metrics.units_per_em
         if shape.segment_count == 0:
             entries.append(GlyphEntry(g.codepoint, g.index, advance, None, None, None, g.face))
@@ -248,22 +246,58 @@ def bake_atlas(font: Font, options: GlyphOptions = GlyphOptions()) -> GlyphAtlas
     placed, width, height = pack([boxes[k] for k in order], options.padding, options.pot, options.square)
     position = {k: placed[n] for n, k in enumerate(order)}
 
-    batch, corners = _batch(shapes, options)
-    values = glyph_fields(batch, corners, options.type, options.range, options.error_correction)
     channels = CHANNELS[options.type]
-    field_image = np.zeros((height, width, channels), np.float64)
-    for k, (e, _, (left, bottom, w, h)) in enumerate(shapes):
-        x, y = position[k]
-        block = values[batch.texel_start[k]: batch.texel_start[k + 1]].reshape(h, w, channels)
-        field_image[y: y + h, x: x + w] = block[::-1]  # glyph rows are bottom-up, image rows top-down
-        entry = entries[e]
-        entry.plane = (left / options.size, bottom / options.size, (left + w) / options.size,
-                       (bottom + h) / options.size)
-        entry.atlas = (float(x), float(height - y - h), float(x + w), float(height - y))
-    image = quantize(field_image)
+    image = np.zeros((height, width, channels), np.uint8)
+    # the kernels run on groups of about CHUNK_TEXELS texels: every texel's value depends on its own glyph alone,
+    # so the bytes are those of one batch, while the float fields and the kernels' work arrays stay bounded (a
+    # 3,500-glyph CJK atlas held ~0.5 GB of them at once); each group is quantized straight into the byte image
+    for group in _texel_groups([w * h for _, _, (_, _, w, h) in shapes], CHUNK_TEXELS):
+        batch, corners = _batch([shapes[k] for k in group], options)
+        values = glyph_fields(batch, corners, options.type, options.range, options.error_correction)
+        for n, k in enumerate(group):
+            e, _, (left, bottom, w, h) = shapes[k]
+            x, y = position[k]
+            block = values[batch.texel_start[n]: batch.texel_start[n + 1]].reshape(h, w, channels)
+            image[y: y + h, x: x + w] = quantize(block[::-1])  # glyph rows are bottom-up, image rows top-down
+            entry = entries[e]
+            entry.plane = (left / options.size, bottom / options.size, (left + w) / options.size,
+                           (bottom + h) / options.size)
+            entry.atlas = (float(x), float(height - y - h), float(x + w), float(height - y))
+        del batch, corners, values
     u = float(font.metrics.units_per_em)
     kerning = sorted((a, b, v / u) for (a, b), v in font.kerning.items() if v)
-    return GlyphAtlas(image, entries, kerning, font, options, field_image)
+    return GlyphAtlas(image, entries, kerning, font, options)
+
+
+def _prepared(outlines: list) -> list:
+    """:func:`~baker.techniques.glyphs.shape.prepare` of every outline, on the numba thread count's threads (its
+    kernels release the GIL; each glyph's result depends on that glyph alone, so the order of work changes nothing)."""
+    import numba
+
+    threads = min(numba.get_num_threads(), max(1, len(outlines) // 64))
+    if threads <= 1:
+        return [prepare(s) for s in outlines]
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(threads) as pool:
+        return list(pool.map(prepare, outlines))
+
+
+CHUNK_TEXELS = 1 << 20  # texels per kernel call in bake_atlas (~24 MB of float64 MSDF values)
+
+
+def _texel_groups(texels: list, limit: int) -> list:
+    """Consecutive index groups whose texel counts add up to at most ``limit`` (a bigger glyph: a group alone)."""
+    groups, current, total = [], [], 0
+    for k, n in enumerate(texels):
+        if current and total + n > limit:
+            groups.append(current)
+            current, total = [], 0
+        current.append(k)
+        total += n
+    if current:
+        groups.append(current)
+    return groups
 
 
 def quantize(values: np.ndarray) -> np.ndarray:

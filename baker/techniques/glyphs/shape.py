@@ -241,7 +241,7 @@ def monotone_pieces(points: np.ndarray, degree: np.ndarray) -> tuple[np.ndarray,
     return out[:k], out_deg[:k]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)  # bake_atlas prepares glyphs on several threads
 def _monotone_pieces(points, degree, out, out_deg):
     k = 0
     ts = np.empty(2)
@@ -323,7 +323,7 @@ def _probe_eps(points, degree):
     return 1e-5 * max(hi_x - lo_x, hi_y - lo_y, 1e-12)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)  # bake_atlas prepares glyphs on several threads
 def _interior_segments(points, degree, pieces, piece_degree, out):
     """Mark segments with the same fill on both sides at 16 points along them (inside an overlap, or cancelled).
     Segments are not split where contours cross: one that is partly a boundary keeps counting (a boundary part
@@ -349,7 +349,7 @@ def _interior_segments(points, degree, pieces, piece_degree, out):
         out[s] = not boundary
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)  # bake_atlas prepares glyphs on several threads
 def _orientation_flips(points, degree, contour_start, pieces, piece_degree, flip):
     """Decide for each contour whether it must be reversed to have the nonzero-filled side on its left."""
     # probe offset: tiny against the outline, large against rounding (font units or pixels alike)
