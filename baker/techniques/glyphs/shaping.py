@@ -196,7 +196,13 @@ _LEVEL = re.compile(r"Level\(\s*(\d+)\s*,?\s*\)")
 
 
 def bidi_levels(text: str, base: str | None) -> list:
-    """UAX #9 embedding levels per character (python-bidi computes them per UTF-8 byte; we read its report)."""
+    """UAX #9 embedding levels per character (python-bidi computes them per UTF-8 byte; we read its report).
+
+    python-bidi 0.6 documents only ``get_display`` and ``get_base_level``: its levels are public only through the
+    ``debug=True`` report (unicode-bidi's ``BidiInfo``), hence the pinned version range in pyproject.toml and the
+    loud failure below when the report does not hold one level per byte. Its pure-Python ``bidi.algorithm`` keeps
+    levels in a storage dict, but implements an older UAX #9 (no bracket pairs, N0), so lines with brackets would
+    reorder differently."""
     from bidi import get_display
 
     if not text:
