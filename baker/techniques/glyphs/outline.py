@@ -439,13 +439,16 @@ def kerning_pairs(font, chars: list) -> dict:
     pair wins (OpenType). Without GPOS kerning, the legacy ``kern`` table is used.
     """
     names = [n for _, n in chars]
-    matrix = _gpos_kerning(font, names)
-    if matrix is None:
-        matrix = _legacy_kerning(font, names)
-    if matrix is None:
+    found = _gpos_kerning(font, names)
+    if found is None:
+        legacy = _legacy_kerning(font, names)
+        found = None if legacy is None else (np.arange(len(names)), legacy)
+    if found is None:
         return {}
+    rows, matrix = found
     i, j = np.nonzero(matrix)
-    return {(chars[a][0], chars[b][0]): float(matrix[a, b]) for a, b in zip(i.tolist(), j.tolist())}
+    return {(chars[a][0], chars[b][0]): float(matrix[r, b])
+            for r, a, b in zip(i.tolist(), rows[i].tolist(), j.tolist())}
 
 
 def _kern_features(table) -> list:
@@ -463,7 +466,28 @@ def _kern_features(table) -> list:
     return [r for r in records if r.FeatureTag == "kern"]
 
 
+def _pair_subtables(table, lookups: list):
+    """Per lookup index, its pair-adjustment subtables (extension subtables unwrapped)."""
+    out = []
+    for li in lookups:
+        lookup = table.LookupList.Lookup[li]
+        subtables = []
+        for st in lookup.SubTable:
+            if lookup.LookupType == 9:
+                if st.ExtensionLookupType != 2:
+                    continue
+                st = st.ExtSubTable
+            elif lookup.LookupType != 2:
+                continue
+            subtables.append(st)
+        out.append(subtables)
+    return out
+
+
 def _gpos_kerning(font, names: list):
+    """(rows, matrix): the indices of ``names`` some kern subtable covers as a first glyph (sorted), and their
+    adjustments against every name, (len(rows), len(names)). Only covered rows are held: a CJK charset of 3,500
+    glyphs would otherwise need several 3,500 x 3,500 matrices (~0.2 GB) for the few pairs a CJK font kerns."""
     if "GPOS" not in font:
         return None
     table = font["GPOS"].table
@@ -472,26 +496,29 @@ def _gpos_kerning(font, names: list):
     lookups = sorted({i for rec in _kern_features(table) for i in rec.Feature.LookupListIndex})
     if not lookups:
         return None
-    n = len(names)
+    per_lookup = _pair_subtables(table, lookups)
+    firsts_covered = set()
+    for subtables in per_lookup:
+        for st in subtables:
+            firsts_covered.update(st.Coverage.glyphs if st.Coverage else [])
+    rows = np.array([k for k, name in enumerate(names) if name in firsts_covered], np.int64)
+    row_names = [names[k] for k in rows.tolist()]
+    n, m = len(names), len(rows)
     position = {}
     for k, name in enumerate(names):
         position.setdefault(name, []).append(k)
-    total = np.zeros((n, n))
-    for li in lookups:
-        lookup = table.LookupList.Lookup[li]
-        applied = np.zeros((n, n), bool)
-        value = np.zeros((n, n))
-        for st in lookup.SubTable:
-            if lookup.LookupType == 9:
-                if st.ExtensionLookupType != 2:
-                    continue
-                st = st.ExtSubTable
-            elif lookup.LookupType != 2:
-                continue
+    row_position = {}
+    for r, name in enumerate(row_names):
+        row_position.setdefault(name, []).append(r)
+    total = np.zeros((m, n))
+    for subtables in per_lookup:
+        applied = np.zeros((m, n), bool)
+        value = np.zeros((m, n))
+        for st in subtables:
             covered = st.Coverage.glyphs if st.Coverage else []
             cover_index = {g: i for i, g in enumerate(covered)}
             if st.Format == 1:
-                for name, firsts in position.items():
+                for name, firsts in row_position.items():
                     ci = cover_index.get(name)
                     if ci is None:
                         continue
@@ -506,13 +533,13 @@ def _gpos_kerning(font, names: list):
                                     applied[a, b] = True
                                     value[a, b] = adv
             elif st.Format == 2:
-                first = np.array([name in cover_index for name in names])
+                first = np.array([name in cover_index for name in row_names], bool)
                 if not first.any():
                     continue
                 class1 = st.ClassDef1.classDefs if st.ClassDef1 else {}
                 class2 = st.ClassDef2.classDefs if st.ClassDef2 else {}
-                c1 = np.array([class1.get(name, 0) for name in names])
-                c2 = np.array([class2.get(name, 0) for name in names])
+                c1 = np.array([class1.get(name, 0) for name in row_names], np.int64)
+                c2 = np.array([class2.get(name, 0) for name in names], np.int64)
                 adv = np.array([[float(getattr(r.Value1, "XAdvance", 0) or 0) if r.Value1 else 0.0
                                  for r in rec.Class2Record] for rec in st.Class1Record])
                 c1 = np.minimum(c1, len(adv) - 1)
@@ -521,7 +548,7 @@ def _gpos_kerning(font, names: list):
                 value = np.where(here, adv[c1[:, None], c2[None, :]], value)
                 applied |= here
         total += value
-    return total
+    return rows, total
 
 
 def _legacy_kerning(font, names: list):
