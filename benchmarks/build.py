@@ -3,11 +3,17 @@
     python benchmarks/build.py [--bakes thickness,curvature,edges]
 
 Each row is a fresh copy of the same 30 inputs (the warm row re-runs the --jobs 2 project, where every output is
-cached). Uses the same asset generator as tests/test_build.py.
+cached). Uses the same asset generator as tests/test_build.py. Besides wall time each row reports the CPU time of
+the build (this process and its workers) and the cores it kept busy (CPU / wall). The "1 kernel thread" row runs
+--jobs 1 with BAKER_THREADS=1, as each --jobs 2 worker does: its CPU time is the single-threaded work W, so
+``wall(--jobs 1) / (W / 2)`` bounds what two workers on two cores can gain. The machine's load average is printed,
+since other processes on a shared machine change every figure.
 """
 from __future__ import annotations
 
 import argparse
+import os
+import resource
 import shutil
 import sys
 import tempfile
@@ -39,30 +45,49 @@ def main(argv=None) -> int:
     recipe = "[build]\noutput = \"baked\"\nbakes = [" + ", ".join(f'"{b}"' for b in bakes) + "]\n\n" \
              "[options.thickness]\nrays = 64\nper_texel = false\n\n[[assets]]\ninputs = [\"assets/*\"]\n"
     rows = []
+    load_before = os.getloadavg()[0]
+
+    def timed(name, project, jobs):
+        t, cpu = time.perf_counter(), cpu_seconds()
+        report = build(load_recipe(project / "baker.toml"), jobs=jobs)
+        rows.append((name, time.perf_counter() - t, cpu_seconds() - cpu, len(report["baked"]), len(report["skipped"])))
+
     with tempfile.TemporaryDirectory() as d:
         source = Path(d) / "source"
         make_thirty(source)
-        for jobs in (1, 2):
-            project = Path(d) / f"jobs{jobs}"
+        for name, jobs, threads in (("clean build, --jobs 1", 1, None), ("clean build, --jobs 2", 2, None),
+                                    ("clean build, --jobs 1, 1 kernel thread", 1, "1")):
+            project = Path(d) / f"{jobs}-{threads}"
             shutil.copytree(source, project)
             (project / "baker.toml").write_text(recipe)
-            t = time.perf_counter()
-            report = build(load_recipe(project / "baker.toml"), jobs=jobs)
-            rows.append((f"clean build, --jobs {jobs}", time.perf_counter() - t, len(report["baked"]),
-                         len(report["skipped"])))
-        t = time.perf_counter()
-        report = build(load_recipe(Path(d) / "jobs2" / "baker.toml"), jobs=2)
-        rows.append(("warm cache (nothing changed)", time.perf_counter() - t, len(report["baked"]),
-                     len(report["skipped"])))
+            if threads:
+                os.environ["BAKER_THREADS"] = threads
+            try:
+                timed(name, project, jobs)
+            finally:
+                os.environ.pop("BAKER_THREADS", None)
+        timed("warm cache (nothing changed)", Path(d) / "2-None", 2)
     base = rows[0][1]
     print(f"30 assets ({', '.join(sorted(p.stem for p in SHARED.glob('*.obj')))} x 5 copies); bakes: "
-          f"{', '.join(bakes)}; thickness 64 rays per vertex; 2 cores")
+          f"{', '.join(bakes)}; thickness 64 rays per vertex; {os.cpu_count()} cores; load average "
+          f"{load_before:.2f} before, {os.getloadavg()[0]:.2f} after")
     print()
-    print("| build | wall time (s) | baked | cached | speed-up vs --jobs 1 |")
-    print("|---|---:|---:|---:|---:|")
-    for name, seconds, baked, cached in rows:
-        print(f"| {name} | {seconds:.2f} | {baked} | {cached} | {base / seconds:.2f}x |")
+    print("| build | wall time (s) | CPU time (s) | cores busy | baked | cached | speed-up vs --jobs 1 |")
+    print("|---|---:|---:|---:|---:|---:|---:|")
+    for name, seconds, cpu, baked, cached in rows:
+        print(f"| {name} | {seconds:.2f} | {cpu:.2f} | {cpu / seconds:.2f} | {baked} | {cached} | "
+              f"{base / seconds:.2f}x |")
+    single = rows[2][2]
+    print()
+    print(f"bound for --jobs 2 on 2 cores: wall(--jobs 1) / (single-threaded CPU / 2) = {base:.2f} / "
+          f"({single:.2f} / 2) = {2 * base / single:.2f}x")
     return 0
+
+
+def cpu_seconds() -> float:
+    """User + system CPU of this process and of its finished children (the pool's workers, once joined)."""
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
 
 
 if __name__ == "__main__":

@@ -348,8 +348,42 @@ def worker_threads(jobs: int) -> int:
 
 
 def _init_worker(threads: int) -> None:
+    # read by the thickness ray threads, Embree's device (its TBB build threads) and numba (not imported yet here)
     os.environ["BAKER_THREADS"] = str(threads)
     os.environ["NUMBA_NUM_THREADS"] = str(threads)
+
+
+def _warm_stamp(bakes) -> Path:
+    """A file whose presence says :func:`warm_kernels` ran for ``bakes`` since any baker source last changed.
+
+    numba keys each cached kernel on its source file's mtime and size, so the stamp is keyed the same way (every
+    ``baker/**/*.py``), plus the versions and the cache folder. It sits in ``baker/__pycache__`` beside the kernels'
+    cache, so clearing the caches clears it too."""
+    import platform
+
+    import numba
+
+    package = Path(__file__).resolve().parents[1]
+    digest = hashlib.sha256(json.dumps([__version__, sys.version, numba.__version__, platform.machine(),
+                                        os.environ.get("NUMBA_CACHE_DIR", ""), sorted(bakes)]).encode())
+    for source in sorted(package.rglob("*.py")):
+        stat = source.stat()
+        digest.update(f"{source.relative_to(package)}:{stat.st_mtime_ns}:{stat.st_size};".encode())
+    return package / "__pycache__" / f"baker-warm-{digest.hexdigest()[:24]}.stamp"
+
+
+def warm_kernels_once(bakes) -> None:
+    """:func:`warm_kernels`, skipped when a previous run already filled numba's cache for these sources: with a warm
+    cache the parent would only spend ~2 s of serial imports and cache loads the workers then repeat anyway."""
+    stamp = _warm_stamp(bakes)
+    if stamp.is_file():
+        return
+    warm_kernels(bakes)
+    try:
+        stamp.parent.mkdir(exist_ok=True)
+        stamp.touch()
+    except OSError:  # a read-only install: warm again next time (correct, only slower)
+        pass
 
 
 def warm_kernels(bakes) -> None:
@@ -390,7 +424,10 @@ def _execute(payloads: list, jobs: int, scheduler: str | None, fail_fast: bool):
 
         bakes = sorted({b for p in payloads if p["kind"] == "bake" for b in p["bakes"]})
         if bakes:
-            warm_kernels(bakes)
+            warm_kernels_once(bakes)
+        # largest inputs first (LPT scheduling): a big asset started last would leave the other workers idle at the
+        # end; results are written by content, so the order changes nothing in the outputs or the lock
+        payloads = sorted(payloads, key=lambda p: -sum(len(data) for data in p["files"].values()))
         # spawn: Embree, numba and OpenImageIO hold threads and state that fork would copy half-way
         with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
                                  initializer=_init_worker, initargs=(worker_threads(jobs),)) as pool:

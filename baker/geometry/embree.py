@@ -88,7 +88,9 @@ class DirectScene:
     def __init__(self, vertices: np.ndarray, faces: np.ndarray):
         if not AVAILABLE:
             raise RuntimeError("Embree library not found")
-        self._device = _lib.rtcNewDevice(None)
+        # BAKER_THREADS (set per `baker build --jobs` worker) also caps Embree's own (TBB) build threads
+        threads = int(os.environ.get("BAKER_THREADS", 0) or 0)
+        self._device = _lib.rtcNewDevice(f"threads={threads}".encode() if threads > 0 else None)
         if not self._device:
             raise RuntimeError("rtcNewDevice failed")
         self.pointer = _lib.rtcNewScene(self._device)
