@@ -353,7 +353,7 @@ def _init_worker(threads: int) -> None:
     os.environ["NUMBA_NUM_THREADS"] = str(threads)
 
 
-def _warm_stamp(bakes) -> Path:
+def warm_stamp(bakes) -> Path:
     """A file whose presence says :func:`warm_kernels` ran for ``bakes`` since any baker source last changed.
 
     numba keys each cached kernel on its source file's mtime and size, so the stamp is keyed the same way (every
@@ -375,7 +375,7 @@ def _warm_stamp(bakes) -> Path:
 def warm_kernels_once(bakes) -> None:
     """:func:`warm_kernels`, skipped when a previous run already filled numba's cache for these sources: with a warm
     cache the parent would only spend ~2 s of serial imports and cache loads the workers then repeat anyway."""
-    stamp = _warm_stamp(bakes)
+    stamp = warm_stamp(bakes)
     if stamp.is_file():
         return
     warm_kernels(bakes)
