@@ -360,11 +360,10 @@ def warm_stamp(bakes) -> Path:
     ``baker/**/*.py``), plus the versions and the cache folder. It sits in ``baker/__pycache__`` beside the kernels'
     cache, so clearing the caches clears it too."""
     import platform
-
-    import numba
+    from importlib.metadata import version  # not `import numba`: the parent would pay numba's import for a string
 
     package = Path(__file__).resolve().parents[1]
-    digest = hashlib.sha256(json.dumps([__version__, sys.version, numba.__version__, platform.machine(),
+    digest = hashlib.sha256(json.dumps([__version__, sys.version, version("numba"), platform.machine(),
                                         os.environ.get("NUMBA_CACHE_DIR", ""), sorted(bakes)]).encode())
     for source in sorted(package.rglob("*.py")):
         stat = source.stat()
