@@ -356,19 +356,20 @@ def _init_worker(threads: int) -> None:
 def warm_stamp(bakes) -> Path:
     """A file whose presence says :func:`warm_kernels` ran for ``bakes`` since any baker source last changed.
 
-    numba keys each cached kernel on its source file's mtime and size, so the stamp is keyed the same way (every
-    ``baker/**/*.py``), plus the versions and the cache folder. It sits in ``baker/__pycache__`` beside the kernels'
-    cache, so clearing the caches clears it too."""
+    numba keys each cached kernel on its source file's path, mtime and size, so the stamp is keyed the same way
+    (every ``baker/**/*.py``), plus the versions. It sits in numba's cache folder (``NUMBA_CACHE_DIR``, which
+    :mod:`baker` sets to the user cache), so clearing the cache clears the stamp too."""
     import platform
     from importlib.metadata import version  # not `import numba`: the parent would pay numba's import for a string
 
     package = Path(__file__).resolve().parents[1]
-    digest = hashlib.sha256(json.dumps([__version__, sys.version, version("numba"), platform.machine(),
-                                        os.environ.get("NUMBA_CACHE_DIR", ""), sorted(bakes)]).encode())
+    cache = Path(os.environ.get("NUMBA_CACHE_DIR") or package / "__pycache__")
+    digest = hashlib.sha256(json.dumps([__version__, sys.version, version("numba"), platform.machine(), str(package),
+                                        sorted(bakes)]).encode())
     for source in sorted(package.rglob("*.py")):
         stat = source.stat()
         digest.update(f"{source.relative_to(package)}:{stat.st_mtime_ns}:{stat.st_size};".encode())
-    return package / "__pycache__" / f"baker-warm-{digest.hexdigest()[:24]}.stamp"
+    return cache / f"baker-warm-{digest.hexdigest()[:24]}.stamp"
 
 
 def warm_kernels_once(bakes) -> None:
@@ -379,7 +380,7 @@ def warm_kernels_once(bakes) -> None:
         return
     warm_kernels(bakes)
     try:
-        stamp.parent.mkdir(exist_ok=True)
+        stamp.parent.mkdir(parents=True, exist_ok=True)
         stamp.touch()
     except OSError:  # a read-only install: warm again next time (correct, only slower)
         pass
