@@ -27,8 +27,8 @@ def cli_env() -> dict:
 
 
 def run_command(argv: list, env: dict | None = None) -> dict:
-    """Wall time (process start to exit), peak RSS in bytes (``wait4``'s ``ru_maxrss``) and stdout of one child
-    process: the end-to-end figure of a command a user runs."""
+    """Wall time (process start to exit), CPU seconds, peak RSS in bytes (``wait4``'s ``ru_maxrss``) and stdout of
+    one child process: the end-to-end figure of a command a user runs."""
     start = time.perf_counter()
     with tempfile.TemporaryFile() as out:
         proc = subprocess.Popen([str(a) for a in argv], stdout=out, stderr=subprocess.PIPE,
@@ -41,7 +41,8 @@ def run_command(argv: list, env: dict | None = None) -> dict:
         text = out.read().decode(errors="replace")
     if proc.returncode:
         raise SystemExit(f"{' '.join(map(str, argv))} failed ({proc.returncode}): {err.strip()[-400:]}")
-    return {"wall": wall, "peak": usage.ru_maxrss * 1024, "stdout": text}
+    return {"wall": wall, "peak": usage.ru_maxrss * 1024, "stdout": text,
+            "cpu": usage.ru_utime + usage.ru_stime}  # its own and its waited-for children's (a pool's workers)
 
 
 def baker_cli(*args) -> list:
