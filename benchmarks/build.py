@@ -79,7 +79,7 @@ def main(argv=None) -> int:
     single = rows[2][2]
     print()
     print(f"bound for --jobs 2 on 2 cores: wall(--jobs 1) / (single-threaded CPU / 2) = {base:.2f} / "
-          f"({single:.2f} / 2) = {2 * base / single:.2f}x")
+          f"({single:.2f} / 2) = {2 * base / single:.2f}x (an idle machine only: load inflates wall(--jobs 1))")
     return 0
 
 
