@@ -30,6 +30,10 @@ validates the outputs (``baker validate`` rules), listing stale, missing, modifi
 Tasks are self-contained: the input files travel with the task as bytes and the outputs come back as bytes, so a
 local process pool (``--jobs``) and a Dask cluster (``--scheduler tcp://host:8786``) run the same function and the
 client writes every output atomically; an interrupted build leaves no partial output and resumes from the lock.
+
+With ``--jobs N`` each worker runs its kernels on cores / N threads (``BAKER_THREADS``: the ray threads and Embree's
+build threads), takes the largest inputs first, and loads every numba kernel from the on-disk cache, which the
+parent fills once when it is cold (a stamp in the cache folder records that it is warm).
 """
 from __future__ import annotations
 
