@@ -24,11 +24,11 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
+
+from common import run_command as run
 
 ROOT = Path(__file__).resolve().parents[1]
 # the shared assets sit beside the checkout (/work/main) or two levels up (a worktree /work/wt/N)
@@ -78,22 +78,6 @@ def subdivided(level: int, folder: Path) -> Path:
             mesh = mesh.subdivide()
         mesh.export(out)
     return out
-
-
-def run(argv: list, env: dict) -> dict:
-    """Wall time, peak RSS (bytes) and stdout of one child process."""
-    start = time.perf_counter()
-    with tempfile.TemporaryFile() as out:
-        proc = subprocess.Popen(argv, stdout=out, stderr=subprocess.PIPE, env=env)
-        _, status, usage = os.wait4(proc.pid, 0)
-        wall = time.perf_counter() - start
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        err = proc.stderr.read().decode(errors="replace")
-        out.seek(0)
-        text = out.read().decode(errors="replace")
-    if proc.returncode:
-        raise SystemExit(f"{' '.join(map(str, argv))} failed ({proc.returncode}): {err.strip()[-400:]}")
-    return {"wall": wall, "peak": usage.ru_maxrss * 1024, "stdout": text}
 
 
 def main(argv=None) -> int:

@@ -12,6 +12,8 @@ Rows (best of --repeat, wall clock, numba kernels compiled beforehand):
   the same target (one stroke direction, for every style but stippling). It reaches the same tones but nothing is
   nested, so the runtime blend between tones and levels would make strokes pop; it is the cheapest way to get "a
   texture per tone".
+End to end: ``baker tam`` (the command a user runs, process start to files written, same options), best of
+--repeat, next to the kernel row, with its peak RSS and bytes per output texel (every tone of every level).
 Quality columns: max |tone - target| over every (tone, level); nesting violations (share of tone t's inked pixels
 not inked in tone t+1, same level); unevenness (std of the darkness of 16 x 16-pixel blocks at the finest level,
 darkest tone; lower is more even).
@@ -23,6 +25,7 @@ import dataclasses
 import math
 import os
 import sys
+import tempfile
 from pathlib import Path
 
 import numba
@@ -33,7 +36,7 @@ sys.path.insert(0, str(ROOT))
 
 from baker.techniques.tam.options import TamOptions
 from baker.techniques.tam.kernel import _stamp, generate_tam  # noqa: E402
-from common import best_of  # noqa: E402
+from common import baker_cli, best_of, run_command  # noqa: E402
 
 
 @numba.njit(cache=True, nogil=True)
@@ -133,6 +136,20 @@ def main(argv=None) -> int:
         print(f"| {name} | {seconds:.3f} | {seconds / t_baker:.2f}x | {tone_error:.4f} | {violations:.1%} | "
               f"{unevenness:.4f} | {strokes if strokes is not None else '-'} |")
     print(f"\nbaker: {t_baker:.2f} s for {args.tones} x {args.levels} at {args.size} px (goal: a few seconds)")
+
+    runs = []
+    for _ in range(args.repeat):
+        with tempfile.TemporaryDirectory() as out:
+            runs.append(run_command(baker_cli("tam", "-o", out, "-q", "--seed", "0", "--tam-tones", args.tones,
+                                              "--tam-levels", args.levels, "--tam-size", args.size,
+                                              "--tam-style", args.style, "--tam-layout", layout)))
+    best = min(runs, key=lambda r: r["wall"])
+    texels = args.tones * sum((args.size >> level) ** 2 for level in range(args.levels))
+    print("\n| end to end | time (s) | time vs kernel (generate_tam) | peak RSS (MB) | bytes per output texel |")
+    print("|---|---:|---:|---:|---:|")
+    print(f"| `baker tam -o DIR --tam-tones {args.tones} --tam-levels {args.levels} --tam-size {args.size} "
+          f"--tam-style {args.style}` | {best['wall']:.3f} | {best['wall'] / t_baker:.2f}x | "
+          f"{max(r['peak'] for r in runs) / 1e6:.0f} | {max(r['peak'] for r in runs) / texels:,.0f} |")
     return 0
 
 

@@ -237,3 +237,47 @@ def test_example_recipe_builds_and_checks(tmp_path):
     assert lock["out/spot/spot.glb"]["options"]["tam"]["style"] == "cross-hatching"
     assert check(load_recipe(tmp_path / "baker.toml"), khronos=False) == []
     assert_khronos_clean(tmp_path / "out" / "spot" / "spot.glb")
+
+
+CACHE_PROBE = r"""
+import json, trimesh
+from baker.geometry.raycast import RayScene
+from baker.techniques.thickness import kernel
+mesh = trimesh.creation.icosphere(2)
+scene = RayScene(mesh.vertices, mesh.faces)
+assert scene.direct is not None, "the direct Embree path is not available"
+kernel.local_thickness(scene, mesh.vertices, mesh.vertex_normals, rays=4)
+stats = kernel._thickness_direct.stats
+print(json.dumps({"hits": len(stats.cache_hits), "misses": len(stats.cache_misses)}))
+"""
+
+
+def test_direct_embree_thickness_kernel_loads_from_numba_cache():
+    # the kernel calls Embree by symbol name, so a fresh process (a `build --jobs` worker) loads it from the disk
+    # cache instead of compiling it again; the first run fills the cache if the checkout's is cold
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1])}
+    runs = [json.loads(subprocess.run([sys.executable, "-c", CACHE_PROBE], env=env, capture_output=True, text=True,
+                                      check=True).stdout) for _ in range(2)]
+    assert runs[1] == {"hits": 1, "misses": 0}, runs
+
+
+def test_parent_warms_kernels_only_while_the_stamp_is_missing(monkeypatch):
+    from baker.commands import build as build_module
+
+    calls = []
+    monkeypatch.setattr(build_module, "warm_kernels", lambda bakes: calls.append(list(bakes)))
+    bakes = ["test-stamp-probe"]  # a name no real build uses, so the real stamps are untouched
+    stamp = build_module.warm_stamp(bakes)
+    stamp.unlink(missing_ok=True)
+    try:
+        build_module.warm_kernels_once(bakes)
+        build_module.warm_kernels_once(bakes)
+        assert calls == [bakes] and stamp.is_file()
+        monkeypatch.setenv("NUMBA_CACHE_DIR", "/elsewhere")  # another cache folder is a different, cold cache
+        assert build_module.warm_stamp(bakes) == Path("/elsewhere") / stamp.name
+    finally:
+        stamp.unlink(missing_ok=True)

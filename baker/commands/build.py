@@ -30,6 +30,10 @@ validates the outputs (``baker validate`` rules), listing stale, missing, modifi
 Tasks are self-contained: the input files travel with the task as bytes and the outputs come back as bytes, so a
 local process pool (``--jobs``) and a Dask cluster (``--scheduler tcp://host:8786``) run the same function and the
 client writes every output atomically; an interrupted build leaves no partial output and resumes from the lock.
+
+With ``--jobs N`` each worker runs its kernels on cores / N threads (``BAKER_THREADS``: the ray threads and Embree's
+build threads), takes the largest inputs first, and loads every numba kernel from the on-disk cache, which the
+parent fills once when it is cold (a stamp in the cache folder records that it is warm).
 """
 from __future__ import annotations
 
@@ -348,8 +352,42 @@ def worker_threads(jobs: int) -> int:
 
 
 def _init_worker(threads: int) -> None:
+    # read by the thickness ray threads, Embree's device (its TBB build threads) and numba (not imported yet here)
     os.environ["BAKER_THREADS"] = str(threads)
     os.environ["NUMBA_NUM_THREADS"] = str(threads)
+
+
+def warm_stamp(bakes) -> Path:
+    """A file whose presence says :func:`warm_kernels` ran for ``bakes`` since any baker source last changed.
+
+    numba keys each cached kernel on its source file's path, mtime and size, so the stamp is keyed the same way
+    (every ``baker/**/*.py``), plus the versions. It sits in numba's cache folder (``NUMBA_CACHE_DIR``, which
+    :mod:`baker` sets to the user cache), so clearing the cache clears the stamp too."""
+    import platform
+    from importlib.metadata import version  # not `import numba`: the parent would pay numba's import for a string
+
+    package = Path(__file__).resolve().parents[1]
+    cache = Path(os.environ.get("NUMBA_CACHE_DIR") or package / "__pycache__")
+    digest = hashlib.sha256(json.dumps([__version__, sys.version, version("numba"), platform.machine(), str(package),
+                                        sorted(bakes)]).encode())
+    for source in sorted(package.rglob("*.py")):
+        stat = source.stat()
+        digest.update(f"{source.relative_to(package)}:{stat.st_mtime_ns}:{stat.st_size};".encode())
+    return cache / f"baker-warm-{digest.hexdigest()[:24]}.stamp"
+
+
+def warm_kernels_once(bakes) -> None:
+    """:func:`warm_kernels`, skipped when a previous run already filled numba's cache for these sources: with a warm
+    cache the parent would only spend ~2 s of serial imports and cache loads the workers then repeat anyway."""
+    stamp = warm_stamp(bakes)
+    if stamp.is_file():
+        return
+    warm_kernels(bakes)
+    try:
+        stamp.parent.mkdir(parents=True, exist_ok=True)
+        stamp.touch()
+    except OSError:  # a read-only install: warm again next time (correct, only slower)
+        pass
 
 
 def warm_kernels(bakes) -> None:
@@ -390,7 +428,10 @@ def _execute(payloads: list, jobs: int, scheduler: str | None, fail_fast: bool):
 
         bakes = sorted({b for p in payloads if p["kind"] == "bake" for b in p["bakes"]})
         if bakes:
-            warm_kernels(bakes)
+            warm_kernels_once(bakes)
+        # largest inputs first (LPT scheduling): a big asset started last would leave the other workers idle at the
+        # end; results are written by content, so the order changes nothing in the outputs or the lock
+        payloads = sorted(payloads, key=lambda p: -sum(len(data) for data in p["files"].values()))
         # spawn: Embree, numba and OpenImageIO hold threads and state that fork would copy half-way
         with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
                                  initializer=_init_worker, initargs=(worker_threads(jobs),)) as pool:

@@ -19,6 +19,7 @@ import os
 
 import numba
 import numpy as np
+from llvmlite import binding as llvm_binding
 
 MISS = np.float32(1e37)  # tfar is left at its initial value when nothing is hit
 _INVALID_ID = 0xFFFFFFFF
@@ -26,6 +27,7 @@ _RTC_GEOMETRY_TYPE_TRIANGLE = 0
 _RTC_BUFFER_TYPE_INDEX, _RTC_BUFFER_TYPE_VERTEX = 0, 1
 _RTC_FORMAT_UINT3, _RTC_FORMAT_FLOAT3 = 0x5003, 0x9003
 _RTC_BUILD_QUALITY_HIGH = 2
+_INTERSECT1_SYMBOL = "rtcIntersect1"
 
 
 def _load_library():
@@ -67,9 +69,17 @@ if AVAILABLE:
     ]:
         fn = getattr(_lib, name)
         fn.restype, fn.argtypes = restype, argtypes
-    _intersect1 = _lib.rtcIntersect1
-else:  # pragma: no cover - only without the embreex wheel's library
-    _intersect1 = None
+    # Compiled code calls rtcIntersect1 by *name*, resolved through LLVM's symbol table, rather than through a ctypes
+    # function whose address numba would bake into the machine code: code holding an address cannot go to numba's
+    # on-disk cache (the address changes every process), so every process, and every `baker build --jobs` worker,
+    # used to re-JIT the thickness kernel (~1.5 s). With the symbol registered before any cached code is linked,
+    # ``cache=True`` works for every kernel that calls :func:`trace_one`.
+    llvm_binding.add_symbol(_INTERSECT1_SYMBOL, ctypes.cast(_lib.rtcIntersect1, ctypes.c_void_p).value)
+
+# rtcIntersect1(RTCScene, RTCRayHit*, RTCIntersectArguments*): pointers passed as intp (the same register on the
+# 64-bit ABIs Embree supports), so callers pass the scene handle and ``array.ctypes.data`` unchanged
+_intersect1 = numba.types.ExternalFunction(
+    _INTERSECT1_SYMBOL, numba.types.void(numba.types.intp, numba.types.intp, numba.types.intp))
 
 
 class DirectScene:
@@ -78,7 +88,9 @@ class DirectScene:
     def __init__(self, vertices: np.ndarray, faces: np.ndarray):
         if not AVAILABLE:
             raise RuntimeError("Embree library not found")
-        self._device = _lib.rtcNewDevice(None)
+        # BAKER_THREADS (set per `baker build --jobs` worker) also caps Embree's own (TBB) build threads
+        threads = int(os.environ.get("BAKER_THREADS", 0) or 0)
+        self._device = _lib.rtcNewDevice(f"threads={threads}".encode() if threads > 0 else None)
         if not self._device:
             raise RuntimeError("rtcNewDevice failed")
         self.pointer = _lib.rtcNewScene(self._device)
@@ -121,7 +133,7 @@ def new_rayhit() -> np.ndarray:
     return raw[offset: offset + 32]
 
 
-@numba.njit(nogil=True, inline="always")
+@numba.njit(cache=True, nogil=True, inline="always")
 def trace_one(scene, rayhit, ox, oy, oz, dx, dy, dz):
     """First-hit distance of one ray (``MISS`` when nothing is hit)."""
     f = rayhit.view(np.float32)
@@ -138,7 +150,7 @@ def trace_one(scene, rayhit, ox, oy, oz, dx, dy, dz):
     return f[8]
 
 
-@numba.njit(nogil=True)
+@numba.njit(cache=True, nogil=True)
 def _trace(scene, origins, directions, out, rayhit):
     for r in range(origins.shape[0]):
         out[r] = trace_one(scene, rayhit, origins[r, 0], origins[r, 1], origins[r, 2],

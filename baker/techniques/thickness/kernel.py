@@ -150,7 +150,7 @@ def _direction(u0, u1, cosine, sin_max, cos_max):
     return st * np.cos(phi), st * np.sin(phi), ct
 
 
-@numba.njit(nogil=True)
+@numba.njit(cache=True, nogil=True)  # cacheable: Embree is called by symbol name (baker.geometry.embree)
 def _thickness_direct(scene, points, axes, sampler, samples, shifts, seeds, cosine, sin_max, cos_max, bias,
                       max_distance, out):
     """Generate, trace and average each point's rays in one GIL-free loop (Embree called directly)."""
