@@ -636,9 +636,10 @@ def principal_curvatures(vertices: np.ndarray, faces: np.ndarray, *, rings: int 
         raise ValueError(f"fit must be 'cubic' or 'quadric', not {fit!r}")
     if n:
         chunks = max(1, min(64, n // 256))
-        # one visit stamp per thread, reused by every chunk it runs (vertex ids are unique, so stale marks never
-        # match); int32 ids: 2^31 vertices would not fit in memory anyway
-        stamps = np.full((numba.get_num_threads(), n), -1, np.int32)
+        # one visit stamp per thread of the pool (numba.get_thread_id() < NUMBA_NUM_THREADS), reused by every chunk
+        # it runs (vertex ids are unique, so stale marks never match); int32 ids: 2^31 vertices would not fit in
+        # memory anyway
+        stamps = np.full((numba.config.NUMBA_NUM_THREADS, n), -1, np.int32)
         if fit == "cubic" and jet_normals:
             refined = normals.copy()
             _jet_normals(vertices, normals, indptr, indices, max(2, int(rings)), float(radius or 0.0),
