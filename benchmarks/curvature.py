@@ -10,6 +10,9 @@ skin LUT generation time.
   stand-in for scan noise (the truth is the smooth torus's H at the unjittered vertex). pymeshlab's value is its per-vertex quality with curvcolormethod = mean; MeshLab's "Principal Component
   Analysis" and "Normal Cycles" report other scales (not H) and are left out. baker runs with its defaults
   (adjacent-normal cubic fit, 2 rings, 2 smoothing passes), and its quadric fit for comparison.
+- end to end (``--end-to-end``, default on): ``baker bake MESH --bakes curvature`` (process start to GLB written)
+  against pymeshlab loading the same file and computing per-vertex principal curvatures in a fresh process
+  (``benchmarks/scale.py``'s peer), with peak RSS per triangle;
 - LUT: Penner's 256 x 256 diffusion LUT (d'Eon skin, 256 samples per Gaussian and row) and the 128 x 128 penumbra LUT.
 """
 from __future__ import annotations
@@ -64,6 +67,8 @@ def main(argv=None) -> int:
     ap.add_argument("--mesh", default=str(DEFAULT_MESH))
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--skip-slow", action="store_true", help="leave out Scale Dependent Quadric Fitting (~20 s)")
+    ap.add_argument("--end-to-end", action=argparse.BooleanOptionalAction, default=True,
+                    help="also time the CLI on --mesh against pymeshlab in a fresh process")
     args = ap.parse_args(argv)
     if not Path(args.mesh).is_file():
         print(f"mesh not found: {args.mesh}", file=sys.stderr)
@@ -107,6 +112,15 @@ def main(argv=None) -> int:
     for name, tb, tt, med, p95, noisy_med in rows:
         print(f"| {name} | {tb:.3f} | {tb / base_t:.2f}x | {tt:.3f} | {med * 100:.3f}% | {p95 * 100:.3f}% | "
               f"{med / base_e:.2f}x | {noisy_med * 100:.2f}% | {noisy_med / base_noisy:.1f}x |")
+
+    if args.end_to_end:
+        from scale import end_to_end, end_to_end_row
+
+        row = end_to_end("curvature", Path(args.mesh))
+        print()
+        print("| end to end | baker vs peer | baker / peer time | peak RSS | bytes / triangle | baker / peer RSS |")
+        print("|---|---:|---:|---:|---:|---:|")
+        print(end_to_end_row(row, len(faces), "pymeshlab load + compute_curvature_principal_directions_per_vertex"))
 
     t_lut, (lut, _) = best_of(args.repeat, lambda: skin_lut.diffusion_lut(256, 256))
     t_pen, _ = best_of(args.repeat, lambda: skin_lut.penumbra_lut(128))

@@ -8,7 +8,10 @@ Rows (best of --repeat, wall clock, numba kernels compiled before timing):
   ``face_adjacency_angles`` (which computes the face normals): the pairs of faces sharing an edge and their angles;
 - baker core: ``weld_positions`` + ``edge_topology`` + ``classify_edges`` (unique edges with all their faces,
   boundary/non-manifold/winding, signed dihedral angles, crease/ridge/valley/planar flags);
-- baker full: ``analyze_mesh`` (the core plus material edges, quad diagonals and angle-weighted outline normals).
+- baker full: ``analyze_mesh`` (the core plus material edges, quad diagonals and angle-weighted outline normals);
+- end to end (``--end-to-end``, default on): the same mesh written as binary PLY, then the command a user runs,
+  ``baker bake mesh.ply --bakes edges`` (process start to GLB written), against a process that loads the PLY with
+  trimesh and computes the two properties above (``benchmarks/scale.py``'s peer), with peak RSS per triangle.
 Baker also welds the positions, which trimesh is spared (the subdivided mesh is already welded).
 """
 from __future__ import annotations
@@ -35,6 +38,8 @@ def main(argv=None) -> int:
     ap.add_argument("--mesh", default=str(DEFAULT_MESH))
     ap.add_argument("--subdivide", type=int, default=2)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--end-to-end", action=argparse.BooleanOptionalAction, default=True,
+                    help="also time the CLI on the mesh written as PLY against trimesh in a fresh process")
     args = ap.parse_args(argv)
     if not Path(args.mesh).is_file():
         print(f"mesh not found: {args.mesh}", file=sys.stderr)
@@ -74,6 +79,19 @@ def main(argv=None) -> int:
                                                                                 t_core),
                     ("baker analyze_mesh (+ material, quads, outline normals)", t_full)):
         print(f"| {name} | {t:.3f} | {len(faces) / t / 1e6:.2f} | {t_tm / t:.2f}x |")
+    if args.end_to_end:
+        import tempfile
+
+        from scale import end_to_end, end_to_end_row
+
+        with tempfile.TemporaryDirectory() as folder:
+            ply = Path(folder) / "mesh.ply"
+            mesh.export(ply)
+            row = end_to_end("edges", ply)
+        print()
+        print("| end to end | baker vs peer | baker / peer time | peak RSS | bytes / triangle | baker / peer RSS |")
+        print("|---|---:|---:|---:|---:|---:|")
+        print(end_to_end_row(row, len(faces), "trimesh load + face_adjacency + face_adjacency_angles"))
     print()
     print(f"baker core vs trimesh: {t_tm / t_core:.2f}x faster (goal >= 2x)")
     print(f"interior edges: baker {int(interior.sum())}, trimesh adjacency pairs {len(adjacency)}; "

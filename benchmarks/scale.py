@@ -154,5 +154,38 @@ def print_table(rows: list) -> None:
             print(f"| {r['triangles']:,} | {r['rays']:,} | {cli:.2f} | {kernel:.2f} | {cli / kernel:.0%} |")
 
 
+def _spawned(argv: list, env: dict) -> dict:
+    """:func:`run` from a small spawner process: a child forked from a big parent (a kernel benchmark holding its
+    mesh) reports the parent's RSS at fork as its own peak (Linux keeps the pre-exec high-water mark)."""
+    code = ("import json, sys; sys.path.insert(0, sys.argv[1]); from scale import run; "
+            "print(json.dumps(run(json.loads(sys.argv[2]), None)))")
+    out = run([sys.executable, "-c", code, str(Path(__file__).resolve().parent), json.dumps([str(a) for a in argv])],
+              env)
+    return json.loads(out["stdout"].strip().splitlines()[-1])
+
+
+def end_to_end(bake: str, mesh: Path, rays: int = 16) -> dict:
+    """``baker bake --bakes BAKE`` on ``mesh`` (process start to file written) and then its peer of ``PEERS``, as
+    fresh processes back to back: wall times and peak RSS (bytes), for the end-to-end row of a kernel benchmark."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    with tempfile.TemporaryDirectory() as folder:
+        cli = [sys.executable, "-m", "baker.cli", "bake", mesh, "-o", Path(folder) / "out.glb", "-q", "--bakes", bake,
+               "--thickness-rays", str(rays)] + (["--thickness-per-texel", "false"] if bake == "thickness" else [])
+        baker = _spawned(cli, env)
+    peer = _spawned([sys.executable, "-c", PEERS[bake], mesh] + ([str(rays)] if bake == "thickness" else []), env)
+    return {"command": f"baker bake {Path(mesh).name} --bakes {bake}", "baker_wall": baker["wall"],
+            "baker_peak": baker["peak"], "peer_wall": peer["wall"], "peer_peak": peer["peak"]}
+
+
+def end_to_end_row(row: dict, triangles: int, peer: str) -> str:
+    """A markdown table row of an :func:`end_to_end` result (columns: what, time, baker / peer time, peak RSS,
+    bytes per triangle, baker / peer RSS)."""
+    return (f"| end to end: `{row['command']}` vs {peer} (fresh processes) | {row['baker_wall']:.2f} s vs "
+            f"{row['peer_wall']:.2f} s | {row['baker_wall'] / row['peer_wall']:.2f}x | "
+            f"{row['baker_peak'] / 1e6:.0f} MB vs {row['peer_peak'] / 1e6:.0f} MB | "
+            f"{row['baker_peak'] / triangles:.0f} vs {row['peer_peak'] / triangles:.0f} | "
+            f"{row['baker_peak'] / row['peer_peak']:.2f}x |")
+
+
 if __name__ == "__main__":
     sys.exit(main())

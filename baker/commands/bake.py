@@ -46,6 +46,7 @@ def run(args) -> int:
     progress = Progress(enabled=False if args.quiet else None)
     asset = bake(args.input, bakes=names, options=options, seed=args.seed, progress=progress,
                  allow_outside=args.allow_outside, max_memory=max_memory)
+    asset.cache.clear()  # decoded and welded geometry is done with: free it before the file is assembled
     save(asset, args.output)
     if not args.quiet:
         print(f"baked {', '.join(names)} -> {args.output}", file=sys.stderr)

@@ -87,15 +87,15 @@ class EdgeTopology:
         return self.face_count > 2
 
 
-@numba.njit(cache=True, nogil=True)
-def _build_edges(faces, n_vertices):
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _build_edges(faces, n_vertices, lo, hi):
+    """Counting sort of the half-edges by (lo, hi). ``lo``/``hi`` are (3F,) scratch arrays (int32 when the vertex
+    ids fit). The parallel loops write disjoint index ranges (a face's half-edges, a vertex's bucket), so the
+    result does not depend on the thread count."""
     n_faces = faces.shape[0]
     n_half = 3 * n_faces
-    lo = np.empty(n_half, np.int64)
-    hi = np.empty(n_half, np.int64)
     forward = np.empty(n_half, np.bool_)
-    count = np.zeros(n_vertices + 1, np.int64)
-    for f in range(n_faces):
+    for f in numba.prange(n_faces):
         for k in range(3):
             a = faces[f, k]
             b = faces[f, (k + 1) % 3]
@@ -104,7 +104,9 @@ def _build_edges(faces, n_vertices):
                 lo[h], hi[h], forward[h] = a, b, True
             else:
                 lo[h], hi[h], forward[h] = b, a, False
-            count[lo[h] + 1] += 1
+    count = np.zeros(n_vertices + 1, np.int64)
+    for h in range(n_half):
+        count[lo[h] + 1] += 1
     for v in range(n_vertices):
         count[v + 1] += count[v]
     fill = count[:n_vertices].copy()
@@ -112,7 +114,9 @@ def _build_edges(faces, n_vertices):
     for h in range(n_half):  # counting sort by lo; increasing h inside each bucket
         bucket[fill[lo[h]]] = h
         fill[lo[h]] += 1
-    for v in range(n_vertices):  # stable insertion sort by hi inside each (small) bucket
+    # per bucket (disjoint ranges): stable insertion sort by hi (buckets are small), then its number of edges
+    unique = fill  # reused: edges per bucket
+    for v in numba.prange(n_vertices):
         s, e = count[v], count[v + 1]
         for i in range(s + 1, e):
             h = bucket[i]
@@ -122,21 +126,29 @@ def _build_edges(faces, n_vertices):
                 bucket[j + 1] = bucket[j]
                 j -= 1
             bucket[j + 1] = h
-    n_edges = 0
-    for i in range(n_half):
-        if i == 0 or lo[bucket[i]] != lo[bucket[i - 1]] or hi[bucket[i]] != hi[bucket[i - 1]]:
-            n_edges += 1
+        u = 0
+        for i in range(s, e):
+            if i == s or hi[bucket[i]] != hi[bucket[i - 1]]:
+                u += 1
+        unique[v] = u
+    first_edge = np.empty(n_vertices + 1, np.int64)
+    first_edge[0] = 0
+    for v in range(n_vertices):
+        first_edge[v + 1] = first_edge[v] + unique[v]
+    n_edges = first_edge[n_vertices]
     edges = np.empty((n_edges, 2), np.int64)
     edge_start = np.empty(n_edges + 1, np.int64)
     edge_of_half = np.empty(n_half, np.int64)
-    e = -1
-    for i in range(n_half):
-        h = bucket[i]
-        if i == 0 or lo[h] != lo[bucket[i - 1]] or hi[h] != hi[bucket[i - 1]]:
-            e += 1
-            edges[e, 0], edges[e, 1] = lo[h], hi[h]
-            edge_start[e] = i
-        edge_of_half[h] = e
+    for v in numba.prange(n_vertices):
+        e = first_edge[v] - 1
+        s, t = count[v], count[v + 1]
+        for i in range(s, t):
+            h = bucket[i]
+            if i == s or hi[h] != hi[bucket[i - 1]]:
+                e += 1
+                edges[e, 0], edges[e, 1] = lo[h], hi[h]
+                edge_start[e] = i
+            edge_of_half[h] = e
     edge_start[n_edges] = n_half
     return edges, bucket, edge_start, edge_of_half, forward
 
@@ -146,7 +158,9 @@ def edge_topology(faces: np.ndarray, n_vertices: int | None = None) -> EdgeTopol
     faces = np.ascontiguousarray(faces, np.int64)
     if n_vertices is None:
         n_vertices = int(faces.max()) + 1 if len(faces) else 0
-    edges, halfedges, start, edge_of_half, forward = _build_edges(faces, int(n_vertices))
+    index = np.int32 if n_vertices < 2**31 else np.int64
+    lo, hi = np.empty(3 * len(faces), index), np.empty(3 * len(faces), index)
+    edges, halfedges, start, edge_of_half, forward = _build_edges(faces, int(n_vertices), lo, hi)
     return EdgeTopology(edges, halfedges, start, edge_of_half, forward)
 
 
@@ -161,38 +175,66 @@ def face_normals(positions: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, 
 
 
 
-@numba.njit(cache=True, nogil=True)
-def _angle_weighted(positions, faces, out):
-    for f in range(faces.shape[0]):
-        p0, p1, p2 = faces[f, 0], faces[f, 1], faces[f, 2]
-        ux, uy, uz = positions[p1, 0] - positions[p0, 0], positions[p1, 1] - positions[p0, 1], positions[p1, 2] - positions[p0, 2]
-        vx, vy, vz = positions[p2, 0] - positions[p0, 0], positions[p2, 1] - positions[p0, 1], positions[p2, 2] - positions[p0, 2]
-        nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
-        length = math.sqrt(nx * nx + ny * ny + nz * nz)
-        if length == 0.0:
-            continue
-        nx, ny, nz = nx / length, ny / length, nz / length
-        for k in range(3):
-            a, b, c = faces[f, k], faces[f, (k + 1) % 3], faces[f, (k + 2) % 3]
-            ex, ey, ez = positions[b, 0] - positions[a, 0], positions[b, 1] - positions[a, 1], positions[b, 2] - positions[a, 2]
-            gx, gy, gz = positions[c, 0] - positions[a, 0], positions[c, 1] - positions[a, 1], positions[c, 2] - positions[a, 2]
-            cx, cy, cz = ey * gz - ez * gy, ez * gx - ex * gz, ex * gy - ey * gx
-            w = math.atan2(math.sqrt(cx * cx + cy * cy + cz * cz), ex * gx + ey * gy + ez * gz)
-            out[a, 0] += w * nx
-            out[a, 1] += w * ny
-            out[a, 2] += w * nz
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _angle_weighted(positions, faces, chunks, out):
+    """Sum of angle-weighted face normals per vertex. Chunk c owns the vertices [c n / chunks, (c + 1) n / chunks)
+    and adds only their corners, visiting faces in order, so every vertex's sum is accumulated in face order, the
+    same bits for any number of chunks (threads)."""
+    n = out.shape[0]
+    step = (n + chunks - 1) // chunks
+    for c in numba.prange(chunks):
+        v_lo, v_hi = c * step, min(n, (c + 1) * step)
+        for f in range(faces.shape[0]):
+            p0, p1, p2 = faces[f, 0], faces[f, 1], faces[f, 2]
+            if not ((v_lo <= p0 < v_hi) or (v_lo <= p1 < v_hi) or (v_lo <= p2 < v_hi)):
+                continue
+            ux, uy, uz = positions[p1, 0] - positions[p0, 0], positions[p1, 1] - positions[p0, 1], positions[p1, 2] - positions[p0, 2]
+            vx, vy, vz = positions[p2, 0] - positions[p0, 0], positions[p2, 1] - positions[p0, 1], positions[p2, 2] - positions[p0, 2]
+            nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+            length = math.sqrt(nx * nx + ny * ny + nz * nz)
+            if length == 0.0:
+                continue
+            nx, ny, nz = nx / length, ny / length, nz / length
+            for k in range(3):
+                a, b, c3 = faces[f, k], faces[f, (k + 1) % 3], faces[f, (k + 2) % 3]
+                if a < v_lo or a >= v_hi:
+                    continue
+                ex, ey, ez = positions[b, 0] - positions[a, 0], positions[b, 1] - positions[a, 1], positions[b, 2] - positions[a, 2]
+                gx, gy, gz = positions[c3, 0] - positions[a, 0], positions[c3, 1] - positions[a, 1], positions[c3, 2] - positions[a, 2]
+                cx, cy, cz = ey * gz - ez * gy, ez * gx - ex * gz, ex * gy - ey * gx
+                w = math.atan2(math.sqrt(cx * cx + cy * cy + cz * cz), ex * gx + ey * gy + ez * gz)
+                out[a, 0] += w * nx
+                out[a, 1] += w * ny
+                out[a, 2] += w * nz
 
 
-def outline_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _unit_rows(sums, rows, out):
+    """out[i] = sums[rows[i]] / |sums[rows[i]]| (+Z when zero): the operations of ``x / np.linalg.norm(x)``."""
+    for i in numba.prange(rows.shape[0]):
+        r = rows[i]
+        x, y, z = sums[r, 0], sums[r, 1], sums[r, 2]
+        length = math.sqrt(x * x + y * y + z * z)
+        if length > 1e-30:
+            out[i, 0], out[i, 1], out[i, 2] = x / length, y / length, z / length
+        else:
+            out[i, 0], out[i, 1], out[i, 2] = 0.0, 0.0, 1.0
+
+
+def outline_normals(positions: np.ndarray, faces: np.ndarray, rows: np.ndarray | None = None) -> np.ndarray:
     """One unit normal per (welded) vertex: face normals weighted by the face's angle at the vertex.
 
     Angle weights (Thürmer & Wüthrich 1998) do not depend on how a polygon was triangulated, so a cube corner gets
     exactly (±1, ±1, ±1)/sqrt(3) whichever way its faces were split. Vertices of degenerate faces only get +Z.
+    ``rows``: return the normals of these vertices (e.g. welded id of every input vertex) instead of all.
     """
-    out = np.zeros((len(positions), 3))
-    _angle_weighted(np.ascontiguousarray(positions, np.float64), np.ascontiguousarray(faces, np.int64), out)
-    length = np.linalg.norm(out, axis=1, keepdims=True)
-    return np.where(length > 1e-30, out / np.maximum(length, 1e-30), np.array([0.0, 0.0, 1.0]))
+    sums = np.zeros((len(positions), 3))
+    _angle_weighted(np.ascontiguousarray(positions, np.float64), np.ascontiguousarray(faces, np.int64),
+                    max(1, min(numba.get_num_threads(), len(positions))), sums)
+    rows = np.arange(len(positions)) if rows is None else np.ascontiguousarray(rows, np.int64)
+    out = np.empty((len(rows), 3))
+    _unit_rows(sums, rows, out)
+    return out
 
 
 # ----------------------------------------------------------------------------------------------------------- classes
@@ -203,61 +245,70 @@ class EdgeClasses:
     inconsistent_edges: int  # manifold edges whose two faces traverse them in the same direction
 
 
-@numba.njit(cache=True, nogil=True)
-def _classify(positions, faces, halfedges, edge_start, forward, crease_cos, planar_cos, flags, angle):
-    """Fused per-edge pass: face normals of the two faces, signed dihedral angle, the geometric flags."""
-    n_edges = edge_start.shape[0] - 1
+@numba.njit(cache=True, nogil=True, inline="always")
+def _classify_edge(e, positions, faces, halfedges, edge_start, forward, crease_cos, planar_cos, flags, angle):
+    """Edge e: face normals of its two faces, signed dihedral angle, the geometric flags; 1 if its two faces
+    traverse it in the same direction."""
+    s = edge_start[e]
+    count = edge_start[e + 1] - s
+    if count == 1:
+        flags[e] = BOUNDARY
+        angle[e] = 0.0
+        return 0
+    if count > 2:
+        flags[e] = NON_MANIFOLD
+        angle[e] = 0.0
+        return 0
+    h0, h1 = halfedges[s], halfedges[s + 1]
+    f0, f1 = h0 // 3, h1 // 3
+    k0, k1 = h0 % 3, h1 % 3
+    a, b, c = faces[f0, k0], faces[f0, (k0 + 1) % 3], faces[f0, (k0 + 2) % 3]
+    d = faces[f1, (k1 + 2) % 3]
+    ax, ay, az = positions[a, 0], positions[a, 1], positions[a, 2]
+    ux, uy, uz = positions[b, 0] - ax, positions[b, 1] - ay, positions[b, 2] - az
+    vx, vy, vz = positions[c, 0] - ax, positions[c, 1] - ay, positions[c, 2] - az
+    n0x, n0y, n0z = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    p = faces[f1, 0]
+    q = faces[f1, 1]
+    r = faces[f1, 2]
+    px, py, pz = positions[p, 0], positions[p, 1], positions[p, 2]
+    ux, uy, uz = positions[q, 0] - px, positions[q, 1] - py, positions[q, 2] - pz
+    vx, vy, vz = positions[r, 0] - px, positions[r, 1] - py, positions[r, 2] - pz
+    n1x, n1y, n1z = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    l0 = math.sqrt(n0x * n0x + n0y * n0y + n0z * n0z)
+    l1 = math.sqrt(n1x * n1x + n1y * n1y + n1z * n1z)
+    f = 0
     inconsistent = 0
-    for e in range(n_edges):
-        s = edge_start[e]
-        count = edge_start[e + 1] - s
-        if count == 1:
-            flags[e] = BOUNDARY
-            angle[e] = 0.0
-            continue
-        if count > 2:
-            flags[e] = NON_MANIFOLD
-            angle[e] = 0.0
-            continue
-        h0, h1 = halfedges[s], halfedges[s + 1]
-        f0, f1 = h0 // 3, h1 // 3
-        k0, k1 = h0 % 3, h1 % 3
-        a, b, c = faces[f0, k0], faces[f0, (k0 + 1) % 3], faces[f0, (k0 + 2) % 3]
-        d = faces[f1, (k1 + 2) % 3]
-        ax, ay, az = positions[a, 0], positions[a, 1], positions[a, 2]
-        ux, uy, uz = positions[b, 0] - ax, positions[b, 1] - ay, positions[b, 2] - az
-        vx, vy, vz = positions[c, 0] - ax, positions[c, 1] - ay, positions[c, 2] - az
-        n0x, n0y, n0z = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
-        p = faces[f1, 0]
-        q = faces[f1, 1]
-        r = faces[f1, 2]
-        px, py, pz = positions[p, 0], positions[p, 1], positions[p, 2]
-        ux, uy, uz = positions[q, 0] - px, positions[q, 1] - py, positions[q, 2] - pz
-        vx, vy, vz = positions[r, 0] - px, positions[r, 1] - py, positions[r, 2] - pz
-        n1x, n1y, n1z = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
-        l0 = math.sqrt(n0x * n0x + n0y * n0y + n0z * n0z)
-        l1 = math.sqrt(n1x * n1x + n1y * n1y + n1z * n1z)
-        f = 0
-        if forward[h0] == forward[h1]:
-            f |= INCONSISTENT_WINDING
-            inconsistent += 1
-        if l0 == 0.0 or l1 == 0.0:  # a degenerate face has no normal: treat its edges as planar
-            flags[e] = f | PLANAR
-            angle[e] = 0.0
-            continue
-        dot = (n0x * n1x + n0y * n1y + n0z * n1z) / (l0 * l1)
-        cx, cy, cz = n0y * n1z - n0z * n1y, n0z * n1x - n0x * n1z, n0x * n1y - n0y * n1x
-        sin = math.sqrt(cx * cx + cy * cy + cz * cz) / (l0 * l1)
-        theta = math.atan2(sin, dot)
-        # convex when the far vertex d of face 1 lies below the plane of face 0
-        side = (n0x * (positions[d, 0] - ax) + n0y * (positions[d, 1] - ay) + n0z * (positions[d, 2] - az))
-        convex = side <= 0.0
-        angle[e] = theta if convex else -theta
-        if dot < crease_cos:
-            f |= CREASE | (RIDGE if convex else VALLEY)
-        elif dot > planar_cos or theta == 0.0:
-            f |= PLANAR
-        flags[e] = f
+    if forward[h0] == forward[h1]:
+        f |= INCONSISTENT_WINDING
+        inconsistent = 1
+    if l0 == 0.0 or l1 == 0.0:  # a degenerate face has no normal: treat its edges as planar
+        flags[e] = f | PLANAR
+        angle[e] = 0.0
+        return inconsistent
+    dot = (n0x * n1x + n0y * n1y + n0z * n1z) / (l0 * l1)
+    cx, cy, cz = n0y * n1z - n0z * n1y, n0z * n1x - n0x * n1z, n0x * n1y - n0y * n1x
+    sin = math.sqrt(cx * cx + cy * cy + cz * cz) / (l0 * l1)
+    theta = math.atan2(sin, dot)
+    # convex when the far vertex d of face 1 lies below the plane of face 0
+    side = (n0x * (positions[d, 0] - ax) + n0y * (positions[d, 1] - ay) + n0z * (positions[d, 2] - az))
+    convex = side <= 0.0
+    angle[e] = theta if convex else -theta
+    if dot < crease_cos:
+        f |= CREASE | (RIDGE if convex else VALLEY)
+    elif dot > planar_cos or theta == 0.0:
+        f |= PLANAR
+    flags[e] = f
+    return inconsistent
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _classify(positions, faces, halfedges, edge_start, forward, crease_cos, planar_cos, flags, angle):
+    """Per-edge pass (each edge writes only its own entries; the count is an integer sum)."""
+    inconsistent = 0
+    for e in numba.prange(edge_start.shape[0] - 1):
+        inconsistent += _classify_edge(e, positions, faces, halfedges, edge_start, forward, crease_cos, planar_cos,
+                                       flags, angle)
     return inconsistent
 
 
@@ -277,10 +328,10 @@ def classify_edges(positions: np.ndarray, faces: np.ndarray, topology: EdgeTopol
     return EdgeClasses(flags, angle, int(inconsistent))
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, parallel=True)
 def _seams(faces_welded, edges, halfedges, edge_start, corner_values, tolerance, flag, out):
     """One pass over the manifold edges: ``flag`` where the two faces' corner values differ at either end."""
-    for e in range(edges.shape[0]):
+    for e in numba.prange(edges.shape[0]):
         if edge_start[e + 1] - edge_start[e] != 2:
             continue
         h0, h1 = halfedges[edge_start[e]], halfedges[edge_start[e] + 1]
@@ -310,14 +361,19 @@ def seam_flags(faces_welded: np.ndarray, topology: EdgeTopology, corner_values: 
     return out
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
+def _material_edge(e, halfedges, edge_start, face_group):
+    g = face_group[halfedges[edge_start[e]] // 3]
+    for i in range(edge_start[e] + 1, edge_start[e + 1]):
+        if face_group[halfedges[i] // 3] != g:
+            return MATERIAL
+    return 0
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
 def _material(halfedges, edge_start, face_group, out):
-    for e in range(edge_start.shape[0] - 1):
-        g = face_group[halfedges[edge_start[e]] // 3]
-        for i in range(edge_start[e] + 1, edge_start[e + 1]):
-            if face_group[halfedges[i] // 3] != g:
-                out[e] = MATERIAL
-                break
+    for e in numba.prange(edge_start.shape[0] - 1):
+        out[e] = _material_edge(e, halfedges, edge_start, face_group)
 
 
 def material_flags(topology: EdgeTopology, face_group: np.ndarray) -> np.ndarray:
@@ -350,19 +406,40 @@ def _side(positions, faces, h):
     return math.sqrt(ab), math.sqrt(max(bc, ca)), math.acos(min(1.0, max(-1.0, cos_c)))
 
 
-@numba.njit(cache=True, nogil=True)
-def _quads(positions, faces, halfedges, edge_start, flags, angle, max_angle, min_opposite, out):
+@numba.njit(cache=True, nogil=True, inline="always")
+def _quad_edge(e, positions, faces, halfedges, edge_start, flags, angle, max_angle, min_opposite):
+    """QUAD_DIAGONAL when edge e (with its flags so far) splits a quad, else 0."""
     blocked = CREASE | MATERIAL | BOUNDARY | NON_MANIFOLD
-    for e in range(edge_start.shape[0] - 1):
-        if edge_start[e + 1] - edge_start[e] != 2 or (flags[e] & blocked) != 0 or abs(angle[e]) > max_angle:
-            continue
-        ok = True
-        for i in range(edge_start[e], edge_start[e + 1]):
-            own, others, opposite = _side(positions, faces, halfedges[i])
-            if not (own > others * (1.0 + 1e-6) and opposite >= min_opposite):
-                ok = False
-        if ok:
-            out[e] = QUAD_DIAGONAL
+    if edge_start[e + 1] - edge_start[e] != 2 or (flags[e] & blocked) != 0 or abs(angle[e]) > max_angle:
+        return 0
+    ok = True
+    for i in range(edge_start[e], edge_start[e + 1]):
+        own, others, opposite = _side(positions, faces, halfedges[i])
+        if not (own > others * (1.0 + 1e-6) and opposite >= min_opposite):
+            ok = False
+    return QUAD_DIAGONAL if ok else 0
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _quads(positions, faces, halfedges, edge_start, flags, angle, max_angle, min_opposite, out):
+    for e in numba.prange(edge_start.shape[0] - 1):
+        out[e] = _quad_edge(e, positions, faces, halfedges, edge_start, flags, angle, max_angle, min_opposite)
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _classify_all(positions, faces, halfedges, edge_start, forward, crease_cos, planar_cos, face_group, max_angle,
+                  min_opposite, flags, angle):
+    """:func:`classify_edges`, :func:`material_flags` (when ``face_group`` is not empty) and
+    :func:`quad_diagonal_flags` fused into one parallel pass over the edges (each writes only its own entries)."""
+    inconsistent = 0
+    grouped = face_group.shape[0] > 0
+    for e in numba.prange(edge_start.shape[0] - 1):
+        inconsistent += _classify_edge(e, positions, faces, halfedges, edge_start, forward, crease_cos, planar_cos,
+                                       flags, angle)
+        if grouped:
+            flags[e] |= _material_edge(e, halfedges, edge_start, face_group)
+        flags[e] |= _quad_edge(e, positions, faces, halfedges, edge_start, flags, angle, max_angle, min_opposite)
+    return inconsistent
 
 
 def quad_diagonal_flags(positions: np.ndarray, faces: np.ndarray, topology: EdgeTopology, flags: np.ndarray,
@@ -429,17 +506,24 @@ def analyze_mesh(positions: np.ndarray, faces: np.ndarray, *, face_group: np.nda
         weld_positions(positions, 0.0)
     faces_welded = inverse[faces]
     topology = edge_topology(faces_welded, len(welded))
-    classes = classify_edges(welded, faces_welded, topology, crease_angle=options.crease_angle,
-                             planar_angle=options.planar_angle)
-    flags = classes.flags
+    # classes, material and quad-diagonal flags in one pass (the same bits as the three functions one after another)
+    flags = np.zeros(len(topology.edges), np.uint16)
+    angle = np.zeros(len(topology.edges), np.float64)
+    group = np.zeros(0, np.int64)
     if face_group is not None:
-        flags |= material_flags(topology, np.asarray(face_group))
+        group = np.ascontiguousarray(face_group, np.int64)
+        if not len(group) or group.min() == group.max():
+            group = np.zeros(0, np.int64)
+    inconsistent = _classify_all(welded, faces_welded, topology.halfedges, topology.edge_start, topology.forward,
+                                 math.cos(math.radians(options.crease_angle)),
+                                 math.cos(math.radians(options.planar_angle)), group, math.radians(options.quad_angle),
+                                 QUAD_MIN_OPPOSITE_ANGLE, flags, angle)
+    classes = EdgeClasses(flags, angle, int(inconsistent))
     if corner_uv is not None:
         flags |= seam_flags(faces_welded, topology, corner_uv, UV_SEAM, 1e-6)
     if corner_normals is not None:
         flags |= seam_flags(faces_welded, topology, corner_normals, NORMAL_SEAM, 1e-4)
-    flags |= quad_diagonal_flags(welded, faces_welded, topology, flags, classes.angle, options.quad_angle)
-    normals = outline_normals(welded, faces_welded)[inverse] if len(faces) else np.zeros((len(positions), 3))
+    normals = outline_normals(welded, faces_welded, inverse) if len(faces) else np.zeros((len(positions), 3))
     return MeshEdges(welded, inverse, faces, faces_welded, topology, classes, normals)
 
 
@@ -492,57 +576,98 @@ def hard_mask(flags: np.ndarray, hard_uv_seams: bool = False) -> np.ndarray:
     return (flags & hard) != 0
 
 
-@numba.njit(cache=True, nogil=True)
-def _primitive_pass(halfedges, edge_start, edge_of_half, faces, hard, silhouette_ok, f_lo, f_hi, v_lo):
-    """One pass over the half-edges of faces [f_lo, f_hi): visibility codes, silhouette mates, and per edge of the
-    primitive (its first half-edge inside, in triangle order) the vertices v0..v3 and the global far vertex."""
+@numba.njit(cache=True, nogil=True, inline="always")
+def _half_role(h, halfedges, edge_start, edge_of_half, flags, hard_bits, h_lo, h_hi):
+    """Half-edge h of the primitive's range: (visibility code, is the edge's first half-edge inside the range)."""
+    e = edge_of_half[h]
+    s, t = edge_start[e], edge_start[e + 1]
+    first = halfedges[s]
+    inside_first = h
+    for i in range(s, t):  # groups are sorted by h: the first entry inside the range
+        if halfedges[i] >= h_lo and halfedges[i] < h_hi:
+            inside_first = halfedges[i]
+            break
+    is_rep = inside_first == h
+    code = 0
+    if (flags[e] & hard_bits) != 0:
+        code = VIS_HARD if is_rep else VIS_REPEATED_HARD
+    elif t - s == 2 and (flags[e] & PLANAR) == 0 and h == first:  # a silhouette candidate
+        second = halfedges[s + 1]
+        if first >= h_lo and first < h_hi and second >= h_lo and second < h_hi:
+            code = VIS_SILHOUETTE
+    return code, is_rep
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _primitive_pass(halfedges, edge_start, edge_of_half, faces, flags, angle, hard_bits, hide_bits, f_lo, f_hi, v_lo,
+                    chunks):
+    """The half-edges of faces [f_lo, f_hi): visibility codes, silhouette mates, the wireframe mask, and per edge of
+    the primitive (its first half-edge inside, in triangle order) v0, v1, v2, v3, the global far vertex, flags and
+    angle. Chunks of faces count their edges and mates first and then write them at their prefix offsets, so the
+    order is triangle order for any number of threads."""
     h_lo, h_hi = 3 * f_lo, 3 * f_hi
-    n_half = h_hi - h_lo
-    codes = np.zeros(n_half, np.uint8)
-    mates = np.empty(n_half, np.int64)
-    rep = np.empty(n_half, np.int64)
-    n_mates = 0
-    n_rep = 0
-    for h in range(h_lo, h_hi):
-        e = edge_of_half[h]
-        s, t = edge_start[e], edge_start[e + 1]
-        first = halfedges[s]
-        inside_first = h
-        for i in range(s, t):  # groups are sorted by h: the first entry inside the range
-            if halfedges[i] >= h_lo and halfedges[i] < h_hi:
-                inside_first = halfedges[i]
-                break
-        is_rep = inside_first == h
-        if is_rep:
-            rep[n_rep] = h
-            n_rep += 1
-        if hard[e]:
-            codes[h - h_lo] = VIS_HARD if is_rep else VIS_REPEATED_HARD
-        elif silhouette_ok[e] and h == first:
-            second = halfedges[s + 1]
-            if first >= h_lo and first < h_hi and second >= h_lo and second < h_hi:
-                codes[h - h_lo] = VIS_SILHOUETTE
-                mates[n_mates] = faces[second // 3, (second % 3 + 2) % 3] - v_lo
-                n_mates += 1
-    rep = rep[:n_rep]
-    corners = np.empty((n_rep, 4), np.int64)  # v0, v1, v2 (local), v3 (local or -1)
+    n_faces = f_hi - f_lo
+    codes = np.zeros(3 * n_faces, np.uint8)
+    wire = np.zeros(n_faces, np.uint8)
+    step = (n_faces + chunks - 1) // chunks
+    rep_count = np.zeros(chunks + 1, np.int64)
+    mate_count = np.zeros(chunks + 1, np.int64)
+    for c in numba.prange(chunks):
+        n_rep = 0
+        n_mate = 0
+        for f in range(f_lo + c * step, min(f_hi, f_lo + (c + 1) * step)):
+            bits = 0
+            for k in range(3):
+                h = 3 * f + k
+                code, is_rep = _half_role(h, halfedges, edge_start, edge_of_half, flags, hard_bits, h_lo, h_hi)
+                codes[h - h_lo] = code
+                n_rep += 1 if is_rep else 0
+                n_mate += 1 if code == VIS_SILHOUETTE else 0
+                fl = flags[edge_of_half[h]]
+                if (fl & hide_bits) == 0 or (fl & hard_bits) != 0:
+                    bits |= 1 << k
+            wire[f - f_lo] = bits
+        rep_count[c + 1] = n_rep
+        mate_count[c + 1] = n_mate
+    for c in range(chunks):
+        rep_count[c + 1] += rep_count[c]
+        mate_count[c + 1] += mate_count[c]
+    n_rep = rep_count[chunks]
+    mates = np.empty(mate_count[chunks], np.int64)
+    edges = np.empty((n_rep, 2), np.int64)  # v0, v1 (local)
+    opposite = np.empty((n_rep, 2), np.int64)  # v2 (local), v3 (local or -1)
     far = np.empty(n_rep, np.int64)  # the other face's opposite vertex (global), -1 when none
-    for i in range(n_rep):
-        h = rep[i]
-        e = edge_of_half[h]
-        f, k = h // 3, h % 3
-        corners[i, 0] = faces[f, k] - v_lo
-        corners[i, 1] = faces[f, (k + 1) % 3] - v_lo
-        corners[i, 2] = faces[f, (k + 2) % 3] - v_lo
-        s, t = edge_start[e], edge_start[e + 1]
-        far[i] = -1
-        corners[i, 3] = -1
-        if t - s == 2:
-            other = halfedges[s + 1] if halfedges[s] == h else halfedges[s]
-            far[i] = faces[other // 3, (other % 3 + 2) % 3]
-            if other >= h_lo and other < h_hi:
-                corners[i, 3] = far[i] - v_lo
-    return codes, mates[:n_mates], rep, corners, far
+    rep_flags = np.empty(n_rep, np.uint16)
+    rep_angle = np.empty(n_rep, np.float32)
+    for c in numba.prange(chunks):
+        i = rep_count[c]
+        m = mate_count[c]
+        for f in range(f_lo + c * step, min(f_hi, f_lo + (c + 1) * step)):
+            for k in range(3):
+                h = 3 * f + k
+                code, is_rep = _half_role(h, halfedges, edge_start, edge_of_half, flags, hard_bits, h_lo, h_hi)
+                e = edge_of_half[h]
+                s, t = edge_start[e], edge_start[e + 1]
+                if code == VIS_SILHOUETTE:
+                    second = halfedges[s + 1]
+                    mates[m] = faces[second // 3, (second % 3 + 2) % 3] - v_lo
+                    m += 1
+                if not is_rep:
+                    continue
+                edges[i, 0] = faces[f, k] - v_lo
+                edges[i, 1] = faces[f, (k + 1) % 3] - v_lo
+                opposite[i, 0] = faces[f, (k + 2) % 3] - v_lo
+                far[i] = -1
+                opposite[i, 1] = -1
+                if t - s == 2:
+                    other = halfedges[s + 1] if halfedges[s] == h else halfedges[s]
+                    far[i] = faces[other // 3, (other % 3 + 2) % 3]
+                    if other >= h_lo and other < h_hi:
+                        opposite[i, 1] = far[i] - v_lo
+                rep_flags[i] = flags[e]
+                rep_angle[i] = angle[e]
+                i += 1
+    return codes, mates, edges, opposite, far, rep_flags, rep_angle, wire
 
 
 def primitive_edges(mesh: MeshEdges, face_range: tuple[int, int], vertex_range: tuple[int, int],
@@ -552,20 +677,19 @@ def primitive_edges(mesh: MeshEdges, face_range: tuple[int, int], vertex_range: 
     f_lo, f_hi = face_range
     v_lo, v_hi = vertex_range
     topo = mesh.topology
-    flags = mesh.flags
-    hard = hard_mask(flags, options.hard_uv_seams)
-    silhouette_ok = (topo.face_count == 2) & ~hard & ((flags & PLANAR) == 0)
-    codes, mates, rep, corners, far = _primitive_pass(
-        topo.halfedges, topo.edge_start, topo.edge_of_halfedge, np.ascontiguousarray(mesh.faces, np.int64), hard,
-        silhouette_ok, int(f_lo), int(f_hi), int(v_lo))
-    rep_edge = topo.edge_of_halfedge[rep]
-    edges = np.ascontiguousarray(corners[:, :2])
-    opposite = np.ascontiguousarray(corners[:, 2:])
+    hard_bits = BOUNDARY | NON_MANIFOLD | CREASE | MATERIAL | (UV_SEAM if options.hard_uv_seams else 0)  # hard_mask
+    # wireframe mask (Baerentzen et al.): hide quad diagonals or every planar edge
+    hide_bits = {"quad-diagonals": QUAD_DIAGONAL, "planar": PLANAR | QUAD_DIAGONAL}.get(options.wireframe, 0)
+    chunks = max(1, min(4 * numba.get_num_threads(), (int(f_hi) - int(f_lo)) // 4096))
+    codes, mates, edges, opposite, far, rep_flags, rep_angle, wire = _primitive_pass(
+        topo.halfedges, topo.edge_start, topo.edge_of_halfedge, np.ascontiguousarray(mesh.faces, np.int64),
+        mesh.flags, np.ascontiguousarray(mesh.angle, np.float64), hard_bits, hide_bits, int(f_lo), int(f_hi),
+        int(v_lo), chunks)
 
     fin_corners = None
     if fins:  # positions; a missing far face is replaced by v2 mirrored across the edge (a flat fold)
         to_welded = mesh.vertex_to_welded
-        p0, p1, p2 = (mesh.welded[to_welded[corners[:, c] + v_lo]] for c in range(3))
+        p0, p1, p2 = (mesh.welded[to_welded[corner + v_lo]] for corner in (edges[:, 0], edges[:, 1], opposite[:, 0]))
         axis = p1 - p0
         t = np.einsum("ij,ij->i", p2 - p0, axis) / np.maximum(np.einsum("ij,ij->i", axis, axis), 1e-300)
         foot = p0 + axis * t[:, None]
@@ -573,12 +697,5 @@ def primitive_edges(mesh: MeshEdges, face_range: tuple[int, int], vertex_range: 
         p3 = np.where(has_other[:, None], mesh.welded[to_welded[np.where(has_other, far, 0)]], 2.0 * foot - p2)
         fin_corners = np.stack([p0, p1, p2, p3], axis=1)
 
-    # ---- wireframe mask (Baerentzen et al.): hide quad diagonals or every planar edge
-    edge = topo.edge_of_halfedge[3 * f_lo: 3 * f_hi]
-    hide_bits = {"quad-diagonals": QUAD_DIAGONAL, "planar": PLANAR | QUAD_DIAGONAL}.get(options.wireframe, 0)
-    drawn = ((flags[edge] & hide_bits) == 0) | hard[edge]
-    wire = (drawn.reshape(-1, 3) * np.array([1, 2, 4], np.uint8)).sum(axis=1, dtype=np.uint8)
-
-    return PrimitiveEdges(codes.reshape(-1, 3), mates, edges, opposite, flags[rep_edge],
-                          mesh.angle[rep_edge].astype(np.float32), wire, fin_corners,
+    return PrimitiveEdges(codes.reshape(-1, 3), mates, edges, opposite, rep_flags, rep_angle, wire, fin_corners,
                           mesh.outline_normals[v_lo:v_hi])

@@ -321,10 +321,13 @@ class GltfDocument:
         if suffix not in (".glb", ".gltf"):
             raise BakerError(path, "output must end in .glb or .gltf")
         gltf = copy.deepcopy(self.json)
-        binary = bytearray(self.bin)
+        binary = self.bin  # copied only when images are appended (a big mesh's buffer is most of the memory)
         side_files: dict[str, bytes] = {}
 
         def append_view(data: bytes) -> int:
+            nonlocal binary
+            if binary is self.bin:
+                binary = bytearray(self.bin)
             binary.extend(b"\0" * (_align(len(binary)) - len(binary)))
             gltf.setdefault("bufferViews", []).append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(data)})
             binary.extend(data)
@@ -367,11 +370,15 @@ class GltfDocument:
         if suffix == ".glb":
             text = json.dumps(gltf, separators=(",", ":"), ensure_ascii=False).encode("utf-8")
             text += b" " * (_align(len(text)) - len(text))
-            chunks = struct.pack("<II", len(text), CHUNK_JSON) + text
+            # assembled in one preallocated buffer: one copy of the binary chunk, not four
+            bin_length = _align(len(binary)) if binary else 0
+            total = 12 + 8 + len(text) + (8 + bin_length if binary else 0)
+            blob = bytearray(total)
+            struct.pack_into("<IIIII", blob, 0, GLB_MAGIC, 2, total, len(text), CHUNK_JSON)
+            blob[20: 20 + len(text)] = text
             if binary:
-                pad = bytes(binary) + b"\0" * (_align(len(binary)) - len(binary))
-                chunks += struct.pack("<II", len(pad), CHUNK_BIN) + pad
-            blob = struct.pack("<III", GLB_MAGIC, 2, 12 + len(chunks)) + chunks
+                struct.pack_into("<II", blob, 20 + len(text), bin_length, CHUNK_BIN)
+                blob[28 + len(text): 28 + len(text) + len(binary)] = binary  # the padding stays zero
         else:
             blob = (json.dumps(gltf, indent=2, ensure_ascii=False) + "\n").encode("utf-8")
 

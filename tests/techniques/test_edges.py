@@ -434,3 +434,62 @@ def test_schema_accepts_what_the_writer_writes_and_the_readme_example(cube):
         assert not list(validator.iter_errors(prim["extensions"]["BAKER_edges"]))
     assert list(validator.iter_errors({"finsOf": 0, "creaseAngle": 1.0}))  # a fin primitive carries only finsOf
     assert list(validator.iter_errors({"creaseAngle": 1.0}))  # a source primitive needs its settings
+
+
+def test_parallel_passes_match_the_separate_definitions_at_any_thread_count():
+    """analyze_mesh fuses classification, material and quad-diagonal flags into one parallel pass and splits the
+    outline normals and the per-primitive pass over threads: the same edges and bits as the separate functions and
+    a serial numpy reference, and byte-identical arrays with 1 thread and with all."""
+    import numba
+
+    sphere = trimesh.creation.icosphere(6)  # 81,920 faces: enough for several chunks per thread
+    box = trimesh.creation.box().subdivide().subdivide()  # quads split in two: quad diagonals
+    mesh = trimesh.util.concatenate([sphere, box])
+    v, f = np.asarray(mesh.vertices, np.float64), np.asarray(mesh.faces, np.int64)
+    group = (np.arange(len(f)) // 7) % 3  # material edges inside both shells
+    welded, inverse = E.weld(v, 1e-6)
+    fw = inverse[f]
+    # topology against numpy: unique sorted vertex pairs, and every half-edge maps to its pair
+    topo = E.edge_topology(fw, len(welded))
+    pairs = np.sort(np.stack([fw, np.roll(fw, -1, axis=1)], axis=2).reshape(-1, 2), axis=1)
+    assert np.array_equal(topo.edges, np.unique(pairs, axis=0))
+    assert np.array_equal(topo.edges[topo.edge_of_halfedge], pairs)
+    # outline normals against a serial numpy sum (np.add.at adds in face order)
+    a, b, c = (welded[fw[:, k]] for k in range(3))
+    n = np.cross(b - a, c - a)
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    ref = np.zeros_like(welded)
+    for k in range(3):
+        p, q, r = (welded[fw[:, (k + j) % 3]] for j in range(3))
+        e, g = q - p, r - p
+        w = np.arctan2(np.linalg.norm(np.cross(e, g), axis=1), np.einsum("ij,ij->i", e, g))
+        np.add.at(ref, fw[:, k], w[:, None] * n)
+    ref /= np.linalg.norm(ref, axis=1, keepdims=True)
+
+    def run():
+        m = E.analyze_mesh(v, f, face_group=group)
+        return m, [E.primitive_edges(m, r, (0, len(v))) for r in ((0, len(f)), (1000, len(f) - 5000))]
+
+    settings = E.EdgeSettings()
+    threads = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        serial, serial_prims = run()
+    finally:
+        numba.set_num_threads(threads)
+    mesh_edges, prims = run()
+    classes = E.classify_edges(welded, fw, topo, crease_angle=settings.crease_angle,
+                               planar_angle=settings.planar_angle)
+    separate = classes.flags | E.material_flags(topo, group)
+    separate |= E.quad_diagonal_flags(welded, fw, topo, separate, classes.angle, settings.quad_angle)
+    assert np.array_equal(mesh_edges.flags, separate) and np.array_equal(mesh_edges.angle, classes.angle)
+    assert np.count_nonzero(separate & E.QUAD_DIAGONAL) > 0 and np.count_nonzero(separate & E.MATERIAL) > 0
+    assert np.allclose(mesh_edges.outline_normals, ref[inverse], atol=1e-12)
+    assert np.array_equal(mesh_edges.flags, serial.flags)
+    assert mesh_edges.outline_normals.tobytes() == serial.outline_normals.tobytes()
+    for mine, theirs in zip(prims, serial_prims):
+        for name in ("visibility_codes", "silhouette_mates", "edges", "opposite", "flags", "angle", "wireframe_mask"):
+            assert getattr(mine, name).tobytes() == getattr(theirs, name).tobytes(), name
+    # the sub-range's edges are those its faces draw, each once
+    sub = prims[1]
+    assert len(sub.edges) == len(np.unique(np.sort(inverse[sub.edges + 0], axis=1), axis=0))

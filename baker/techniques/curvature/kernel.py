@@ -62,34 +62,97 @@ class CurvatureResult:
 
 
 # ---------------------------------------------------------------------------------------------------- topology
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _adjacency(n, faces, slots):
+    """CSR of the edge graph by a counting sort: every face edge (a != b) goes into the buckets of both ends
+    (``slots``, 6F int32 scratch), then each bucket (a disjoint range, so in parallel) is sorted and de-duplicated."""
+    start = np.zeros(n + 1, np.int64)
+    for f in range(faces.shape[0]):
+        for k in range(3):
+            a, b = faces[f, k], faces[f, (k + 1) % 3]
+            if a != b:
+                start[a + 1] += 1
+                start[b + 1] += 1
+    for v in range(n):
+        start[v + 1] += start[v]
+    fill = start[:n].copy()
+    for f in range(faces.shape[0]):
+        for k in range(3):
+            a, b = faces[f, k], faces[f, (k + 1) % 3]
+            if a != b:
+                slots[fill[a]] = b
+                fill[a] += 1
+                slots[fill[b]] = a
+                fill[b] += 1
+    unique = fill  # reused: distinct neighbours per vertex
+    for v in numba.prange(n):
+        s, e = start[v], start[v + 1]
+        for i in range(s + 1, e):  # insertion sort (a bucket holds about 12 entries)
+            key = slots[i]
+            j = i - 1
+            while j >= s and slots[j] > key:
+                slots[j + 1] = slots[j]
+                j -= 1
+            slots[j + 1] = key
+        u = s
+        for i in range(s, e):
+            if i == s or slots[i] != slots[i - 1]:
+                slots[u] = slots[i]
+                u += 1
+        unique[v] = u - s
+    indptr = np.zeros(n + 1, np.int64)
+    for v in range(n):
+        indptr[v + 1] = indptr[v] + unique[v]
+    indices = np.empty(indptr[n], np.int64)
+    for v in numba.prange(n):
+        for i in range(unique[v]):
+            indices[indptr[v] + i] = slots[start[v] + i]
+    return indptr, indices
+
+
 def vertex_adjacency(n: int, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """CSR adjacency of the edge graph: neighbours of v are ``indices[indptr[v]:indptr[v + 1]]`` (sorted)."""
-    faces = np.asarray(faces, np.int64)
-    a = np.concatenate([faces[:, 0], faces[:, 1], faces[:, 2], faces[:, 1], faces[:, 2], faces[:, 0]])
-    b = np.concatenate([faces[:, 1], faces[:, 2], faces[:, 0], faces[:, 0], faces[:, 1], faces[:, 2]])
-    keep = a != b
-    key = np.sort(a[keep] * n + b[keep])
-    key = key[np.concatenate([[True], key[1:] != key[:-1]])] if len(key) else key
-    src, dst = key // n, key % n
-    indptr = np.zeros(n + 1, np.int64)
-    np.cumsum(np.bincount(src, minlength=n), out=indptr[1:])
-    return indptr, dst.astype(np.int64)
+    faces = np.ascontiguousarray(faces, np.int64)
+    slots = np.empty(6 * len(faces), np.int32 if n < 2**31 else np.int64)
+    return _adjacency(int(n), faces, slots)
+
+
+@numba.njit(cache=True, nogil=True)
+def _face_sums(vertices, faces, normals, areas):
+    """Per vertex, in corner order (the order ``np.bincount`` adds in, so the same bits): the sum of the incident
+    faces' cross products (area-weighted normal) and a third of their areas."""
+    for f in range(faces.shape[0]):
+        i0, i1, i2 = faces[f, 0], faces[f, 1], faces[f, 2]
+        ax, ay, az = vertices[i1, 0] - vertices[i0, 0], vertices[i1, 1] - vertices[i0, 1], vertices[i1, 2] - vertices[i0, 2]
+        bx, by, bz = vertices[i2, 0] - vertices[i0, 0], vertices[i2, 1] - vertices[i0, 1], vertices[i2, 2] - vertices[i0, 2]
+        cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx  # np.cross's operations
+        third = math.sqrt(cx * cx + cy * cy + cz * cz) / 6.0
+        for k in range(3):
+            v = faces[f, k]
+            normals[v, 0] += cx
+            normals[v, 1] += cy
+            normals[v, 2] += cz
+            areas[v] += third
+
+
+def face_sums(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(unit area-weighted vertex normals, barycentric vertex areas) in one pass over the faces."""
+    vertices = np.ascontiguousarray(vertices, np.float64)
+    normals = np.zeros((len(vertices), 3))
+    areas = np.zeros(len(vertices))
+    _face_sums(vertices, np.ascontiguousarray(faces, np.int64), normals, areas)
+    length = np.linalg.norm(normals, axis=1, keepdims=True)
+    return np.where(length > 1e-30, normals / np.maximum(length, 1e-30), np.array([0.0, 0.0, 1.0])), areas
 
 
 def area_weighted_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Unit area-weighted vertex normals (as :func:`baker.geometry.normals.vertex_normals`, summed with bincount)."""
-    fn = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
-    flat = faces.reshape(-1)
-    out = np.stack([np.bincount(flat, weights=np.repeat(fn[:, k], 3), minlength=len(vertices)) for k in range(3)], 1)
-    length = np.linalg.norm(out, axis=1, keepdims=True)
-    return np.where(length > 1e-30, out / np.maximum(length, 1e-30), np.array([0.0, 0.0, 1.0]))
+    """Unit area-weighted vertex normals (as :func:`baker.geometry.normals.vertex_normals`)."""
+    return face_sums(vertices, faces)[0]
 
 
 def vertex_areas(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """A third of the area of every incident triangle (barycentric vertex area)."""
-    cross = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
-    third = np.linalg.norm(cross, axis=1) / 6.0
-    return np.bincount(faces.reshape(-1), weights=np.repeat(third, 3), minlength=len(vertices))
+    return face_sums(vertices, faces)[1]
 
 
 # ---------------------------------------------------------------------------------------------------- fitting
@@ -382,11 +445,11 @@ def _jet_normal(v, count, queue, positions, normals, out_normal, ata, atz, row):
 
 
 @numba.njit(cache=True, nogil=True, parallel=True)
-def _jet_normals(positions, normals, indptr, indices, rings, radius, max_neighbours, chunks, out_normal):
+def _jet_normals(positions, normals, indptr, indices, rings, radius, max_neighbours, chunks, stamps, out_normal):
     n = positions.shape[0]
     step = (n + chunks - 1) // chunks
     for c in numba.prange(chunks):
-        stamp = np.full(n, -1, np.int64)
+        stamp = stamps[numba.get_thread_id()]
         queue = np.empty(max_neighbours, np.int64)
         ata = np.empty((10, 10))
         atz = np.empty(10)
@@ -397,12 +460,12 @@ def _jet_normals(positions, normals, indptr, indices, rings, radius, max_neighbo
 
 
 @numba.njit(cache=True, nogil=True, parallel=True)
-def _fit_all(positions, normals, indptr, indices, rings, radius, max_neighbours, chunks, cubic, osculating, out_k,
-             out_dir, out_normal, valid):
+def _fit_all(positions, normals, indptr, indices, rings, radius, max_neighbours, chunks, stamps, cubic, osculating,
+             out_k, out_dir, out_normal, valid):
     n = positions.shape[0]
     step = (n + chunks - 1) // chunks
     for c in numba.prange(chunks):
-        stamp = np.full(n, -1, np.int64)
+        stamp = stamps[numba.get_thread_id()]
         queue = np.empty(max_neighbours, np.int64)
         ata = np.empty((7, 7))
         atz = np.empty(7)
@@ -419,10 +482,21 @@ def _fit_all(positions, normals, indptr, indices, rings, radius, max_neighbours,
 
 
 # ---------------------------------------------------------------------------------------------------- smoothing
-def _tensors(k: np.ndarray, d1: np.ndarray, normal: np.ndarray) -> np.ndarray:
-    d2 = np.cross(normal, d1)
-    return (k[:, 0, None, None] * d1[:, :, None] * d1[:, None, :]
-            + k[:, 1, None, None] * d2[:, :, None] * d2[:, None, :])
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _tensors(k, d1, normal, out):
+    """out[v] = k1 d1 d1^T + k2 d2 d2^T with d2 = normal x d1, with the operations (and so the bits) of the numpy
+    expression ``k1 * d1[:, None] * d1[None, :] + ...``, without its five (n, 3, 3) temporaries."""
+    for v in numba.prange(k.shape[0]):
+        ax, ay, az = normal[v, 0], normal[v, 1], normal[v, 2]
+        bx, by, bz = d1[v, 0], d1[v, 1], d1[v, 2]
+        d2x, d2y, d2z = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx  # np.cross's operations
+        k1, k2 = k[v, 0], k[v, 1]
+        for i in range(3):
+            a1 = k1 * d1[v, i]
+            a2 = k2 * (d2x if i == 0 else (d2y if i == 1 else d2z))
+            out[v, i, 0] = a1 * bx + a2 * d2x
+            out[v, i, 1] = a1 * by + a2 * d2y
+            out[v, i, 2] = a1 * bz + a2 * d2z
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -547,9 +621,12 @@ def principal_curvatures(vertices: np.ndarray, faces: np.ndarray, *, rings: int 
     vertices = np.ascontiguousarray(vertices, np.float64)
     faces = np.ascontiguousarray(faces, np.int64)
     n = len(vertices)
-    if normals is None:
-        normals = area_weighted_normals(vertices, faces) if len(faces) else np.tile([0.0, 0.0, 1.0], (n, 1))
-    normals = np.ascontiguousarray(normals, np.float64)
+    if len(faces):
+        face_normals, areas = face_sums(vertices, faces)
+    else:
+        face_normals, areas = np.tile([0.0, 0.0, 1.0], (n, 1)), np.zeros(n)
+    normals = np.ascontiguousarray(face_normals if normals is None else normals, np.float64)
+    del face_normals
     indptr, indices = vertex_adjacency(n, faces)
     k = np.zeros((n, 2))
     d1 = np.zeros((n, 3))
@@ -559,20 +636,30 @@ def principal_curvatures(vertices: np.ndarray, faces: np.ndarray, *, rings: int 
         raise ValueError(f"fit must be 'cubic' or 'quadric', not {fit!r}")
     if n:
         chunks = max(1, min(64, n // 256))
+        # one visit stamp per thread of the pool (numba.get_thread_id() < NUMBA_NUM_THREADS), reused by every chunk
+        # it runs (vertex ids are unique, so stale marks never match); int32 ids: 2^31 vertices would not fit in
+        # memory anyway
+        stamps = np.full((numba.config.NUMBA_NUM_THREADS, n), -1, np.int32)
         if fit == "cubic" and jet_normals:
             refined = normals.copy()
             _jet_normals(vertices, normals, indptr, indices, max(2, int(rings)), float(radius or 0.0),
-                         int(max_neighbours), chunks, refined)
+                         int(max_neighbours), chunks, stamps, refined)
             normals = refined / np.maximum(np.linalg.norm(refined, axis=1, keepdims=True), 1e-30)
+            del refined
+            stamps.fill(-1)  # the fit visits the same vertex ids again
         _fit_all(vertices, normals, indptr, indices, int(rings), float(radius or 0.0), int(max_neighbours), chunks,
-                 fit == "cubic", bool(osculating), k, d1, fit_normal, valid)
+                 stamps, fit == "cubic", bool(osculating), k, d1, fit_normal, valid)
+        del stamps
     fit_normal /= np.maximum(np.linalg.norm(fit_normal, axis=1, keepdims=True), 1e-30)
     # invalid vertices (too few neighbours) carry no curvature into the smoothing
     k[~valid] = 0.0
     d1 = d1 - fit_normal * np.einsum("ij,ij->i", d1, fit_normal)[:, None]
     d1 /= np.maximum(np.linalg.norm(d1, axis=1, keepdims=True), 1e-30)
-    tensors = _tensors(k, d1, fit_normal)
-    tensors = smooth_tensors(tensors, fit_normal, indptr, indices, vertex_areas(vertices, faces), smoothing)
+    del normals
+    tensors = np.empty((n, 3, 3))
+    _tensors(k, d1, fit_normal, tensors)
+    del k, d1
+    tensors = smooth_tensors(tensors, fit_normal, indptr, indices, areas, smoothing)
     k, d1 = principal_from_tensors(tensors, fit_normal)
     d1[~valid] = 0.0  # umbilics keep an arbitrary but deterministic tangent; isolated vertices none
     return CurvatureResult(mean=0.5 * (k[:, 0] + k[:, 1]), k1=k[:, 0].copy(), k2=k[:, 1].copy(), direction1=d1,

@@ -28,13 +28,18 @@ def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progre
         # welded across UV/normal seams and primitives: one estimate per position, so split copies agree
         mesh = asset.welded(m, prims)
         welded, inverse, offsets, faces = mesh.positions, mesh.inverse, mesh.offsets, mesh.faces
-        faces = faces[(faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])]
+        keep = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
+        if not keep.all():  # a copy only when there are welded-away triangles (F x 24 bytes at scale)
+            faces = faces[keep]
+        del keep
         with progress.task(f"curvature mesh {m}", 1) as advance:
             result = principal_curvatures(welded, faces, rings=options.rings, radius=options.radius,
                                           smoothing=options.smoothing, fit=options.fit)
             advance(1)
-        welded_results[m] = (welded, result.mean)
-        principal = np.stack([result.k1, result.k2], axis=1)
+        del faces
+        if options.per_texel:
+            welded_results[m] = (welded, result.mean)
+        principal = np.stack([result.k1, result.k2], axis=1) if options.directions and options.per_vertex else None
         for i, (p, g) in enumerate(zip(prims, geoms)):
             idx = inverse[offsets[i]: offsets[i + 1]]
             mean = result.mean[idx]
