@@ -14,13 +14,6 @@ Strategies:
   are chosen first, then each minor corner gets the one channel its neighbours do not share, so the short spline
   does not force a two-channel clash onto its long neighbours.
 
-Order (what makes one valid coloring better than another is where same-channel edges of neighbouring splines and
-contours meet): contours are walked in msdfgen's direction of travel (clockwise, against the kernels' filled-on-the-
-left orientation), and the color rotation runs on from one contour to the next instead of restarting, so
-neighbouring contours (the parallel strokes of CJK glyphs) start on different channels. Measured on Noto Serif and
-Noto Sans CJK against msdfgen (benchmarks/RESULTS.md, issue 19 fidelity): restarting every contour on cyan put
-same-channel edges of close strokes side by side, 3-5% more wrong pixels.
-
 Deterministic: the color sequence depends only on the contour order (``seed`` 0 unless asked).
 """
 from __future__ import annotations
@@ -73,7 +66,6 @@ def _length(P, deg):
 def color_edges(points, degree, contour_start, angle_threshold, strategy, seed, colors):
     """Fill ``colors`` (uint8 per segment); contours must already have >= 3 segments when they have one corner."""
     cross_threshold = math.sin(angle_threshold)
-    running = WHITE
     n_max = len(degree)
     corners = np.empty(n_max, np.int64)
     spline_len = np.empty(n_max)
@@ -104,9 +96,8 @@ def color_edges(points, degree, contour_start, angle_threshold, strategy, seed, 
                 colors[s0 + i] = WHITE
         elif count == 1:
             # teardrop: three zones around the single corner (the first and last share one channel each side)
-            zone0, seed = _switch_color(running, seed, BLACK)
+            zone0, seed = _switch_color(WHITE, seed, BLACK)
             zone2, seed = _switch_color(zone0, seed, BLACK)
-            running = zone2
             for i in range(m):
                 k = int(3.0 + 2.875 * i / (m - 1) - 1.4375 + 0.5) - 3 if m > 1 else 0
                 colors[s0 + (corners[0] + i) % m] = zone0 if k < 0 else (WHITE if k == 0 else zone2)
@@ -135,13 +126,12 @@ def color_edges(points, degree, contour_start, angle_threshold, strategy, seed, 
                     else:
                         color = corner_color[i]
             else:
-                color, seed = _switch_color(running, seed, BLACK)
+                color, seed = _switch_color(WHITE, seed, BLACK)
                 initial = color
                 corner_color[0] = color
                 for k in range(1, count):
                     color, seed = _switch_color(color, seed, initial if k == count - 1 else BLACK)
                     corner_color[k] = color
-                running = color
             spline = 0
             color = corner_color[0]
             for i in range(m):
@@ -174,20 +164,6 @@ def edge_colors(points: np.ndarray, degree: np.ndarray, contour_start: np.ndarra
     if strategy not in STRATEGIES:
         raise ValueError(f"unknown edge-coloring strategy {strategy!r} (known: {', '.join(STRATEGIES)})")
     colors = np.full(len(degree), WHITE, np.uint8)
-    if not len(degree):
-        return colors
-    # walk each contour against its direction of travel (see the module docstring): segment k of the walk is
-    # segment start + end - 1 - k of the contour, reversed
-    n = len(degree)
-    contour = np.repeat(np.arange(len(contour_start) - 1), np.diff(contour_start))
-    order = contour_start[:-1][contour] + contour_start[1:][contour] - 1 - np.arange(n)
-    walked = points[order].copy()
-    walked_degree = degree[order]
-    for d in (1, 2, 3):
-        rows = walked_degree == d
-        walked[rows, : d + 1] = walked[rows, d::-1]
-    walked_colors = np.empty(n, np.uint8)
-    color_edges(walked, walked_degree, np.asarray(contour_start, np.int64), float(angle_threshold),
-                STRATEGIES[strategy], int(seed), walked_colors)
-    colors[order] = walked_colors
+    if len(degree):
+        color_edges(points, degree, contour_start, float(angle_threshold), STRATEGIES[strategy], int(seed), colors)
     return colors
