@@ -14,7 +14,7 @@ texels that carry real multi-channel information (channel spread) and are not *p
 their channels take their own median, so the texel-centre value is unchanged and interpolation around it behaves
 like a pseudo-SDF. Texels of the cell around every colored corner are protected: there the true field is rounded
 and the MSDF is right. By default (``passes=1``) protected texels are never changed, as in msdfgen's edge-priority
-mode; a second pass that also flattened them (``passes=2``) rounded more corners than it removed artifacts (3% more
+mode; a second pass that also flattened them (``passes=2``) rounded more corners than it removed artifacts (2% more
 wrong pixels on Noto Sans CJK, benchmarks/RESULTS.md, issue 19 fidelity).
 """
 from __future__ import annotations
