@@ -13,7 +13,9 @@ the true distance says the point is farther than ``tolerance`` pixels from the o
 texels that carry real multi-channel information (channel spread) and are not *protected* become single-channel:
 their channels take their own median, so the texel-centre value is unchanged and interpolation around it behaves
 like a pseudo-SDF. Texels of the cell around every colored corner are protected: there the true field is rounded
-and the MSDF is right.
+and the MSDF is right. By default (``passes=1``) protected texels are never changed, as in msdfgen's edge-priority
+mode; a second pass that also flattened them (``passes=2``) rounded more corners than it removed artifacts (2% more
+wrong pixels on Noto Sans CJK, benchmarks/RESULTS.md, issue 19 fidelity).
 """
 from __future__ import annotations
 
@@ -101,7 +103,7 @@ def _correct_all(values, true, texel_start, box_w, box_h, corners, corner_start,
 
 
 def correct_errors(batch, corners: list, values: np.ndarray, true_values: np.ndarray, distance_range: float,
-                   tolerance: float = TOLERANCE_PX, passes: int = 2) -> None:
+                   tolerance: float = TOLERANCE_PX, passes: int = 1) -> None:
     """Fix interpolation artifacts of the 3 MSDF channels of ``values`` (T, 3) in place (see the module docstring).
 
     ``true_values`` are the normalized true distances (T,); ``corners`` per glyph an (m, 2) array of protected
