@@ -38,6 +38,8 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
+from baker.geometry.normals import vertex_normals
+
 
 
 
@@ -74,15 +76,6 @@ def vertex_adjacency(n: int, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     indptr = np.zeros(n + 1, np.int64)
     np.cumsum(np.bincount(src, minlength=n), out=indptr[1:])
     return indptr, dst.astype(np.int64)
-
-
-def area_weighted_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Unit area-weighted vertex normals (as :func:`baker.geometry.normals.vertex_normals`, summed with bincount)."""
-    fn = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
-    flat = faces.reshape(-1)
-    out = np.stack([np.bincount(flat, weights=np.repeat(fn[:, k], 3), minlength=len(vertices)) for k in range(3)], 1)
-    length = np.linalg.norm(out, axis=1, keepdims=True)
-    return np.where(length > 1e-30, out / np.maximum(length, 1e-30), np.array([0.0, 0.0, 1.0]))
 
 
 def vertex_areas(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -548,7 +541,7 @@ def principal_curvatures(vertices: np.ndarray, faces: np.ndarray, *, rings: int 
     faces = np.ascontiguousarray(faces, np.int64)
     n = len(vertices)
     if normals is None:
-        normals = area_weighted_normals(vertices, faces) if len(faces) else np.tile([0.0, 0.0, 1.0], (n, 1))
+        normals = vertex_normals(vertices, faces)
     normals = np.ascontiguousarray(normals, np.float64)
     indptr, indices = vertex_adjacency(n, faces)
     k = np.zeros((n, 2))
