@@ -1,6 +1,7 @@
 """Thickness error against ray count for each sampler: RMS error of per-vertex thickness against a 4096-ray reference.
 
-    python benchmarks/thickness_sampler.py [--meshes spot,stanford-bunny,torus] [--rays 4,8,16,32,64,128]
+    python benchmarks/thickness_sampler.py [--meshes spot,torus,suzanne] [--rays 4,8,16,32,64,128] [--seeds 2]
+        [--samplers fibonacci,hammersley,sobol,random]
 
 For every held-in mesh (welded, area-weighted vertex normals as the bake uses), the reference is the mean of two
 4096-ray estimates (sobol and hammersley, seed 1000: each sampler's own structure averages out, and at 4096 rays
@@ -57,10 +58,12 @@ def rays_at_error(rays: list, errors: list, target: float) -> float:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--meshes", default="spot,stanford-bunny,torus")
+    ap.add_argument("--meshes", default="spot,torus,suzanne", help="spot, torus or a shared mesh (stanford-bunny, ...)")
     ap.add_argument("--rays", default="4,8,16,32,64,128")
     ap.add_argument("--seeds", type=int, default=2)
+    ap.add_argument("--samplers", default=",".join(SAMPLERS), help="comma-separated samplers to measure")
     args = ap.parse_args(argv)
+    samplers = args.samplers.split(",")
     counts = [int(r) for r in args.rays.split(",")]
     print("RMS error of per-vertex thickness vs a 4096-ray reference, % of the mean thickness "
           f"(RMS over vertices and {args.seeds} seeds)")
@@ -78,14 +81,14 @@ def main(argv=None) -> int:
                                              **common))
         scale = float(reference.mean())
         table = {}
-        for sampler in SAMPLERS:
+        for sampler in dict.fromkeys(samplers + ["random"]):
             table[sampler] = []
             for rays in counts:
                 squared = [np.mean((local_thickness(scene, positions, normals, rays=rays, seed=s, sampler=sampler,
                                                     **common) - reference) ** 2) for s in range(args.seeds)]
                 table[sampler].append(100.0 * math.sqrt(float(np.mean(squared))) / scale)
         target = table["random"][counts.index(64)] if 64 in counts else float("nan")
-        for sampler in SAMPLERS:
+        for sampler in table:
             needed = rays_at_error(counts, table[sampler], target)
             print(f"| {name} | {len(positions):,} | {sampler} | " + " | ".join(f"{e:.2f}" for e in table[sampler])
                   + f" | {needed:.1f} |")

@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numba
 import numpy as np
-from scipy import ndimage
 
 
 @numba.njit(cache=True)
@@ -141,6 +140,8 @@ def dilate(image: np.ndarray, mask: np.ndarray) -> np.ndarray:
     """
     if mask.all() or not mask.any():
         return image
+    from scipy import ndimage  # imported here: scipy is a large share of start-up and only texture bakes dilate
+
     _, (iy, ix) = ndimage.distance_transform_edt(~mask, return_indices=True)
     return image[iy, ix]
 

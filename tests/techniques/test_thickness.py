@@ -9,7 +9,8 @@ import trimesh
 
 import baker
 from baker.geometry.raycast import RayScene
-from baker.techniques.thickness.kernel import SAMPLERS, _make_rays, hemisphere_samples, local_thickness
+from baker.techniques.thickness.kernel import (SAMPLERS, _make_rays, fibonacci_samples, hemisphere_samples,
+                                              local_thickness)
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import decode_image
 from baker.pipeline import save
@@ -69,7 +70,7 @@ def test_misses_count_as_max_distance():
 @pytest.mark.parametrize("distribution", ["cosine", "uniform"])
 def test_ray_directions_follow_their_distribution(distribution, sampler):
     axes = np.array([[0.0, 0.0, -1.0]])
-    samples = hemisphere_samples(4096, 0)
+    samples = fibonacci_samples(4096) if sampler == "fibonacci" else hemisphere_samples(4096, 0)
     origins = np.empty((4096, 3), np.float32)
     d = np.empty((4096, 3), np.float32)
     cos_t = np.empty(4096)

@@ -40,8 +40,6 @@ import numpy as np
 
 
 
-
-
 @dataclass
 class CurvatureResult:
     """Per-vertex curvature of a welded mesh. Curvatures in 1 / mesh units, convex positive."""
@@ -143,11 +141,6 @@ def face_sums(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.n
     _face_sums(vertices, np.ascontiguousarray(faces, np.int64), normals, areas)
     length = np.linalg.norm(normals, axis=1, keepdims=True)
     return np.where(length > 1e-30, normals / np.maximum(length, 1e-30), np.array([0.0, 0.0, 1.0])), areas
-
-
-def area_weighted_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Unit area-weighted vertex normals (as :func:`baker.geometry.normals.vertex_normals`)."""
-    return face_sums(vertices, faces)[0]
 
 
 def vertex_areas(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:

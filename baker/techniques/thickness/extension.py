@@ -18,7 +18,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from baker.gltf.document import GltfDocument
-from baker.gltf.images import encode_image
 from baker.gltf.vertex_attributes import padded
 
 NAME = "BAKER_thickness"
@@ -42,6 +41,8 @@ def encode_thickness_texture(thickness: np.ndarray, bits: int) -> tuple[bytes, f
     scale = (1 << bits) - 1
     quantized = np.clip(np.rint(thickness / factor * scale), 0, scale)
     pixels = quantized.astype(np.uint16 if bits == 16 else np.uint8)
+    from baker.gltf.images import encode_image  # OpenImageIO: loaded only when a texture is written
+
     return encode_image(pixels, ".png"), factor
 
 

@@ -19,10 +19,19 @@ the same integral and only the error differs:
   stratified in every elementary interval) with a per-point Owen scramble, the nested uniform scrambling of Owen
   (1995) computed by a hash as in Burley, "Practical Hash-based Owen Scrambling", JCGT 9(4), 2020. Owen
   scrambling keeps the stratification and makes each point's estimate unbiased and independent of its neighbours'.
-- ``hammersley`` (default): the Hammersley set shared by all points with a random toroidal shift per point
+- ``hammersley``: the Hammersley set shared by all points with a random toroidal shift per point
   (Cranley-Patterson rotation). Measured on spot, the bunny and a torus it is as good as ``sobol`` or slightly
   better at every ray count (both are (0, m, 2)-nets at powers of 2; the shift keeps the first coordinate's
-  1/n strata), so it stays the default.
+  1/n strata).
+- ``fibonacci`` (default): a spherical Fibonacci set (Marques et al., "Spherical Fibonacci Point Sets for
+  Illumination Integrals", CGF 2013; here on the cosine-weighted hemisphere, i.e. Vogel's sunflower spiral on the
+  projected disk): ray k of n sits at the middle of the k-th of n equal-probability elevation bands,
+  u0 = (k + 1/2) / n, at azimuth frac(k / golden ratio), and each point turns the whole set by a random angle about
+  its axis. The elevation strata are exact (no shift: the estimate of a function of elevation alone is the
+  midpoint rule, error O(1/n^2)); the random rotation keeps neighbouring points' errors independent. Measured on
+  spot, suzanne, a torus and the bunny it has a lower error than ``hammersley`` at 8-128 rays (8-18% lower at 64)
+  and matches the error of 64 random rays with 10-15 rays on the first three (a shift in elevation, as
+  ``hammersley`` draws, or Owen scrambling of either net measured worse; see ``benchmarks/RESULTS.md``).
 - ``random``: independent uniform random numbers per ray (plain Monte Carlo), the reference point of the error
   curves in ``benchmarks/thickness_sampler.py``.
 """
@@ -58,7 +67,14 @@ def hemisphere_samples(n: int, seed: int) -> np.ndarray:
 
 
 
-SAMPLERS = ("hammersley", "sobol", "random")
+SAMPLERS = ("hammersley", "sobol", "random", "fibonacci")
+GOLDEN_FRACTION = (math.sqrt(5.0) - 1.0) / 2.0  # 1 / golden ratio: the azimuth step of the Fibonacci set
+
+
+def fibonacci_samples(n: int) -> np.ndarray:
+    """The ``n``-point spherical Fibonacci set in [0, 1)^2: (elevation band midpoint, azimuth fraction) per ray."""
+    k = np.arange(n, dtype=np.float64)
+    return np.stack([(k + 0.5) / n, (k * GOLDEN_FRACTION) % 1.0], axis=1)
 
 
 U = np.uint64  # every integer below is uint64: numba turns a uint64 mixed with an int64 into a float
@@ -121,6 +137,8 @@ def _sample(sampler, samples, shifts, seeds, i, k):
         return (x + 0.5) * 2.0 ** -32, (y + 0.5) * 2.0 ** -32
     if sampler == 0:  # hammersley + Cranley-Patterson shift
         return (samples[k, 0] + shifts[i, 0]) % 1.0, (samples[k, 1] + shifts[i, 1]) % 1.0
+    if sampler == 3:  # fibonacci: exact elevation strata, the azimuths turned by a random angle per point
+        return samples[k, 0], (samples[k, 1] + shifts[i, 1]) % 1.0
     h = _hash32((seeds[i, 0] ^ _hash32(U(k) ^ seeds[i, 1])) & U(0xFFFFFFFF))
     return (h + 0.5) * 2.0 ** -32, (_hash32(h ^ U(0x9E3779B9)) + 0.5) * 2.0 ** -32
 
@@ -204,13 +222,40 @@ def _mean_chords(dist, cos_theta, bias, max_distance, rays, out):
         out[i] = acc / rays
 
 
+@numba.njit(cache=True, nogil=True)
+def _fill_samples(sampler, samples, shifts, seeds, out):
+    for i in range(out.shape[0]):
+        for k in range(out.shape[1]):
+            out[i, k, 0], out[i, k, 1] = _sample(sampler, samples, shifts, seeds, i, k)
+
+
+def _sampler_inputs(sampler: str, rays: int, n: int, seed: int):
+    """(kernel code, pattern shared by all points, per-point shifts, per-point scramble seeds) of ``sampler``."""
+    if sampler not in SAMPLERS:
+        raise ValueError(f"unknown sampler {sampler!r}")
+    samples = fibonacci_samples(rays) if sampler == "fibonacci" else hemisphere_samples(rays, seed)
+    rng = np.random.default_rng(seed)
+    shifts = rng.random((n, 2))  # drawn first for every sampler: hammersley's values do not depend on the others
+    scrambled = sampler in ("sobol", "random")
+    seeds = rng.integers(0, 1 << 32, (n, 2), dtype=np.uint64) if scrambled else np.zeros((n, 2), np.uint64)
+    return SAMPLERS.index(sampler), samples, shifts, seeds
+
+
+def unit_samples(sampler: str, rays: int, count: int, seed: int = 0) -> np.ndarray:
+    """(count, rays, 2) samples in [0, 1)^2 that :func:`local_thickness` maps to the rays of ``count`` points
+    (same ``sampler``, ``rays`` and ``seed``): column 0 picks the elevation, column 1 the azimuth (a turn)."""
+    out = np.empty((count, rays, 2), np.float64)
+    _fill_samples(*_sampler_inputs(sampler, rays, count, seed), out)
+    return out
+
+
 def default_max_distance(vertices: np.ndarray) -> float:
     return float(np.linalg.norm(vertices.max(0) - vertices.min(0))) if len(vertices) else 1.0
 
 
 def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *, rays: int = 64,
                     distribution: str = "cosine", spread: float = 180.0, max_distance: float = 1.0,
-                    bias: float = 1e-5, seed: int = 0, sampler: str = "hammersley", progress=None,
+                    bias: float = 1e-5, seed: int = 0, sampler: str = "fibonacci", progress=None,
                     threads: int | None = None) -> np.ndarray:
     """Mean distance from each point to the first surface hit along rays around ``-normals``.
 
@@ -232,8 +277,8 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
         Rays start ``bias`` inside the surface (along -n) to skip the surface they leave; the offset's share along
         each ray is added back to its distance.
     seed : int
-        Seeds the per-point scramble (sobol), shift (hammersley) or random numbers (random).
-    sampler : {'sobol', 'hammersley', 'random'}
+        Seeds the per-point scramble (sobol), shift (hammersley), rotation (fibonacci) or random numbers (random).
+    sampler : {'fibonacci', 'hammersley', 'sobol', 'random'}
         The sample pattern (see the module docstring).
     progress : callable(int) or None
         Called with the number of points finished after each batch.
@@ -244,17 +289,11 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
     """
     if distribution not in ("cosine", "uniform"):
         raise ValueError(f"unknown distribution {distribution!r}")
-    if sampler not in SAMPLERS:
-        raise ValueError(f"unknown sampler {sampler!r}")
     n = len(points)
+    code, samples, shifts, seeds = _sampler_inputs(sampler, rays, n, seed)
     out = np.empty(n, np.float64)
     if n == 0:
         return out
-    samples = hemisphere_samples(rays, seed)
-    rng = np.random.default_rng(seed)
-    shifts = rng.random((n, 2))  # drawn first for every sampler: hammersley's values do not depend on the others
-    seeds = rng.integers(0, 1 << 32, (n, 2), dtype=np.uint64) if sampler != "hammersley" else np.zeros((n, 2), np.uint64)
-    code = SAMPLERS.index(sampler)
     axes = -normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-30)
     batch = max(1, (1 << 19) // rays)  # ~0.5 M rays per Embree call: large enough to amortize, small for memory
 

@@ -11,9 +11,10 @@ class ThicknessOptions:
     """Options of the local-thickness bake (``--bakes thickness``)."""
 
     rays: int = opt(64, "rays per sample point", min=1)
-    sampler: str = opt("hammersley", "ray sample pattern: hammersley (shared Hammersley set, random shift per point), "
-                                     "sobol (Owen-scrambled Sobol per point) or random (independent rays, plain Monte "
-                                     "Carlo)", choices=("hammersley", "sobol", "random"))
+    sampler: str = opt("fibonacci", "ray sample pattern: fibonacci (spherical Fibonacci set, one ray per elevation band, "
+                                    "random turn per point), hammersley (shared Hammersley set, random shift per point), "
+                                    "sobol (Owen-scrambled Sobol per point) or random (independent rays, plain Monte "
+                                    "Carlo)", choices=("fibonacci", "hammersley", "sobol", "random"))
     distribution: str = opt("cosine", "ray distribution around the inverted normal", choices=("cosine", "uniform"))
     spread: float = opt(180.0, "full cone angle of the rays in degrees (180 = the whole hemisphere)", min=1e-3, max=180.0)
     max_distance: float | None = opt(None, "distance given to rays that miss, and the clamp of hits, in mesh units "
