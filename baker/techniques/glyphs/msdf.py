@@ -22,7 +22,7 @@ import numba
 import numpy as np
 
 from baker.techniques.glyphs.coloring import WHITE
-from baker.techniques.glyphs.correction import correct_errors
+from baker.techniques.glyphs.correction import correct_edge_priority, correct_errors
 from baker.techniques.glyphs.sdf import GlyphBatch, distance_fields
 from baker.techniques.glyphs.options import FIELD_TYPES
 
@@ -63,10 +63,16 @@ def glyph_fields(batch: GlyphBatch, corners: list, field_type: str, distance_ran
     else:
         true, channels = distance_fields(batch, (1, 2, 4))
         _sign_correct(true, channels)
-    values = np.clip(0.5 + channels / distance_range, 0.0, 1.0)
     true_values = np.clip(0.5 + true / distance_range, 0.0, 1.0)
-    if field_type in ("msdf", "mtsdf") and error_correction:
+    if field_type in ("msdf", "mtsdf") and error_correction == "grid":
+        values = np.clip(0.5 + channels / distance_range, 0.0, 1.0)
         correct_errors(batch, corners, values, true_values, distance_range)
+    else:
+        values = 0.5 + channels / distance_range
+        if field_type in ("msdf", "mtsdf") and error_correction:
+            # on the unclamped field, as msdfgen corrects its float output before it is quantized
+            correct_edge_priority(batch, corners, values, distance_range)
+        np.clip(values, 0.0, 1.0, out=values)
     if field_type == "mtsdf":
         values = np.concatenate([values, true_values[:, None]], axis=1)
     return values
