@@ -4,18 +4,21 @@ Between texel centres a renderer interpolates each channel bilinearly and then t
 texels' channels come from different edges (thin stems, edges of one color passing near another contour, the
 inside of overlapping contours) the median of the interpolated channels can cross 0.5 far from any real edge:
 a spurious dent, hole or blob (Chlumsky, Sloup, Šimeček, *Improved Corners with Multi-Channel Signed Distance
-Fields*, Computer Graphics Forum 2018, section 4; msdfgen's distance-checked error correction).
+Fields*, Computer Graphics Forum 2018, section 4).
 
-The check uses the exact distance field the kernel already computed at every texel (``true``), which interpolates
-almost exactly away from corners: for every cell of four texel centres, the median of the interpolated channels is
-compared with the interpolated true distance on a 5 x 5 grid of points. A cell where they disagree in sign while
-the true distance says the point is farther than ``tolerance`` pixels from the outline holds an artifact. Its
-texels that carry real multi-channel information (channel spread) and are not *protected* become single-channel:
-their channels take their own median, so the texel-centre value is unchanged and interpolation around it behaves
-like a pseudo-SDF. Texels of the cell around every colored corner are protected: there the true field is rounded
-and the MSDF is right. By default (``passes=1``) protected texels are never changed, as in msdfgen's edge-priority
-mode; a second pass that also flattened them (``passes=2``) rounded more corners than it removed artifacts (2% more
-wrong pixels on Noto Sans CJK, benchmarks/RESULTS.md, issue 19 fidelity).
+The default, :func:`correct_edge_priority`, is msdfgen's edge-priority error correction reimplemented (the method of
+its ``MSDFErrorCorrection``): texels around colored corners and texels whose non-median channels draw an edge
+between them and a neighbour are *protected*; every texel is then tested against its 8 neighbours at the points
+where two channels cross (where the interpolated median has its extremes, solved exactly: linear along rows and
+columns, quadratic along diagonals); a crossing whose median leaves the range allowed by its distance from the two
+texels (1 px of distance per px, with 1/0.9 slack) is an artifact, and for protected texels only a median that
+inverts the sign of both ends counts. Flagged texels take their median (single-channel there, texel-centre value
+unchanged). msdfgen's optional second stage (``distance_check``: with every texel protected, flag also texels whose
+flattening brings the interpolated median closer to the exact field) is available but off: it cost wrong pixels on
+every font measured (benchmarks/RESULTS.md, issue 19 error correction).
+
+:func:`correct_errors` is the former check (a 5 x 5 grid per cell against the interpolated exact distance), kept for
+comparison in the tests.
 """
 from __future__ import annotations
 
@@ -369,7 +372,7 @@ def correct_errors(batch, corners: list, values: np.ndarray, true_values: np.nda
 
 
 def correct_edge_priority(batch, corners: list, values: np.ndarray, distance_range: float,
-                          distance_check: bool = True) -> None:
+                          distance_check: bool = False) -> None:
     """msdfgen's edge-priority error correction (see the comment above ``PROTECTED``) of the 3 MSDF channels of
     ``values`` (T, 3), normalized but not clamped, in place; ``corners`` per glyph an (m, 2) array of colored corner
     points in box pixel space. ``distance_check`` adds the second stage that compares with the exact field."""
