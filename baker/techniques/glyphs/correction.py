@@ -45,8 +45,8 @@ def _bilinear(v00, v01, v10, v11, u, v):
 
 
 @numba.njit(cache=True)
-def _correct_glyph(values, true, base, w, h, corners, c0, c1, distance_range, tolerance, passes):
-    protected = np.zeros((h, w), np.bool_)
+def _protect_corners(flags, w, h, corners, c0, c1, mark):
+    """Mark (|=) the 4 texels around each corner point ``corners[c0:c1]`` (box pixel space) in row-major ``flags``."""
     for k in range(c0, c1):
         j0 = int(math.floor(corners[k, 0] - 0.5))
         i0 = int(math.floor(corners[k, 1] - 0.5))
@@ -54,7 +54,13 @@ def _correct_glyph(values, true, base, w, h, corners, c0, c1, distance_range, to
             for dj in range(2):
                 i, j = i0 + di, j0 + dj
                 if 0 <= i < h and 0 <= j < w:
-                    protected[i, j] = True
+                    flags[i * w + j] |= mark
+
+
+@numba.njit(cache=True)
+def _correct_glyph(values, true, base, w, h, corners, c0, c1, distance_range, tolerance, passes):
+    protected = np.zeros((h, w), np.bool_)
+    _protect_corners(protected.reshape(-1), w, h, corners, c0, c1, True)
     tol = tolerance / distance_range
     fix = np.zeros((h, w), np.bool_)
     for pass_ in range(passes):
@@ -232,17 +238,14 @@ def _quad_median(a, lin, q, t):
 
 
 @numba.njit(cache=True)
-def _diagonal_artifact(values, a, b, c, d, span, protected, dx, dy, ctx, batch_arrays, scratch, roots):
+def _diagonal_artifact(values, a, b, c, d, span, protected, dx, dy, ctx, batch_arrays, scratch, roots, work):
     """Bilinear interpolation along the diagonal a -> d (b, c the other two texels of the cell): per channel
     a + t (b + c - 2a) + t^2 (a - b - c + d)."""
     am = _median3(values[a, 0], values[a, 1], values[a, 2])
     dm = _median3(values[d, 0], values[d, 1], values[d, 2])
     if abs(am - 0.5) < abs(dm - 0.5):
         return False
-    av = np.empty(3)
-    lin = np.empty(3)
-    q = np.empty(3)
-    tex = np.empty(3)
+    av, lin, q, tex = work[0], work[1], work[2], work[3]
     for ch in range(3):
         av[ch] = values[a, ch]
         lin[ch] = values[b, ch] + values[c, ch] - 2.0 * values[a, ch]
@@ -277,14 +280,7 @@ def _edge_priority_glyph(values, points, degree, colors, seg_start, pieces, piec
                          corners, c0, c1, distance_range, distance_check, g):
     n = w * h
     stencil = np.zeros(n, np.uint8)
-    for k in range(c0, c1):
-        j0 = int(math.floor(corners[k, 0] - 0.5))
-        i0 = int(math.floor(corners[k, 1] - 0.5))
-        for di in range(2):
-            for dj in range(2):
-                i, j = i0 + di, j0 + dj
-                if 0 <= i < h and 0 <= j < w:
-                    stencil[i * w + j] |= PROTECTED
+    _protect_corners(stencil, w, h, corners, c0, c1, PROTECTED)
     unit = 1.0 / distance_range  # a change of 1 px of distance in normalized values
     radius = PROTECTION_RADIUS_TOLERANCE * unit
     sv = values[base:base + n]
@@ -303,6 +299,7 @@ def _edge_priority_glyph(values, points, degree, colors, seg_start, pieces, piec
     dspan = span * math.sqrt(2.0)
     scratch = np.empty(3)
     roots = np.empty(2)
+    work = np.empty((4, 3))  # per-channel terms of the diagonal interpolation, reused
     s0, s1, p0, p1 = seg_start[g], seg_start[g + 1], piece_start[g], piece_start[g + 1]
     for stage in range(2 if distance_check else 1):
         ctx = np.array([float(stage)])
@@ -326,7 +323,7 @@ def _edge_priority_glyph(values, points, degree, colors, seg_start, pieces, piec
                         jj, ii = j + dj, i + di
                         if 0 <= jj < w and 0 <= ii < h and _diagonal_artifact(
                                 sv, t, i * w + jj, ii * w + j, ii * w + jj, dspan, prot, dj, di, ctx, arrays,
-                                scratch, roots):
+                                scratch, roots, work):
                             bad = True
                             break
                 if bad:

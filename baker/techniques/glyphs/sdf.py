@@ -28,7 +28,7 @@ import numba
 import numpy as np
 
 from baker.techniques.glyphs.segments import pseudo_distance, signed_distance
-from baker.techniques.glyphs.shape import crossing_x
+from baker.techniques.glyphs.shape import crossing_x, winding_at
 
 
 @dataclass
@@ -201,16 +201,7 @@ def point_distance(points, degree, colors, s0, s1, pieces, piece_degree, p0, p1,
     2015, section 2.3), or the exact distance where the pseudo-distance's sign disagrees with the nonzero winding
     number (the kernel's sign correction), in pixels, + inside. Brute force over the glyph's segments; for the
     distance check of :mod:`.correction`, which evaluates it at a few points between texel centres."""
-    winding = 0
-    for k in range(p0, p1):
-        P, d = pieces[k], piece_degree[k]
-        a, b = P[0, 1], P[d, 1]
-        if a <= y < b:
-            if crossing_x(P, d, y) > x:
-                winding += 1
-        elif b <= y < a:
-            if crossing_x(P, d, y) > x:
-                winding -= 1
+    winding = winding_at(pieces, piece_degree, p0, p1, x, y)
     best_ad, best_dot, best_idx, best_d, best_t = np.inf, np.inf, s1, 0.0, 0.0
     for s in range(s0, s1):
         if colors[s] == 0:
