@@ -512,10 +512,11 @@ def test_cff_font_with_cubic_outlines(tmp_path):
 CJK = Path("/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc")
 
 
-def test_error_correction_keeps_protected_corners_and_beats_no_correction_on_cjk(monkeypatch):
-    """Noto Sans CJK glyphs with tight inner stroke corners (the ones where baker trailed msdfgen most), 32 px/em: the
-    default error correction (one pass, corner texels protected) leaves fewer wrongly covered pixels against the
-    exact outline than no correction, and fewer than the former second pass that also flattened protected texels."""
+def test_edge_priority_correction_beats_no_correction_and_its_own_stages_on_cjk(monkeypatch):
+    """Noto Sans CJK glyphs with tight inner stroke corners (the ones where baker trailed msdfgen most), 32 px/em,
+    wrongly covered pixels against the exact outline: the default error correction (msdfgen's edge-priority method,
+    corner and edge protection plus the per-neighbour artifact classifier) leaves fewer than no correction, than the
+    same with msdfgen's distance check at edges added, and than the former 5 x 5 grid check."""
     import functools
 
     import baker.techniques.glyphs.correction as correction
@@ -531,7 +532,20 @@ def test_error_correction_keeps_protected_corners_and_beats_no_correction_on_cjk
         return sum(e.wrong for e in atlas_errors(atlas))
 
     default, uncorrected = wrong(), wrong(error_correction=False)
-    monkeypatch.setattr(msdf, "correct_errors", functools.partial(correction.correct_errors, passes=2))
-    flattening_corners = wrong()
+    monkeypatch.setattr(msdf, "correct_edge_priority",
+                        functools.partial(correction.correct_edge_priority, distance_check=True))
+    distance_checked = wrong()
+    monkeypatch.undo()
+
+    def grid(batch, corners, values, distance_range):
+        # the former check on the clamped field, with the exact distances the kernel computed
+        true, _ = msdf.distance_fields(batch)
+        np.clip(values, 0.0, 1.0, out=values)
+        correction.correct_errors(batch, corners, values, np.clip(0.5 + true / distance_range, 0.0, 1.0),
+                                  distance_range)
+
+    monkeypatch.setattr(msdf, "correct_edge_priority", grid)
+    former = wrong()
     assert default < uncorrected, (default, uncorrected)
-    assert default < flattening_corners, (default, flattening_corners)
+    assert default < distance_checked, (default, distance_checked)
+    assert default < former, (default, former)

@@ -11,10 +11,10 @@ the full width of the encoded band (msdf-atlas-gen's ``distanceRange``), so dist
   shader takes the median (Chlumsky 2015, chapter 3), which keeps corners sharp under bilinear magnification.
 - ``mtsdf``: ``msdf`` plus alpha = the true SDF, for soft effects (glow, shadow) that need a true distance.
 
-Two corrections follow (:mod:`.correction`): the **sign correction** makes the median agree at every texel centre
-with the winding-number sign (needed where contours overlap or edges of one color pass close to another contour),
-and the **error correction** finds texels whose bilinear interpolation puts the median's edge in the wrong place and
-makes them single-channel.
+Two corrections follow: the **sign correction** makes the median agree at every texel centre with the winding-number
+sign (needed where contours overlap or edges of one color pass close to another contour), and the **error
+correction** (:func:`.correction.correct_edge_priority`, msdfgen's edge-priority method) finds texels whose bilinear
+interpolation puts the median's edge in the wrong place and makes them single-channel.
 """
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ import numba
 import numpy as np
 
 from baker.techniques.glyphs.coloring import WHITE
-from baker.techniques.glyphs.correction import correct_errors
+from baker.techniques.glyphs.correction import correct_edge_priority
 from baker.techniques.glyphs.sdf import GlyphBatch, distance_fields
 from baker.techniques.glyphs.options import FIELD_TYPES
 
@@ -63,10 +63,12 @@ def glyph_fields(batch: GlyphBatch, corners: list, field_type: str, distance_ran
     else:
         true, channels = distance_fields(batch, (1, 2, 4))
         _sign_correct(true, channels)
-    values = np.clip(0.5 + channels / distance_range, 0.0, 1.0)
     true_values = np.clip(0.5 + true / distance_range, 0.0, 1.0)
+    values = 0.5 + channels / distance_range
     if field_type in ("msdf", "mtsdf") and error_correction:
-        correct_errors(batch, corners, values, true_values, distance_range)
+        # on the unclamped field, as msdfgen corrects its float output before it is quantized
+        correct_edge_priority(batch, corners, values, distance_range)
+    np.clip(values, 0.0, 1.0, out=values)
     if field_type == "mtsdf":
         values = np.concatenate([values, true_values[:, None]], axis=1)
     return values

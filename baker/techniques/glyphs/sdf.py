@@ -28,7 +28,7 @@ import numba
 import numpy as np
 
 from baker.techniques.glyphs.segments import pseudo_distance, signed_distance
-from baker.techniques.glyphs.shape import crossing_x
+from baker.techniques.glyphs.shape import crossing_x, winding_at
 
 
 @dataclass
@@ -193,3 +193,26 @@ def true_distance_field(shape, width: int, height: int) -> np.ndarray:
                        np.array([0, width * height]))
     true, _ = distance_fields(batch)
     return true.reshape(height, width)
+
+
+@numba.njit(cache=True)
+def point_distance(points, degree, colors, s0, s1, pieces, piece_degree, p0, p1, x, y):
+    """The single-channel field at one point (x, y) of a glyph's box: the pseudo-distance of the nearest edge (Chlumsky
+    2015, section 2.3), or the exact distance where the pseudo-distance's sign disagrees with the nonzero winding
+    number (the kernel's sign correction), in pixels, + inside. Brute force over the glyph's segments; for the
+    distance check of :mod:`.correction`, which evaluates it at a few points between texel centres."""
+    winding = winding_at(pieces, piece_degree, p0, p1, x, y)
+    best_ad, best_dot, best_idx, best_d, best_t = np.inf, np.inf, s1, 0.0, 0.0
+    for s in range(s0, s1):
+        if colors[s] == 0:
+            continue
+        d, dot, t = signed_distance(points[s], degree[s], x, y)
+        ad = abs(d)
+        if _better(ad, dot, s, best_ad, best_dot, best_idx):
+            best_ad, best_dot, best_idx, best_d, best_t = ad, dot, s, d, t
+    if best_idx >= s1:
+        return -np.inf if winding == 0 else np.inf
+    pd = pseudo_distance(points[best_idx], degree[best_idx], best_t, best_d, x, y)
+    if (pd > 0.0) != (winding != 0):
+        return best_ad if winding != 0 else -best_ad
+    return pd
