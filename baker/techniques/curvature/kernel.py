@@ -143,11 +143,6 @@ def face_sums(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.n
     return np.where(length > 1e-30, normals / np.maximum(length, 1e-30), np.array([0.0, 0.0, 1.0])), areas
 
 
-def vertex_areas(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """A third of the area of every incident triangle (barycentric vertex area)."""
-    return face_sums(vertices, faces)[1]
-
-
 # ---------------------------------------------------------------------------------------------------- fitting
 @numba.njit(cache=True, nogil=True)
 def _gather(v, indptr, indices, positions, rings, radius, stamp, queue):
