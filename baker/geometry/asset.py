@@ -139,10 +139,14 @@ class Asset:
             from baker.geometry.welding import weld  # numba: not loaded by validate/inspect, which never weld
 
             geoms = [self.primitive(mesh, p) for p in primitives]
-            positions = np.concatenate([g.positions for g in geoms])
+            positions = geoms[0].positions if len(geoms) == 1 else np.concatenate([g.positions for g in geoms])
             welded, inverse = weld(positions)
             offsets = np.cumsum([0] + [len(g.positions) for g in geoms])
-            faces = np.concatenate([inverse[g.faces + offsets[i]] for i, g in enumerate(geoms)])
+            if len(welded) == len(positions):  # nothing merged (a scan, a subdivided mesh): the faces stand as they are
+                faces = geoms[0].faces if len(geoms) == 1 else np.concatenate([g.faces + offsets[i]
+                                                                                for i, g in enumerate(geoms)])
+            else:
+                faces = np.concatenate([inverse[g.faces + offsets[i]] for i, g in enumerate(geoms)])
             self.cache[key] = WeldedMesh(geoms, _read_only(welded), _read_only(inverse), _read_only(offsets),
                                          _read_only(faces))
         return self.cache[key]
@@ -176,8 +180,12 @@ class Asset:
 
     def mesh_triangles(self, mesh: int) -> tuple[np.ndarray, np.ndarray]:
         """All triangles of ``mesh`` (every triangle primitive) as (vertices, faces) in mesh space."""
+        prims = self.triangle_primitives(mesh)
+        if len(prims) == 1:  # the cached (read-only) arrays themselves: no copy of a 4.4M-triangle mesh
+            g = self.primitive(mesh, prims[0])
+            return g.positions, g.faces
         verts, faces, base = [], [], 0
-        for p in self.triangle_primitives(mesh):
+        for p in prims:
             g = self.primitive(mesh, p)
             verts.append(g.positions)
             faces.append(g.faces + base)

@@ -504,7 +504,7 @@ def analyze_mesh(positions: np.ndarray, faces: np.ndarray, *, face_group: np.nda
     # the compiled hash weld (same cells, same numbering as weld_positions, which validation uses without numba)
     welded, inverse = weld(positions, options.weld_tolerance) if options.weld_tolerance > 0 else \
         weld_positions(positions, 0.0)
-    faces_welded = inverse[faces]
+    faces_welded = faces if len(welded) == len(positions) else inverse[faces]  # no merge: inverse is the identity
     topology = edge_topology(faces_welded, len(welded))
     # classes, material and quad-diagonal flags in one pass (the same bits as the three functions one after another)
     flags = np.zeros(len(topology.edges), np.uint16)
