@@ -50,3 +50,22 @@ def test_welded_mesh_of_an_unmerged_mesh_keeps_its_faces(tmp_path):
     assert np.array_equal(mesh.inverse, np.arange(len(g.positions)))
     vertices, faces = asset.mesh_triangles(0)
     assert np.array_equal(vertices, g.positions) and np.array_equal(faces, g.faces)
+
+
+def test_assigning_the_default_material_keeps_the_decoded_primitive(tmp_path):
+    import trimesh
+
+    from baker.geometry.texture_target import material_groups
+
+    path = tmp_path / "sphere.ply"
+    trimesh.creation.icosphere(1).export(path)
+    asset = Asset.load(path)
+    before = asset.primitive(0, 0)
+    asset.welded(0, [0])
+    assert before.material is None
+    groups = material_groups(asset)  # the PLY has no material: a default one is added
+    (material,) = groups
+    after = asset.primitive(0, 0)
+    assert after.material == material and after.positions is before.positions  # moved, not decoded again
+    assert not [k for k in asset.cache if k[0] == "welded"]  # keyed by the old material: welded again on demand
+    assert asset.welded(0, [0]).geometries[0].material == material

@@ -6,7 +6,7 @@ usd-core, then converted to a glTF document, so every bake and writer deals with
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -124,6 +124,19 @@ class Asset:
         read = tuple(sorted((k, v) for k, v in prim.get("attributes", {}).items()
                             if k in ("POSITION", "NORMAL") or k.startswith("TEXCOORD_")))
         return (mesh, primitive, prim.get("mode", MODE_TRIANGLES), prim.get("indices"), prim.get("material"), read)
+
+    def assign_material(self, mesh: int, primitive: int, material: int) -> None:
+        """Give a primitive a material. Its decoded geometry does not depend on the material, so the cached arrays
+        move to the new key (a 4.4M-triangle PLY is not decoded twice when a bake adds the default material after
+        another step read it); welded meshes that included it are dropped and welded again when asked for."""
+        old = self.primitive_key(mesh, primitive)
+        self.meshes()[mesh]["primitives"][primitive]["material"] = material
+        new = self.primitive_key(mesh, primitive)
+        decoded = self.cache.pop(("primitive", old), None)
+        if decoded is not None:
+            self.cache[("primitive", new)] = replace(decoded, material=material)
+        for key in [k for k in self.cache if k[0] == "welded" and old in k[1]]:
+            del self.cache[key]
 
     def primitive(self, mesh: int, primitive: int) -> PrimitiveGeometry:
         """Primitive ``primitive`` of ``mesh`` decoded to float64 arrays (cached; see the class docstring)."""

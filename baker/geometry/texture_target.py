@@ -54,7 +54,7 @@ def material_groups(asset: Asset) -> dict[int, list[tuple[int, int]]]:
                     mats = doc.json.setdefault("materials", [])
                     mats.append({"name": "baker_default"})  # all-default material == glTF's implicit default
                     default = len(mats) - 1
-                prim["material"] = default
+                asset.assign_material(m, p, default)
             groups.setdefault(prim["material"], []).append((m, p))
     return dict(sorted(groups.items()))
 
