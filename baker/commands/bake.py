@@ -26,6 +26,9 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    from baker import numba_warmup
+
+    numba_warmup.start()  # numba's ~1 s first-call initialisation runs while the input is read
     from pathlib import Path
 
     from baker.api import bake, save
