@@ -173,11 +173,13 @@ class Asset:
         positions = to_float(self.doc, attrs["POSITION"])
         n = len(positions)
         if "indices" in prim:
-            indices = self.doc.accessor(prim["indices"]).astype(np.int64)
+            stored = self.doc.accessor(prim["indices"], copy=False)  # checked in its own type, then widened once
+            if len(stored) and (int(stored.max()) >= n or int(stored.min()) < 0):
+                raise BakerError(self.source, f"mesh {mesh} primitive {primitive} has indices out of range (>= {n} vertices)")
+            indices = stored.astype(np.int64)
+            del stored
         else:
             indices = np.arange(n, dtype=np.int64)
-        if len(indices) and (indices.max() >= n or indices.min() < 0):
-            raise BakerError(self.source, f"mesh {mesh} primitive {primitive} has indices out of range (>= {n} vertices)")
         faces = faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
         normals = None
         if "NORMAL" in attrs:

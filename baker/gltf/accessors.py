@@ -14,7 +14,7 @@ __all__ = ["MODE_TRIANGLES", "MODE_STRIP", "MODE_FAN", "is_derived_fins", "to_fl
 
 
 def to_float(doc: GltfDocument, accessor: int) -> np.ndarray:
-    data = doc.accessor(accessor)
+    data = doc.accessor(accessor, copy=False)  # converted below into a new array
     acc = doc.json["accessors"][accessor]
     if acc.get("normalized") and data.dtype.kind in "iu":
         info = np.iinfo(data.dtype)

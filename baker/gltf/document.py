@@ -170,10 +170,12 @@ class GltfDocument:
                 self.image_files[i] = self._resolve_uri(uri, pointer("images", i, "uri"))
 
     # ------------------------------------------------------------------ accessors
-    def accessor(self, index: int) -> np.ndarray:
+    def accessor(self, index: int, copy: bool = True) -> np.ndarray:
         """Read accessor ``index`` as an array of shape (count, n) (or (count,) for SCALAR), sparse applied.
 
-        Normalized integer data is returned as stored (not converted to float).
+        Normalized integer data is returned as stored (not converted to float). ``copy=False`` may return a
+        read-only view of the binary buffer, for a caller that converts it at once and drops it: the buffer cannot
+        grow (``add_buffer_view``) while such a view lives.
         """
         acc = self.json["accessors"][index]
         dtype = np.dtype(COMPONENT_DTYPES[acc["componentType"]])
@@ -189,7 +191,11 @@ class GltfDocument:
                 raise BakerError(self.path, f"accessor {index} reads past the end of its bufferView")
             raw = np.frombuffer(self.bin, dtype=np.uint8, count=end - start, offset=start)
             if stride == elem:
-                out = raw.view(dtype).reshape(count, ncomp).copy()
+                out = raw.view(dtype).reshape(count, ncomp)
+                if copy or acc.get("sparse"):
+                    out = out.copy()
+                else:
+                    out.flags.writeable = False
             else:
                 rows = np.lib.stride_tricks.as_strided(raw, shape=(count, elem), strides=(stride, 1))
                 out = np.ascontiguousarray(rows).view(dtype).reshape(count, ncomp)
