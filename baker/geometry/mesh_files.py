@@ -196,16 +196,18 @@ def read_ply_triangles(path, header: PlyHeader | None = None) -> dict | None:
         return None  # polygons: trimesh triangulates them
     vertices = np.frombuffer(vertex_data, vertex_dtype, count=vertex.count)
     with np.errstate(over="ignore"):  # a double beyond float32 becomes an infinity, which the caller refuses
-        out = {group: np.column_stack([vertices[c] for c in cols]).astype(np.float32) for group, cols in wanted.items()}
+        out = {group: np.column_stack([vertices[c] for c in cols]).astype(np.float32, copy=False)
+               for group, cols in wanted.items()}
         if uv is not None:
             out["TEXCOORD_0"] = np.column_stack([vertices[uv[0]], 1.0 - vertices[uv[1]].astype(np.float64)]) \
                 .astype(np.float32)  # PLY's t runs up, glTF's v runs down (as trimesh converts it)
     del vertices, vertex_data
-    indices = faces["v"].reshape(-1)
-    if len(indices) and (int(indices.min()) < 0 or int(indices.max()) >= vertex.count):
+    corners = faces["v"]  # (m, 3) strided view of the records: checked there, then copied once as uint32
+    if len(corners) and (int(corners.min()) < 0 or int(corners.max()) >= vertex.count):
+        indices = corners.reshape(-1)
         bad = int(np.argmax((indices < 0) | (indices >= vertex.count))) // 3
         raise BakerError(path, f"face {bad}: vertex index out of range ({vertex.count} vertices)")
-    out["indices"] = indices.astype(np.uint32)
+    out["indices"] = corners.astype(np.uint32).reshape(-1)
     return out
 
 
