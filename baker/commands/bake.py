@@ -26,9 +26,6 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from baker import numba_warmup
-
-    numba_warmup.start()  # numba's ~1 s first-call initialisation runs while the input is read
     from pathlib import Path
 
     from baker.api import bake, save
@@ -47,6 +44,11 @@ def run(args) -> int:
 
     max_memory = parse_limit(args.max_memory)
     progress = Progress(enabled=False if args.quiet else None)
+    from baker import numba_warmup
+
+    # numba's ~1 s first-call set-up runs while the input is read (started after this command's own imports, which
+    # would otherwise share the GIL with it on the way to the read)
+    numba_warmup.start()
     asset = bake(args.input, bakes=names, options=options, seed=args.seed, progress=progress,
                  allow_outside=args.allow_outside, max_memory=max_memory)
     asset.cache.clear()  # decoded and welded geometry is done with: free it before the file is assembled

@@ -241,7 +241,8 @@ class GltfDocument:
         if array.dtype not in DTYPE_COMPONENTS:
             raise TypeError(f"no glTF component type for {array.dtype}")
         ncomp = 1 if array.ndim == 1 else array.shape[1]
-        data = array.astype(array.dtype.newbyteorder("<"), copy=False).tobytes()
+        # the array's own bytes (a view, not a tobytes() copy): add_buffer_view copies them into the buffer once
+        data = memoryview(array.astype(array.dtype.newbyteorder("<"), copy=False).reshape(-1).view(np.uint8))
         # vertex attributes must have a byteStride multiple of 4: pad small elements (e.g. 3 x uint8)
         stride = None
         if target == TARGET_ARRAY_BUFFER and (array.dtype.itemsize * ncomp) % 4:
