@@ -337,12 +337,49 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
     return result
 
 
+@numba.njit(cache=True, nogil=True)
+def _morton_codes(points, lo, extent, bits):
+    """Z-order code of each point: the grid cell ``int((p - lo) / extent * (2^bits - 1))`` per axis (numpy's
+    operation order, so the same cells), bit b of x, y, z interleaved at bits 3b, 3b + 1, 3b + 2."""
+    n = points.shape[0]
+    scale = float((1 << bits) - 1)
+    codes = np.empty(n, np.int64)
+    for i in range(n):
+        code = np.int64(0)
+        for axis in range(3):
+            q = np.int64((points[i, axis] - lo[axis]) / extent[axis] * scale)
+            for b in range(bits):
+                code |= ((q >> b) & 1) << (3 * b + axis)
+        codes[i] = code
+    return codes
+
+
+@numba.njit(cache=True, nogil=True)
+def _stable_argsort_codes(codes, bits):
+    """``np.argsort(codes, kind="stable")`` for codes in [0, 2^bits): LSD radix sort, 15-bit digits (a stable sort,
+    so the same permutation)."""
+    n = codes.shape[0]
+    order = np.arange(n)
+    scratch = np.empty(n, np.int64)
+    shift = 0
+    while shift < bits:
+        counts = np.zeros((1 << 15) + 1, np.int64)
+        for i in range(n):
+            counts[((codes[order[i]] >> shift) & 0x7FFF) + 1] += 1
+        for d in range(1 << 15):
+            counts[d + 1] += counts[d]
+        for i in range(n):
+            d = (codes[order[i]] >> shift) & 0x7FFF
+            scratch[counts[d]] = order[i]
+            counts[d] += 1
+        order, scratch = scratch, order
+        shift += 15
+    return order
+
+
 def morton_order(points: np.ndarray, bits: int = 10) -> np.ndarray:
     """Indices sorting ``points`` along a 3D Z-order curve on a 2^bits grid over their bounding box."""
+    points = np.ascontiguousarray(points, np.float64)
     lo, hi = points.min(0), points.max(0)
-    q = ((points - lo) / np.maximum(hi - lo, 1e-30) * ((1 << bits) - 1)).astype(np.int64)
-    code = np.zeros(len(points), np.int64)
-    for b in range(bits):  # interleave bit b of x, y, z (a loop over bits, vectorized over points)
-        for axis in range(3):
-            code |= ((q[:, axis] >> b) & 1) << (3 * b + axis)
-    return np.argsort(code, kind="stable")
+    # compiled: the codes in one pass, then a radix sort (3 x bits numpy passes + argsort took 1 s at 2.2M points)
+    return _stable_argsort_codes(_morton_codes(points, lo, np.maximum(hi - lo, 1e-30), bits), 3 * bits)
