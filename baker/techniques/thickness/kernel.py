@@ -294,7 +294,6 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
     out = np.empty(n, np.float64)
     if n == 0:
         return out
-    axes = -normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-30)
     batch = max(1, (1 << 19) // rays)  # ~0.5 M rays per Embree call: large enough to amortize, small for memory
 
     half = math.radians(spread) / 2.0
@@ -302,10 +301,8 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
     # trace points in Morton (Z-curve) order: consecutive batches then walk the same BVH nodes, which measured
     # ~10% faster in Embree than file order and ~25% faster than random order
     order = morton_order(points)
-    points = np.ascontiguousarray(points[order], np.float64)
-    axes = np.ascontiguousarray(axes[order])
-    shifts = shifts[order]
-    seeds = seeds[order]
+    points, axes, shifts, seeds = _sorted_inputs(order, np.ascontiguousarray(points, np.float64),
+                                                 np.ascontiguousarray(normals, np.float64), shifts, seeds)
     result = np.empty(n, np.float64)
 
     def run(start: int) -> int:
@@ -335,6 +332,28 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
                 progress(done)
     result[order] = out
     return result
+
+
+@numba.njit(cache=True, nogil=True)
+def _sorted_inputs(order, points, normals, shifts, seeds):
+    """Points, inward unit axes ``-n / max(|n|, 1e-30)``, shifts and seeds gathered in ``order``: one pass instead of
+    a norm, a division and four fancy-index copies (the same values: |n| summed x, y, z in numpy's order)."""
+    n = order.shape[0]
+    points_out = np.empty((n, 3), np.float64)
+    axes_out = np.empty((n, 3), np.float64)
+    shifts_out = np.empty((n, 2), np.float64)
+    seeds_out = np.empty((n, 2), np.uint64)
+    for i in range(n):
+        j = order[i]
+        x, y, z = normals[j, 0], normals[j, 1], normals[j, 2]
+        length = max(np.sqrt(x * x + y * y + z * z), 1e-30)
+        for k in range(3):
+            points_out[i, k] = points[j, k]
+            axes_out[i, k] = -normals[j, k] / length
+        for k in range(2):
+            shifts_out[i, k] = shifts[j, k]
+            seeds_out[i, k] = seeds[j, k]
+    return points_out, axes_out, shifts_out, seeds_out
 
 
 @numba.njit(cache=True, nogil=True)
