@@ -211,7 +211,7 @@ def test_overlapping_contours_render_without_artifacts():
 
 # ---------------------------------------------------------------------------------------------------- coloring
 @needs_font
-@pytest.mark.parametrize("strategy", ["simple", "inktrap"])
+@pytest.mark.parametrize("strategy", ["simple", "inktrap", "distance"])
 def test_edge_coloring_corners_share_one_channel(dejavu, strategy):
     """At every corner (direction turns by more than the threshold) the two edges share at most one channel, so the
     median keeps it sharp; contours without corners are white; every edge has at least two channels."""
@@ -312,6 +312,27 @@ def test_inktrap_coloring_notches_on_a_font(dejavu):
     assert checked > 20, checked
 
 
+def test_distance_coloring_separates_close_splines():
+    """By-distance coloring: two squares side by side, each a cycle of four splines, the right side of the first
+    bulging (a quadratic) to 1 unit from the second's left side, the closest pair of splines that do not touch
+    (everything else is >= 1.9 apart). Touching splines differ (corners), and that pair takes different colors
+    too; with a cutoff below the gap only touching splines are constrained and the two get the same pair (so it is
+    the distance rule that separates them)."""
+    bulge = [(1, [(0, 0), (10, 0)]), (2, [(10, 0), (12, 5), (10, 10)]), (1, [(10, 10), (0, 10)]),
+             (1, [(0, 10), (0, 0)])]
+    right = [(1, [(12, 10), (12, 0)]), (1, [(12, 0), (22, 0)]), (1, [(22, 0), (22, 10)]), (1, [(22, 10), (12, 10)])]
+    s = prepare(from_contours([bulge, right]))
+    facing = (1, 4)  # first square's bulge, second square's left side (prepare keeps the segment order)
+    assert s.degree[facing[0]] == 2 and (s.points[facing[1], :2, 0] == 12).all()
+    for cutoff, apart in ((math.inf, True), (3.0, True), (0.5, False)):
+        colors = edge_colors(s.points, s.degree, s.contour_start, 3.0, "distance", cutoff=cutoff)
+        a, b = int(colors[facing[0]]), int(colors[facing[1]])
+        assert (a != b) == apart, cutoff
+        for c in range(2):  # each square is still a valid corner coloring
+            col = colors[s.contour_start[c]: s.contour_start[c + 1]]
+            assert all(_one_channel(int(x), int(y)) for x, y in zip(col, np.roll(col, 1))), cutoff
+
+
 def test_msdf_bytes_deterministic_for_each_coloring():
     """Same outline and options -> byte-identical atlas, for every strategy (the rotation depends only on the
     contour order), and the two strategies differ on a contour with a notch."""
@@ -320,7 +341,7 @@ def test_msdf_bytes_deterministic_for_each_coloring():
     font = Font("synthetic", "synthetic", FontMetrics(1000, 900, -200, 1200, -100, 50),
                 [Glyph(65, "A", 1, 700.0, shape)])
     images = {}
-    for strategy in ("simple", "inktrap"):
+    for strategy in ("simple", "inktrap", "distance"):
         runs = [bake_atlas(font, GlyphOptions(type="msdf", size=40, range=4, coloring=strategy)).image.tobytes()
                 for _ in range(2)]
         assert runs[0] == runs[1], strategy
