@@ -211,7 +211,7 @@ def test_overlapping_contours_render_without_artifacts():
 
 # ---------------------------------------------------------------------------------------------------- coloring
 @needs_font
-@pytest.mark.parametrize("strategy", ["simple", "inktrap", "distance"])
+@pytest.mark.parametrize("strategy", ["notch", "simple", "inktrap", "distance"])
 def test_edge_coloring_corners_share_one_channel(dejavu, strategy):
     """At every corner (direction turns by more than the threshold) the two edges share at most one channel, so the
     median keeps it sharp; contours without corners are white; every edge has at least two channels."""
@@ -290,6 +290,20 @@ def test_inktrap_coloring_keeps_long_neighbours_of_a_notch_apart():
     assert not results["simple"]  # the rotation puts one colour on both sides of the notch: the rule is not trivial
 
 
+def test_notch_coloring_applies_the_inktrap_rule_below_one_texel():
+    """The default ``notch`` strategy: the triangle's cut (1 unit long) is a notch when a texel is larger than it
+    (same colors as ``inktrap``, the notch rule holds), and a spline of its own when a texel is smaller (same colors
+    as ``simple``, which puts one colour on both sides of it)."""
+    notch = [(0, 0), (10, 0), (1, 9), (0, 9)]
+    s = prepare(from_contours([[(1, [notch[k], notch[(k + 1) % 4]]) for k in range(4)]]))
+    args = (s.points, s.degree, s.contour_start, 3.0)
+    inktrap, simple = edge_colors(*args, "inktrap"), edge_colors(*args, "simple")
+    assert (inktrap != simple).any()
+    assert (edge_colors(*args, "notch", texel=2.0) == inktrap).all()
+    assert (edge_colors(*args, "notch", texel=0.5) == simple).all()
+    assert (edge_colors(*args, "notch", texel=1.0) == simple).all()  # exactly one texel long: resolved
+
+
 @needs_font
 def test_inktrap_coloring_notches_on_a_font(dejavu):
     """The same property on every contour of DejaVu Sans ASCII with more than three corners."""
@@ -341,7 +355,7 @@ def test_msdf_bytes_deterministic_for_each_coloring():
     font = Font("synthetic", "synthetic", FontMetrics(1000, 900, -200, 1200, -100, 50),
                 [Glyph(65, "A", 1, 700.0, shape)])
     images = {}
-    for strategy in ("simple", "inktrap", "distance"):
+    for strategy in ("notch", "simple", "inktrap", "distance"):
         runs = [bake_atlas(font, GlyphOptions(type="msdf", size=40, range=4, coloring=strategy)).image.tobytes()
                 for _ in range(2)]
         assert runs[0] == runs[1], strategy

@@ -13,10 +13,15 @@ Strategies:
   spline (shorter than both its neighbours: the notch of an ink trap) is *minor*: the colors of the major corners
   are chosen first, then each minor corner gets the one channel its neighbours do not share, so the short spline
   does not force a two-channel clash onto its long neighbours. Removing every such short spline leaves a valid
-  coloring of the rest. The default, as in msdf-atlas-gen: serif and sans fonts are full of such notches (the
-  short flat end of a serif, the cut where a bowl meets its stem), and with it the mean coverage error is below
-  msdfgen's ``edgeColoringSimple`` on every font measured (benchmarks/RESULTS.md, issue 19 edge colouring);
-  ``simple`` left Noto Serif above it (its ``b``, ``d`` and ``u``).
+  coloring of the rest. msdf-atlas-gen's default.
+- ``notch`` (the default): the ink-trap rule for notches shorter than one texel only, longer splines rotate as in
+  ``simple``. Why: a notch the texel grid cannot resolve (the flat tip of a serif, 0.1-0.3 px at 48 px/em; the cut
+  where a bowl meets its stem) leaves its two neighbours meeting as at one corner, and at a corner two edges must
+  share only one channel; a notch of a texel or more is drawn as an edge of its own, and treating it as minor only
+  moves the clash elsewhere (measured: Liberation Serif and Noto Sans CJK lose with ``inktrap``'s unbounded rule and
+  gain with the texel bound). With it the mean coverage error is at or below msdfgen's ``edgeColoringSimple`` on
+  every font measured, serif, sans and CJK (benchmarks/RESULTS.md, issue 19 edge colouring); ``simple`` left Noto
+  Serif above it (its ``b``, ``d`` and ``u``).
 
 - ``distance``: msdfgen's ``edgeColoringByDistance`` (experimental there): splines are the vertices of a graph,
   touching splines must differ, then closest pairs first, splines nearer than a cutoff (``range / 2`` in an atlas:
@@ -36,7 +41,7 @@ import numpy as np
 from baker.techniques.glyphs.segments import direction_at, point_at, signed_distance
 
 BLACK, RED, GREEN, YELLOW, BLUE, MAGENTA, CYAN, WHITE = 0, 1, 2, 3, 4, 5, 6, 7
-STRATEGIES = {"simple": 0, "inktrap": 1, "distance": 2}
+STRATEGIES = {"simple": 0, "inktrap": 1, "distance": 2, "notch": 3}
 
 
 @numba.njit(cache=True)
@@ -100,8 +105,9 @@ def _teardrop_zone(i, m):
 
 
 @numba.njit(cache=True)
-def color_edges(points, degree, contour_start, angle_threshold, strategy, seed, colors):
-    """Fill ``colors`` (uint8 per segment); contours must already have >= 3 segments when they have one corner."""
+def color_edges(points, degree, contour_start, angle_threshold, strategy, seed, colors, max_notch):
+    """Fill ``colors`` (uint8 per segment); contours must already have >= 3 segments when they have one corner.
+    ``max_notch``: with the ink-trap rules, only splines shorter than this can be notches."""
     cross_threshold = math.sin(angle_threshold)
     n_max = len(degree)
     corners = np.empty(n_max, np.int64)
@@ -126,11 +132,11 @@ def color_edges(points, degree, contour_start, angle_threshold, strategy, seed, 
                 k = _teardrop_zone(i, m)
                 colors[s0 + (corners[0] + i) % m] = zone0 if k < 0 else (WHITE if k == 0 else zone2)
         else:
-            if strategy == 1 and count > 3:
+            if (strategy == 1 or strategy == 3) and count > 3:
                 spline_len[0] += length  # the spline wrapping around the contour's start
                 major = count
                 for i in range(count):
-                    if (spline_len[i] > spline_len[(i + 1) % count]
+                    if (spline_len[(i + 1) % count] < max_notch and spline_len[i] > spline_len[(i + 1) % count]
                             and spline_len[(i + 1) % count] < spline_len[(i + 2) % count]):
                         minor[i] = True
                         major -= 1
@@ -386,9 +392,10 @@ def corner_points(points, degree, contour_start, colors, out):
 
 
 def edge_colors(points: np.ndarray, degree: np.ndarray, contour_start: np.ndarray, angle_threshold: float = 3.0,
-                strategy: str = "inktrap", seed: int = 0, cutoff: float = math.inf) -> np.ndarray:
-    """Channel bitmask per segment (see the module docstring); ``cutoff``: the ``distance`` strategy's largest
-    spline-to-spline distance that asks for different colors (unbounded as in msdfgen unless given)."""
+                strategy: str = "notch", seed: int = 0, cutoff: float = math.inf, texel: float = 1.0) -> np.ndarray:
+    """Channel bitmask per segment (see the module docstring). ``cutoff``: the ``distance`` strategy's largest
+    spline-to-spline distance that asks for different colors (unbounded as in msdfgen unless given); ``texel``: the
+    size of one field texel in the points' units (``notch``: shorter splines can be notches)."""
     if strategy not in STRATEGIES:
         raise ValueError(f"unknown edge-coloring strategy {strategy!r} (known: {', '.join(STRATEGIES)})")
     colors = np.full(len(degree), WHITE, np.uint8)
@@ -397,5 +404,7 @@ def edge_colors(points: np.ndarray, degree: np.ndarray, contour_start: np.ndarra
     if strategy == "distance":
         color_edges_by_distance(points, degree, contour_start, float(angle_threshold), float(cutoff), int(seed), colors)
     else:
-        color_edges(points, degree, contour_start, float(angle_threshold), STRATEGIES[strategy], int(seed), colors)
+        max_notch = float(texel) if strategy == "notch" else math.inf
+        color_edges(points, degree, contour_start, float(angle_threshold), STRATEGIES[strategy], int(seed), colors,
+                    max_notch)
     return colors
