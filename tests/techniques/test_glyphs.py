@@ -347,6 +347,22 @@ def test_distance_coloring_separates_close_splines():
             assert all(_one_channel(int(x), int(y)) for x, y in zip(col, np.roll(col, 1))), cutoff
 
 
+def test_distance_coloring_bounds_its_graph():
+    """A hostile outline (one star contour of 1,100 corners: more splines than the dense graph may hold) is colored by
+    the rotation instead; below the bound the graph coloring runs. Either way every corner keeps one channel."""
+    from baker.techniques.glyphs.coloring import MAX_GRAPH_SPLINES
+
+    for n, graph in ((MAX_GRAPH_SPLINES + 76, False), (60, True)):
+        angle = np.arange(n) * 2 * np.pi / n
+        radius = np.where(np.arange(n) % 2, 900.0, 1000.0)
+        star = list(zip(radius * np.cos(angle), radius * np.sin(angle)))
+        s = prepare(from_contours([[(1, [star[k], star[(k + 1) % n]]) for k in range(n)]]))
+        colors = edge_colors(s.points, s.degree, s.contour_start, 3.0, "distance", cutoff=50.0)
+        assert all(_one_channel(int(x), int(y)) for x, y in zip(colors, np.roll(colors, 1))), n
+        simple = edge_colors(s.points, s.degree, s.contour_start, 3.0, "simple")
+        assert (colors == simple).all() != graph, n
+
+
 def test_msdf_bytes_deterministic_for_each_coloring():
     """Same outline and options -> byte-identical atlas, for every strategy (the rotation depends only on the
     contour order), and the two strategies differ on a contour with a notch."""

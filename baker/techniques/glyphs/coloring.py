@@ -174,6 +174,8 @@ def color_edges(points, degree, contour_start, angle_threshold, strategy, seed, 
 
 
 MAX_RECOLOR_STEPS = 16  # msdfgen's bound on the recoloring search when a new constraint conflicts
+MAX_GRAPH_SPLINES = 1024  # larger glyphs (none in real fonts; a hostile one could hold 10^5) fall back to simple:
+# the graph is a dense splines x splines matrix
 DISTANCE_SAMPLES = 16  # points per segment at which the distance to the other segment is taken
 SPLINE_COLORS = (YELLOW, CYAN, MAGENTA)  # any two share exactly one channel
 
@@ -271,7 +273,8 @@ def color_edges_by_distance(points, degree, contour_start, angle_threshold, cuto
     first, any two splines nearer than ``cutoff`` should differ too when a 3-coloring allows it. Close but
     non-adjacent splines (the two sides of a hairline, a serif and the stem beside it, parallel CJK strokes) thus
     get different channel pairs, so one channel's nearest edge does not jump between them. Smooth contours and the
-    middle zone of a teardrop stay white, as in ``simple``."""
+    middle zone of a teardrop stay white, as in ``simple``. Returns the seed left, or -1 (colors not set) when the
+    glyph has more than MAX_GRAPH_SPLINES splines."""
     cross_threshold = math.sin(angle_threshold)
     n = len(degree)
     walk = np.empty(n, np.int64)  # segment indices in spline order
@@ -316,6 +319,8 @@ def color_edges_by_distance(points, degree, contour_start, angle_threshold, cuto
     spline_start[splines] = count
     if splines == 0:
         return seed
+    if splines > MAX_GRAPH_SPLINES:
+        return -1
     lo = np.full((splines, 2), np.inf)
     hi = np.full((splines, 2), -np.inf)
     for v in range(splines):
@@ -402,9 +407,11 @@ def edge_colors(points: np.ndarray, degree: np.ndarray, contour_start: np.ndarra
     if not len(degree):
         return colors
     if strategy == "distance":
-        color_edges_by_distance(points, degree, contour_start, float(angle_threshold), float(cutoff), int(seed), colors)
-    else:
-        max_notch = float(texel) if strategy == "notch" else math.inf
-        color_edges(points, degree, contour_start, float(angle_threshold), STRATEGIES[strategy], int(seed), colors,
-                    max_notch)
+        if color_edges_by_distance(points, degree, contour_start, float(angle_threshold), float(cutoff), int(seed),
+                                   colors) >= 0:
+            return colors
+        strategy = "simple"  # more splines than the graph may hold (MAX_GRAPH_SPLINES): the rotation
+    max_notch = float(texel) if strategy == "notch" else math.inf
+    color_edges(points, degree, contour_start, float(angle_threshold), STRATEGIES[strategy], int(seed), colors,
+                max_notch)
     return colors
