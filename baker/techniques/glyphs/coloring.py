@@ -9,7 +9,7 @@ Strategies:
 - ``simple``: walk the corners of each contour and rotate through cyan/magenta/yellow, never letting the last
   spline share two channels with the first; a contour with one corner (a teardrop) is split into three color
   zones around it; a contour without corners is white (all channels).
-- ``inktrap``: as simple, but on contours with more than three corners the corner that ends an unusually short
+- ``inktrap``: as simple, but on contours with more than three corners the corner that starts an unusually short
   spline (shorter than both its neighbours: the notch of an ink trap) is *minor*: the colors of the major corners
   are chosen first, then each minor corner gets the one channel its neighbours do not share, so the short spline
   does not force a two-channel clash onto its long neighbours. Removing every such short spline leaves a valid
@@ -22,7 +22,6 @@ Strategies:
   gain with the texel bound). With it the mean coverage error is at or below msdfgen's ``edgeColoringSimple`` on
   every font measured, serif, sans and CJK (benchmarks/RESULTS.md, issue 19 edge colouring); ``simple`` left Noto
   Serif above it (its ``b``, ``d`` and ``u``).
-
 - ``distance``: msdfgen's ``edgeColoringByDistance`` (experimental there): splines are the vertices of a graph,
   touching splines must differ, then closest pairs first, splines nearer than a cutoff (``range / 2`` in an atlas:
   the half-width of the encoded band) are made to differ where a 3-coloring allows, so the two sides of a
