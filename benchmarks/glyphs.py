@@ -1,6 +1,6 @@
 """Glyph atlases: baker vs msdfgen (npm ``@circuitly/msdfgen``, a prebuilt N-API build of libmsdfgen), same run.
 
-    python benchmarks/glyphs.py [--font PATH] [--size 48] [--range 4] [--repeat 3] [--coloring simple|inktrap]
+    python benchmarks/glyphs.py [--font PATH] [--size 48] [--range 4] [--repeat 3] [--coloring notch|inktrap|simple|distance]
 
 Both generate the MSDF of every printable ASCII glyph of the font at the same scale, range and box (baker's boxes:
 the glyph bounds grown by range/2, on the pixel grid of the origin), with the same edge-coloring threshold (3 rad).
@@ -94,7 +94,7 @@ def main(argv=None) -> int:
     ap.add_argument("--size", type=float, default=48.0)
     ap.add_argument("--range", type=float, default=4.0)
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--coloring", default="simple", choices=("simple", "inktrap"),
+    ap.add_argument("--coloring", default=GlyphOptions().coloring, choices=("notch", "inktrap", "simple", "distance"),
                     help="baker's edge coloring (msdfgen's npm build has edgeColoringSimple only)")
     args = ap.parse_args(argv)
     if not Path(args.font).is_file():

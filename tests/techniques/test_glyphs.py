@@ -211,7 +211,7 @@ def test_overlapping_contours_render_without_artifacts():
 
 # ---------------------------------------------------------------------------------------------------- coloring
 @needs_font
-@pytest.mark.parametrize("strategy", ["simple", "inktrap"])
+@pytest.mark.parametrize("strategy", ["notch", "simple", "inktrap", "distance"])
 def test_edge_coloring_corners_share_one_channel(dejavu, strategy):
     """At every corner (direction turns by more than the threshold) the two edges share at most one channel, so the
     median keeps it sharp; contours without corners are white; every edge has at least two channels."""
@@ -235,6 +235,148 @@ def test_edge_coloring_corners_share_one_channel(dejavu, strategy):
                 continue
             common = col & np.roll(col, 1)
             assert all(bin(int(x)).count("1") <= 1 for x in common[corner]), chr(g.codepoint)
+
+
+def _splines(s, c, colors):
+    """(colour, length) of each spline of contour c (edges between two corners), walked from the first corner;
+    lengths from 256-point polylines, independent of the coloring's own estimate."""
+    from baker.techniques.glyphs.segments import point_at
+
+    a, b = s.contour_start[c], s.contour_start[c + 1]
+    start = _directions(s.points[a:b], s.degree[a:b], 0.0)
+    end = np.roll(_directions(s.points[a:b], s.degree[a:b], 1.0), 1, axis=0)
+    corner = ((start * end).sum(1) <= 0) | (np.abs(start[:, 0] * end[:, 1] - start[:, 1] * end[:, 0]) > math.sin(3.0))
+    first = np.flatnonzero(corner)
+    out = []
+    for k in range(b - a):
+        i = (first[0] + k) % (b - a) if len(first) else k
+        t = np.linspace(0.0, 1.0, 257)
+        xy = np.array([point_at(s.points[a + i], int(s.degree[a + i]), float(u)) for u in t])
+        length = float(np.linalg.norm(np.diff(xy, axis=0), axis=1).sum())
+        if corner[i] or not out:
+            out.append([int(colors[a + i]), 0.0])
+        assert out[-1][0] == colors[a + i] or len(first) < 2  # a spline keeps one colour (teardrops: 3 zones)
+        out[-1][1] += length
+    return out, int(corner.sum())
+
+
+def _notches(splines):
+    """Indices of splines clearly (1%) shorter than both neighbours: the notches the ink-trap coloring protects."""
+    n = len(splines)
+    return [k for k in range(n) if splines[k][1] < 0.99 * min(splines[k - 1][1], splines[(k + 1) % n][1])]
+
+
+def _one_channel(a, b):
+    return bin(a & b).count("1") == 1
+
+
+def test_inktrap_coloring_keeps_long_neighbours_of_a_notch_apart():
+    """msdfgen's ink-trap rule (msdf-atlas-gen's default): on a contour with more than three corners, a spline shorter
+    than both neighbours (an ink-trap notch) takes the channel pair its neighbours do not share, so removing it leaves
+    a valid coloring: its two neighbours share exactly one channel, and it shares exactly one with each. Analytic
+    shape: a right triangle whose top corner is cut by a short edge (lengths 10, 12.7, 1, 9)."""
+    notch = [(0, 0), (10, 0), (1, 9), (0, 9)]
+    contour = [(1, [notch[k], notch[(k + 1) % 4]]) for k in range(4)]
+    s = prepare(from_contours([contour]))
+    results = {}
+    for strategy in ("simple", "inktrap"):
+        colors = edge_colors(s.points, s.degree, s.contour_start, 3.0, strategy)
+        splines, corners = _splines(s, 0, colors)
+        assert corners == 4 and len(splines) == 4
+        (k,) = _notches(splines)
+        before, short, after = splines[k - 1][0], splines[k][0], splines[(k + 1) % 4][0]
+        results[strategy] = _one_channel(before, after) and _one_channel(before, short) and _one_channel(short, after)
+    assert results["inktrap"]
+    assert not results["simple"]  # the rotation puts one colour on both sides of the notch: the rule is not trivial
+
+
+def test_notch_coloring_applies_the_inktrap_rule_below_one_texel():
+    """The default ``notch`` strategy: the triangle's cut (1 unit long) is a notch when a texel is larger than it
+    (same colors as ``inktrap``, the notch rule holds), and a spline of its own when a texel is smaller (same colors
+    as ``simple``, which puts one colour on both sides of it)."""
+    notch = [(0, 0), (10, 0), (1, 9), (0, 9)]
+    s = prepare(from_contours([[(1, [notch[k], notch[(k + 1) % 4]]) for k in range(4)]]))
+    args = (s.points, s.degree, s.contour_start, 3.0)
+    inktrap, simple = edge_colors(*args, "inktrap"), edge_colors(*args, "simple")
+    assert (inktrap != simple).any()
+    assert (edge_colors(*args, "notch", texel=2.0) == inktrap).all()
+    assert (edge_colors(*args, "notch", texel=0.5) == simple).all()
+    assert (edge_colors(*args, "notch", texel=1.0) == simple).all()  # exactly one texel long: resolved
+
+
+@needs_font
+def test_inktrap_coloring_notches_on_a_font(dejavu):
+    """The same property on every contour of DejaVu Sans ASCII with more than three corners."""
+    checked = 0
+    for g in dejavu.glyphs:
+        s = prepare(g.shape)
+        if not s.segment_count:
+            continue
+        colors = edge_colors(s.points, s.degree, s.contour_start, 3.0, "inktrap")
+        for c in range(s.contour_count):
+            splines, corners = _splines(s, c, colors)
+            if corners <= 3:
+                continue
+            n = len(splines)
+            for k in _notches(splines):
+                before, short, after = splines[k - 1][0], splines[k][0], splines[(k + 1) % n][0]
+                assert _one_channel(before, after), chr(g.codepoint)
+                assert _one_channel(before, short) and _one_channel(short, after), chr(g.codepoint)
+                checked += 1
+    assert checked > 20, checked
+
+
+def test_distance_coloring_separates_close_splines():
+    """By-distance coloring: two squares side by side, each a cycle of four splines, the right side of the first
+    bulging (a quadratic) to 1 unit from the second's left side, the closest pair of splines that do not touch
+    (everything else is >= 1.9 apart). Touching splines differ (corners), and that pair takes different colors
+    too; with a cutoff below the gap only touching splines are constrained and the two get the same pair (so it is
+    the distance rule that separates them)."""
+    bulge = [(1, [(0, 0), (10, 0)]), (2, [(10, 0), (12, 5), (10, 10)]), (1, [(10, 10), (0, 10)]),
+             (1, [(0, 10), (0, 0)])]
+    right = [(1, [(12, 10), (12, 0)]), (1, [(12, 0), (22, 0)]), (1, [(22, 0), (22, 10)]), (1, [(22, 10), (12, 10)])]
+    s = prepare(from_contours([bulge, right]))
+    facing = (1, 4)  # first square's bulge, second square's left side (prepare keeps the segment order)
+    assert s.degree[facing[0]] == 2 and (s.points[facing[1], :2, 0] == 12).all()
+    for cutoff, apart in ((math.inf, True), (3.0, True), (0.5, False)):
+        colors = edge_colors(s.points, s.degree, s.contour_start, 3.0, "distance", cutoff=cutoff)
+        a, b = int(colors[facing[0]]), int(colors[facing[1]])
+        assert (a != b) == apart, cutoff
+        for c in range(2):  # each square is still a valid corner coloring
+            col = colors[s.contour_start[c]: s.contour_start[c + 1]]
+            assert all(_one_channel(int(x), int(y)) for x, y in zip(col, np.roll(col, 1))), cutoff
+
+
+def test_distance_coloring_bounds_its_graph():
+    """A hostile outline (one star contour of 1,100 corners: more splines than the dense graph may hold) is colored by
+    the rotation instead; below the bound the graph coloring runs. Either way every corner keeps one channel."""
+    from baker.techniques.glyphs.coloring import MAX_GRAPH_SPLINES
+
+    for n, graph in ((MAX_GRAPH_SPLINES + 76, False), (60, True)):
+        angle = np.arange(n) * 2 * np.pi / n
+        radius = np.where(np.arange(n) % 2, 900.0, 1000.0)
+        star = list(zip(radius * np.cos(angle), radius * np.sin(angle)))
+        s = prepare(from_contours([[(1, [star[k], star[(k + 1) % n]]) for k in range(n)]]))
+        colors = edge_colors(s.points, s.degree, s.contour_start, 3.0, "distance", cutoff=50.0)
+        assert all(_one_channel(int(x), int(y)) for x, y in zip(colors, np.roll(colors, 1))), n
+        simple = edge_colors(s.points, s.degree, s.contour_start, 3.0, "simple")
+        assert (colors == simple).all() != graph, n
+
+
+def test_msdf_bytes_deterministic_for_each_coloring():
+    """Same outline and options -> byte-identical atlas, for every strategy (the rotation depends only on the
+    contour order), and the two strategies differ on a contour with a notch."""
+    notch = [(0, 0), (600, 0), (60, 540), (0, 540)]
+    shape = from_contours([[(1, [notch[k], notch[(k + 1) % 4]]) for k in range(4)]])
+    font = Font("synthetic", "synthetic", FontMetrics(1000, 900, -200, 1200, -100, 50),
+                [Glyph(65, "A", 1, 700.0, shape)])
+    images = {}
+    for strategy in ("notch", "simple", "inktrap", "distance"):
+        runs = [bake_atlas(font, GlyphOptions(type="msdf", size=40, range=4, coloring=strategy)).image.tobytes()
+                for _ in range(2)]
+        assert runs[0] == runs[1], strategy
+        images[strategy] = runs[0]
+    assert images["simple"] != images["inktrap"]
 
 
 def _directions(points, degree, t):

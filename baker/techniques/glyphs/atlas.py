@@ -317,7 +317,7 @@ def _batch(shapes: list, options: GlyphOptions) -> tuple[GlyphBatch, list]:
     for _, shape, (_, _, w, h) in shapes:
         if need_colors:
             colors = edge_colors(shape.points, shape.degree, shape.contour_start, options.angle_threshold,
-                                 options.coloring)
+                                 options.coloring, cutoff=options.range / 2, texel=1.0)  # box pixel space
             buf = np.empty((shape.segment_count, 2))
             n = corner_points(shape.points, shape.degree, shape.contour_start, colors, buf)
             corners.append(buf[:n].copy())

@@ -5,7 +5,7 @@ One small module per step, in pipeline order:
 - :mod:`.outline`     font file -> glyph outlines (lines, quadratic and cubic Beziers), metrics, kerning, charsets
 - :mod:`.shape`       outline arrays: normalization, nonzero-rule orientation, y-monotone pieces, winding numbers
 - :mod:`.segments`    exact distance from a point to a line or Bezier; pseudo-distance; splitting
-- :mod:`.coloring`    MSDF edge coloring (simple and ink-trap strategies)
+- :mod:`.coloring`    MSDF edge coloring (notch, ink-trap, simple and by-distance strategies)
 - :mod:`.sdf`         the distance kernel: true signed distance and per-channel pseudo-distances per texel
 - :mod:`.msdf`        field types (sdf, psdf, msdf, mtsdf), sign correction
 - :mod:`.correction`  MSDF error correction

@@ -22,7 +22,9 @@ class GlyphOptions:
     charset: str = opt("ascii", "characters: ascii, latin1, ranges such as 0x20-0x7E,U+00E9, str:TEXT or file:PATH")
     angle_threshold: float = opt(3.0, "edge coloring: smallest direction change (radians) that is a corner",
                                  min=0.0, max=math.pi)
-    coloring: str = opt("simple", "edge coloring strategy", choices=("simple", "inktrap"))
+    coloring: str = opt("notch", "edge coloring strategy: notch (ink-trap rule for notches under one texel), inktrap "
+                                 "(msdf-atlas-gen's default), simple (msdfgen's edgeColoringSimple) or distance (close "
+                                 "splines get different channels)", choices=("notch", "inktrap", "simple", "distance"))
     error_correction: bool = opt(True, "fix MSDF texels whose interpolation would misplace the edge")
     padding: int = opt(1, "empty texels between glyph boxes and around the atlas border", min=0, max=256)
     pot: bool = opt(False, "power-of-two atlas width and height")
