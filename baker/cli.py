@@ -51,16 +51,5 @@ def main(argv=None) -> int:
             signal.signal(signal.SIGTERM, previous)
 
 
-def entry() -> None:
-    """The console command: :func:`main`, then exit with its code. The objects left are frozen first (``gc.freeze``):
-    the interpreter's last collections at exit then skip them, which with numba and LLVM loaded took ~0.25 s (4% of a
-    1M-triangle thickness bake). atexit handlers and the normal shutdown still run."""
-    code = main()
-    import gc
-
-    gc.freeze()
-    sys.exit(code)
-
-
 if __name__ == "__main__":
-    entry()
+    sys.exit(main())

@@ -1,4 +1,5 @@
-"""Embree, called directly: a triangle scene and GIL-free numba loops around ``rtcIntersect1``.
+"""Embree, called directly: the library and a triangle scene through ctypes (no numba: a bake builds its BVH
+while numba is still loading; the compiled loops around ``rtcIntersect1`` are in :mod:`.embree_trace`).
 
 Why not only embreex: its ``EmbreeScene.run`` is a fine batch API, but every call allocates result arrays and
 the ray set has to be materialized first (origins + directions, 24 bytes a ray). For local thickness the rays are
@@ -17,17 +18,14 @@ import ctypes
 import glob
 import os
 
-import numba
 import numpy as np
-from llvmlite import binding as llvm_binding
 
 MISS = np.float32(1e37)  # tfar is left at its initial value when nothing is hit
-_INVALID_ID = 0xFFFFFFFF
+INVALID_ID = 0xFFFFFFFF  # Embree's RTC_INVALID_GEOMETRY_ID: mask all, and no hit
 _RTC_GEOMETRY_TYPE_TRIANGLE = 0
 _RTC_BUFFER_TYPE_INDEX, _RTC_BUFFER_TYPE_VERTEX = 0, 1
 _RTC_FORMAT_UINT3, _RTC_FORMAT_FLOAT3 = 0x5003, 0x9003
 _RTC_BUILD_QUALITY_HIGH = 2
-_INTERSECT1_SYMBOL = "rtcIntersect1"
 
 
 def _load_library():
@@ -49,6 +47,8 @@ def _load_library():
 
 _lib = _load_library()
 AVAILABLE = _lib is not None
+# where compiled code finds rtcIntersect1 (baker.geometry.embree_trace registers it by name with LLVM)
+INTERSECT1_ADDRESS = ctypes.cast(_lib.rtcIntersect1, ctypes.c_void_p).value if AVAILABLE else None
 
 if AVAILABLE:
     _P = ctypes.c_void_p
@@ -69,17 +69,6 @@ if AVAILABLE:
     ]:
         fn = getattr(_lib, name)
         fn.restype, fn.argtypes = restype, argtypes
-    # Compiled code calls rtcIntersect1 by *name*, resolved through LLVM's symbol table, rather than through a ctypes
-    # function whose address numba would bake into the machine code: code holding an address cannot go to numba's
-    # on-disk cache (the address changes every process), so every process, and every `baker build --jobs` worker,
-    # used to re-JIT the thickness kernel (~1.5 s). With the symbol registered before any cached code is linked,
-    # ``cache=True`` works for every kernel that calls :func:`trace_one`.
-    llvm_binding.add_symbol(_INTERSECT1_SYMBOL, ctypes.cast(_lib.rtcIntersect1, ctypes.c_void_p).value)
-
-# rtcIntersect1(RTCScene, RTCRayHit*, RTCIntersectArguments*): pointers passed as intp (the same register on the
-# 64-bit ABIs Embree supports), so callers pass the scene handle and ``array.ctypes.data`` unchanged
-_intersect1 = numba.types.ExternalFunction(
-    _INTERSECT1_SYMBOL, numba.types.void(numba.types.intp, numba.types.intp, numba.types.intp))
 
 
 class DirectScene:
@@ -118,40 +107,3 @@ class DirectScene:
         if getattr(self, "_device", None):
             _lib.rtcReleaseDevice(self._device)
             self._device = None
-
-    def distances(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
-        out = np.empty(len(origins), np.float32)
-        _trace(self.pointer, np.ascontiguousarray(origins, np.float32), np.ascontiguousarray(directions, np.float32),
-               out, new_rayhit())
-        return out
-
-
-def new_rayhit() -> np.ndarray:
-    """A zeroed, 16-byte aligned 128-byte block for one ``RTCRayHit`` (room for any trailing hit fields)."""
-    raw = np.zeros(48, np.uint32)
-    offset = (-raw.ctypes.data % 16) // 4
-    return raw[offset: offset + 32]
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def trace_one(scene, rayhit, ox, oy, oz, dx, dy, dz):
-    """First-hit distance of one ray (``MISS`` when nothing is hit)."""
-    f = rayhit.view(np.float32)
-    f[0], f[1], f[2], f[3] = ox, oy, oz, 0.0
-    f[4], f[5], f[6], f[7] = dx, dy, dz, 0.0
-    f[8] = MISS
-    rayhit[9] = _INVALID_ID  # mask: all
-    rayhit[10] = 0  # id
-    rayhit[11] = 0  # flags
-    rayhit[17] = _INVALID_ID  # hit.primID
-    rayhit[18] = _INVALID_ID  # hit.geomID
-    rayhit[19] = _INVALID_ID  # hit.instID[0]
-    _intersect1(scene, rayhit.ctypes.data, 0)
-    return f[8]
-
-
-@numba.njit(cache=True, nogil=True)
-def _trace(scene, origins, directions, out, rayhit):
-    for r in range(origins.shape[0]):
-        out[r] = trace_one(scene, rayhit, origins[r, 0], origins[r, 1], origins[r, 2],
-                           directions[r, 0], directions[r, 1], directions[r, 2])

@@ -30,7 +30,12 @@ class RayScene:
 
     def distances(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
         if self.direct is not None:
-            return self.direct.distances(origins, directions)
+            from baker.geometry.embree_trace import new_rayhit, trace_rays  # numba: not needed to build the scene
+
+            out = np.empty(len(origins), np.float32)
+            trace_rays(self.direct.pointer, np.ascontiguousarray(origins, np.float32),
+                       np.ascontiguousarray(directions, np.float32), out, new_rayhit())
+            return out
         # the DISTANCE query returns tfar alone: no u/v/Ng/primID arrays to allocate per ray
         return self._scene.run(np.ascontiguousarray(origins, np.float32),
                                np.ascontiguousarray(directions, np.float32), query="DISTANCE")

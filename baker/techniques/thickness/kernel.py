@@ -10,7 +10,7 @@ For a sphere of radius r, a chord leaving at angle theta from the inward normal 
 weighted rays average 4r/3, uniform (solid-angle) rays average r. The tests check exactly that.
 
 Rays are generated, traced by Embree and averaged in one compiled, GIL-free loop per batch of points, run from
-two threads (see :mod:`baker.geometry.embree`); there is no per-ray Python.
+two threads (see :mod:`baker.geometry.embree_trace`); there is no per-ray Python.
 
 Sample patterns (``sampler``), all mapped through the same cosine-weighted (or uniform) warp, so every one estimates
 the same integral and only the error differs:
@@ -44,7 +44,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numba
 import numpy as np
 
-from baker.geometry import embree
+from baker.geometry import embree_trace
 from baker.geometry.raycast import RayScene
 
 
@@ -168,7 +168,7 @@ def _direction(u0, u1, cosine, sin_max, cos_max):
     return st * np.cos(phi), st * np.sin(phi), ct
 
 
-@numba.njit(cache=True, nogil=True)  # cacheable: Embree is called by symbol name (baker.geometry.embree)
+@numba.njit(cache=True, nogil=True)  # cacheable: Embree is called by symbol name (baker.geometry.embree_trace)
 def _thickness_direct(scene, points, axes, sampler, samples, shifts, seeds, cosine, sin_max, cos_max, bias,
                       max_distance, out):
     """Generate, trace and average each point's rays in one GIL-free loop (Embree called directly)."""
@@ -184,7 +184,7 @@ def _thickness_direct(scene, points, axes, sampler, samples, shifts, seeds, cosi
         for k in range(rays):
             u0, u1 = _sample(sampler, samples, shifts, seeds, i, k)
             c, s, ct = _direction(u0, u1, cosine, sin_max, cos_max)
-            t = embree.trace_one(scene, rayhit, ox, oy, oz, tx * c + bx * s + nx * ct, ty * c + by * s + ny * ct,
+            t = embree_trace.trace_one(scene, rayhit, ox, oy, oz, tx * c + bx * s + nx * ct, ty * c + by * s + ny * ct,
                                  tz * c + bz * s + nz * ct)
             acc += min(t + bias * ct, max_distance)
         out[i] = acc / rays

@@ -6,14 +6,10 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from baker.geometry.asset import Asset
-from baker.geometry.normals import vertex_normals
-from baker.geometry.raycast import RayScene
+from baker.geometry.raycast import RayScene  # ctypes only: the BVH build does not wait for numba
 from baker.techniques.thickness.options import ThicknessOptions
-from baker.techniques.thickness.kernel import default_max_distance, local_thickness
 from baker.techniques.thickness import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_space import dilate, interpolate
-from baker.geometry.texture_target import material_groups, material_targets
 
 
 def run(asset: Asset, options: ThicknessOptions, seed: int = 0, progress: Progress = QUIET) -> None:
@@ -30,8 +26,17 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
         vertices, faces = asset.mesh_triangles(m)
         if len(faces):
             scenes[m] = builder.submit(RayScene, vertices, faces)
+            # the numba-compiled modules are imported once the first build runs: their import waits for numba,
+            # which the command started loading on another thread (baker.numba_warmup)
+            from baker.techniques.thickness.kernel import default_max_distance
+
             diag = default_max_distance(vertices)
             limits[m] = (options.max_distance or diag, options.bias if options.bias is not None else 1e-5 * diag)
+
+    from baker.geometry.normals import vertex_normals
+    from baker.geometry.texture_space import dilate, interpolate
+    from baker.geometry.texture_target import material_groups, material_targets
+    from baker.techniques.thickness.kernel import local_thickness
 
     def cast(mesh, points, normals, label):
         max_distance, bias = limits[mesh]
