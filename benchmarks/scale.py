@@ -1,6 +1,7 @@
 """End to end at production scale: ``baker bake`` (process start to file written) against a peer, same run.
 
     python benchmarks/scale.py [--levels 2,3,4] [--bakes edges,curvature,thickness] [--folder /tmp/baker-scale]
+                               [--rays 16] [--repeat 5]
 
 The Stanford bunny is subdivided ``level`` times (x4 triangles each: 2 -> 1.1 M, 3 -> 4.4 M, 4 -> 17.8 M) and
 written as binary PLY into ``--folder`` (generated once, never committed). For every level and bake, baker's CLI
@@ -24,6 +25,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import statistics
 import sys
 import tempfile
 from pathlib import Path
@@ -87,6 +89,8 @@ def main(argv=None) -> int:
     ap.add_argument("--folder", default=os.path.join(tempfile.gettempdir(), "baker-scale"))
     ap.add_argument("--rays", type=int, default=64, help="thickness rays per vertex")
     ap.add_argument("--json", help="also write the rows here")
+    ap.add_argument("--repeat", type=int, default=1,
+                    help="rounds of each baker/peer pair (interleaved); the table gives the median of each column")
     args = ap.parse_args(argv)
     folder = Path(args.folder)
     folder.mkdir(parents=True, exist_ok=True)
@@ -111,15 +115,22 @@ def main(argv=None) -> int:
                    "--thickness-rays", str(args.rays)]
             if bake == "thickness":
                 cli += ["--thickness-per-texel", "false"]
-            baker = run(cli, env)
             peer_argv = [python, "-c", PEERS[bake], mesh] + ([str(args.rays)] if bake == "thickness" else [])
-            peer = run(peer_argv, env)
-            row = {"level": level, "triangles": triangles, "bake": bake, "baker_wall": baker["wall"],
-                   "baker_peak": baker["peak"], "peer_wall": peer["wall"], "peer_peak": peer["peak"],
-                   "output_bytes": out.stat().st_size}
-            if bake == "thickness":
-                kernel = json.loads(peer["stdout"].strip().splitlines()[-1])
-                row.update(kernel_wall=kernel["kernel"], rays=kernel["rays"])
+            rounds = []
+            for _ in range(max(1, args.repeat)):  # a pair per round: both see the same moment of a noisy machine
+                baker = run(cli, env)
+                peer = run(peer_argv, env)
+                one = {"baker_wall": baker["wall"], "baker_peak": baker["peak"], "peer_wall": peer["wall"],
+                       "peer_peak": peer["peak"]}
+                if bake == "thickness":
+                    kernel = json.loads(peer["stdout"].strip().splitlines()[-1])
+                    one.update(kernel_wall=kernel["kernel"], rays=kernel["rays"],
+                               cli_over_kernel=kernel["kernel"] / baker["wall"])
+                rounds.append(one)
+            row = {"level": level, "triangles": triangles, "bake": bake, "output_bytes": out.stat().st_size,
+                   **{key: statistics.median(r[key] for r in rounds) for key in rounds[0]}}
+            if len(rounds) > 1:
+                row["rounds"] = rounds
             rows.append(row)
             out.unlink()
             print(json.dumps(row), file=sys.stderr, flush=True)
@@ -130,7 +141,9 @@ def main(argv=None) -> int:
 
 
 def print_table(rows: list) -> None:
-    print(f"{os.cpu_count()} cores; one run each, baker and peer interleaved; peak RSS from wait4")
+    repeats = max(len(r.get("rounds", [])) or 1 for r in rows) if rows else 1
+    print(f"{os.cpu_count()} cores; " + (f"median of {repeats} rounds" if repeats > 1 else "one run each") +
+          ", baker and peer interleaved; peak RSS from wait4")
     print()
     print("| bake | triangles | baker (s) | peer (s) | baker / peer time | baker s/Mtri | peer s/Mtri | baker B/tri "
           "| peer B/tri | baker / peer RSS | s/Mtri vs smallest |")
@@ -147,11 +160,14 @@ def print_table(rows: list) -> None:
     thick = [r for r in rows if r["bake"] == "thickness"]
     if thick:
         print()
-        print("| thickness triangles | rays | CLI Mrays/s (process start to file) | kernel Mrays/s | CLI / kernel |")
-        print("|---:|---:|---:|---:|---:|")
+        print("| thickness triangles | rays | CLI Mrays/s (process start to file) | kernel Mrays/s | CLI / kernel "
+              "(median of the rounds' ratios) | per round |")
+        print("|---:|---:|---:|---:|---:|---|")
         for r in thick:
             cli, kernel = r["rays"] / r["baker_wall"] / 1e6, r["rays"] / r["kernel_wall"] / 1e6
-            print(f"| {r['triangles']:,} | {r['rays']:,} | {cli:.2f} | {kernel:.2f} | {cli / kernel:.0%} |")
+            per_round = ", ".join(f"{x['cli_over_kernel']:.0%}" for x in r.get("rounds", []))
+            print(f"| {r['triangles']:,} | {r['rays']:,} | {cli:.2f} | {kernel:.2f} | {r['cli_over_kernel']:.0%} | "
+                  f"{per_round or '-'} |")
 
 
 def _spawned(argv: list, env: dict) -> dict:
