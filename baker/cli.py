@@ -51,5 +51,23 @@ def main(argv=None) -> int:
             signal.signal(signal.SIGTERM, previous)
 
 
+def entry() -> None:
+    """The console command: :func:`main`, then exit with its code. Before exiting, the objects left are moved out of
+    the collector's reach (``gc.freeze``): the shutdown then does not collect the ~10^5 cyclic objects numba and
+    LLVM leave, which took ~0.25 s of every bake (4% of a 1M-triangle thickness bake). atexit handlers, stream
+    flushing and the rest of the shutdown still run; every output was closed and renamed before :func:`main`
+    returned. Not when a nanobind extension is loaded (OpenImageIO, for texture bakes): nanobind reports each of its
+    objects still alive at exit as a leak."""
+    code = main()
+    from baker import numba_warmup
+
+    numba_warmup.finish()
+    if "OpenImageIO" not in sys.modules:
+        import gc
+
+        gc.freeze()
+    sys.exit(code)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    entry()

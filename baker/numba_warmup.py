@@ -11,11 +11,23 @@ from __future__ import annotations
 import threading
 
 
+_started: list = []
+
+
 def start() -> threading.Thread:
-    """Begin initialising numba in a daemon thread (returns it; nobody needs to join it)."""
+    """Begin initialising numba in a daemon thread."""
     thread = threading.Thread(target=_first_call, name="numba-warmup", daemon=True)
     thread.start()
+    _started.append(thread)
     return thread
+
+
+def finish() -> None:
+    """Wait for the warm-up before the process exits. A command that fails early (bad input) would otherwise exit
+    while the thread is inside LLVM's initialisation, which runs without the GIL and crashes once the interpreter
+    and LLVM's static objects are being torn down."""
+    while _started:
+        _started.pop().join()
 
 
 def _first_call() -> None:
