@@ -352,6 +352,15 @@ def _correct_all(values, true, texel_start, box_w, box_h, corners, corner_start,
                        corner_start[g + 1], distance_range, tolerance, passes)
 
 
+def _flat_corners(corners: list) -> tuple[np.ndarray, np.ndarray]:
+    """Every glyph's (m, 2) corner points in one array, and where each glyph's run starts (len(corners) + 1)."""
+    counts = np.array([len(c) for c in corners], np.int64)
+    corner_start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    all_corners = np.concatenate([np.asarray(c, np.float64).reshape(-1, 2) for c in corners]) if len(corners) \
+        else np.zeros((0, 2))
+    return all_corners, corner_start
+
+
 def correct_errors(batch, corners: list, values: np.ndarray, true_values: np.ndarray, distance_range: float,
                    tolerance: float = TOLERANCE_PX, passes: int = 1) -> None:
     """Fix interpolation artifacts of the 3 MSDF channels of ``values`` (T, 3) in place (see the module docstring).
@@ -359,10 +368,7 @@ def correct_errors(batch, corners: list, values: np.ndarray, true_values: np.nda
     ``true_values`` are the normalized true distances (T,); ``corners`` per glyph an (m, 2) array of protected
     corner points in box pixel space.
     """
-    counts = np.array([len(c) for c in corners], np.int64)
-    corner_start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    all_corners = np.concatenate([np.asarray(c, np.float64).reshape(-1, 2) for c in corners]) if len(corners) \
-        else np.zeros((0, 2))
+    all_corners, corner_start = _flat_corners(corners)
     _correct_all(values, true_values, batch.texel_start.astype(np.int64), batch.box_w.astype(np.int64),
                  batch.box_h.astype(np.int64), all_corners, corner_start, float(distance_range), float(tolerance),
                  int(passes))
@@ -373,10 +379,7 @@ def correct_edge_priority(batch, corners: list, values: np.ndarray, distance_ran
     """msdfgen's edge-priority error correction (see the comment above ``PROTECTED``) of the 3 MSDF channels of
     ``values`` (T, 3), normalized but not clamped, in place; ``corners`` per glyph an (m, 2) array of colored corner
     points in box pixel space. ``distance_check`` adds the second stage that compares with the exact field."""
-    counts = np.array([len(c) for c in corners], np.int64)
-    corner_start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    all_corners = np.concatenate([np.asarray(c, np.float64).reshape(-1, 2) for c in corners]) if len(corners) \
-        else np.zeros((0, 2))
+    all_corners, corner_start = _flat_corners(corners)
     _edge_priority_all(values, batch.points, batch.degree, batch.colors, batch.seg_start.astype(np.int64),
                        batch.pieces, batch.piece_degree, batch.piece_start.astype(np.int64),
                        batch.texel_start.astype(np.int64), batch.box_w.astype(np.int64),
