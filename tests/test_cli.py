@@ -106,6 +106,29 @@ def test_bad_option_value_is_an_error(tmp_path, sphere_glb):
     assert not (tmp_path / "o.glb").exists()
 
 
+@pytest.mark.parametrize("argv, synopsis", [
+    (["bake", "spot.obj"], "usage: baker bake INPUT -o OUTPUT [options]"),
+    (["bake", "spot.obj", "-o", "x.glb", "--no-such-flag"], "usage: baker bake INPUT -o OUTPUT"),
+    (["inspect"], "usage: baker inspect FILE"),
+    ([], "usage: baker COMMAND"),
+    (["nosuch"], "usage: baker COMMAND"),
+])
+def test_usage_error_is_short(argv, synopsis):
+    """A usage error is the command's synopsis, the error and where the full list is, never argparse's usage line of
+    every technique's options (72 lines for ``baker bake`` before)."""
+    result = run(*argv)
+    lines = result.stderr.strip().splitlines()
+    assert result.returncode == 2 and 2 <= len(lines) <= 4, result.stderr
+    assert lines[0].startswith(synopsis), result.stderr
+    assert "error:" in lines[1] and "--help" in lines[-1], result.stderr
+    assert "Traceback" not in result.stderr and result.stdout == ""
+
+
+def test_help_keeps_the_full_option_list():
+    result = run("bake", "--help")
+    assert result.returncode == 0 and "--thickness-rays" in result.stdout and "--curvature-" in result.stdout
+
+
 def test_inspect_lists_baked_data(tmp_path, sphere_glb, capsys):
     out = tmp_path / "o.glb"
     assert main(["bake", str(sphere_glb), "-o", str(out), *FAST]) == 0
