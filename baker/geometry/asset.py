@@ -59,6 +59,13 @@ class Asset:
     doc: GltfDocument
     source: Path
     cache: dict = field(default_factory=dict, repr=False, compare=False)
+    notes: list = field(default_factory=list, repr=False, compare=False)  # said once on stderr after the bakes
+
+    def note(self, text: str) -> None:
+        """Something the user should know about the result (a Khronos field left out, materials skipped); each
+        distinct note is printed once when the bakes are done."""
+        if text not in self.notes:
+            self.notes.append(text)
 
     @classmethod
     def load(cls, path, allow_outside=None) -> "Asset":
