@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from baker.errors import BakerError
+from baker.gltf.structure import local_file, uri_roots
 
 DEFAULT_ROUGHNESS = 0.5
 # an explicit dielectric: without pbrMetallicRoughness glTF's default is a fully metallic, fully rough surface
@@ -84,8 +85,6 @@ def roughness_from_shininess(ns: float) -> float:
 def resolve_file(name: str, base: Path, roots: list, source: Path, where: str) -> Path:
     """The file ``name`` (as written in an OBJ/MTL, not a URI) relative to ``base``, under the URI policy; a
     refusal or a missing file is a :class:`BakerError` naming ``source`` and ``where``."""
-    from baker.gltf.structure import local_file
-
     try:
         target = local_file(urllib.parse.quote(name, safe="/\\:"), base, roots)
     except ValueError as exc:
@@ -93,12 +92,6 @@ def resolve_file(name: str, base: Path, roots: list, source: Path, where: str) -
     if not target.is_file():
         raise BakerError(source, f"{where}: file {name!r} not found")
     return target
-
-
-def allowed_roots(asset_folder: Path, allow_outside) -> list:
-    extra = [] if allow_outside is None else \
-        list(allow_outside) if isinstance(allow_outside, (list, tuple, set, frozenset)) else [allow_outside]
-    return [Path(asset_folder)] + [Path(p) for p in extra]
 
 
 def material_libraries(obj: Path, allow_outside=None) -> list[Path]:
@@ -113,7 +106,7 @@ def material_libraries(obj: Path, allow_outside=None) -> list[Path]:
             if not rest or not raw[6:7].isspace():
                 continue
             where = f"line {number}: mtllib"
-            roots = allowed_roots(obj.parent, allow_outside)
+            roots = uri_roots(obj.parent, allow_outside)
             # a name with spaces is one file when it exists; otherwise several names separated by spaces
             whole = obj.parent / rest
             names = [rest] if whole.is_file() else rest.split()
@@ -124,7 +117,7 @@ def material_libraries(obj: Path, allow_outside=None) -> list[Path]:
 def read_obj_materials(obj: Path, allow_outside=None) -> tuple[dict, list]:
     """Every material of an OBJ's ``mtllib`` files by name (a later definition wins), and the MTL files read."""
     libraries = material_libraries(obj, allow_outside)
-    roots = allowed_roots(Path(obj).parent, allow_outside)
+    roots = uri_roots(Path(obj).parent, allow_outside)
     materials = {}
     for library in libraries:
         materials.update(read_mtl(library, roots))
