@@ -1,6 +1,8 @@
 """Run bakes on an asset in dependency order and write the result atomically: the engine behind ``baker bake``."""
 from __future__ import annotations
 
+import sys
+
 from pathlib import Path
 
 from baker import registry
@@ -40,6 +42,8 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
     techniques = registry.bakes()
     for name in order:
         techniques[name].bake(asset, resolved[name], seed=seed, progress=progress or QUIET)
+    for text in asset.notes:
+        print(f"baker: note: {text}", file=sys.stderr)
     return asset
 
 

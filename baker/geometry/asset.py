@@ -59,6 +59,13 @@ class Asset:
     doc: GltfDocument
     source: Path
     cache: dict = field(default_factory=dict, repr=False, compare=False)
+    notes: list = field(default_factory=list, repr=False, compare=False)  # said once on stderr after the bakes
+
+    def note(self, text: str) -> None:
+        """Something the user should know about the result (a Khronos field left out, materials skipped); each
+        distinct note is printed once when the bakes are done."""
+        if text not in self.notes:
+            self.notes.append(text)
 
     @classmethod
     def load(cls, path, allow_outside=None) -> "Asset":
@@ -76,7 +83,7 @@ class Asset:
 
             doc = _doc_from_trimesh_scene(path, read_usd(path))
         else:
-            doc = _read_direct(path) or _doc_from_trimesh_scene(path, _load_trimesh(path))
+            doc = _read_direct(path) or _doc_from_trimesh_scene(path, *_load_trimesh(path, allow_outside))
         asset = cls(doc=doc, source=path)
         asset.check_supported()
         asset.check_has_triangles()
@@ -238,29 +245,47 @@ def _read_direct(path: Path) -> GltfDocument | None:
         if not np.isfinite(values).all():  # float32 already: a double beyond float32 became an infinity
             where = non_finite_location(path) or f"{name}: NaN, infinite or beyond float32"
             raise BakerError(path, f"{where} (NaN and infinite coordinates, normals and UVs are refused)")
-    return GltfDocument.from_triangles(path, path.name, arrays, indices, "baker (converted from ply)")
+    doc = GltfDocument.from_triangles(path, path.name, arrays, indices, "baker (converted from ply)")
+    assign_materials(doc, {})
+    return doc
 
 
-def _load_trimesh(path: Path):
+class _LibraryResolver:
+    """What trimesh's OBJ reader may open: the OBJ's MTL files (already checked under the URI policy), served as
+    one text so every material is known by name. Texture images are refused: baker reads them itself
+    (:mod:`baker.geometry.mtl`), under the same policy."""
+
+    def __init__(self, libraries: list):
+        self.text = b"\n".join(p.read_bytes() for p in libraries)
+
+    def __getitem__(self, name: str) -> bytes:  # trimesh asks for the mtllib this way
+        return self.text
+
+    def get(self, name: str) -> bytes:  # ... and for texture images this way
+        raise OSError(f"{name}: read by baker.geometry.mtl")
+
+
+def _load_trimesh(path: Path, allow_outside=None) -> tuple:
+    """The mesh file read by trimesh, and the MTL materials by name (empty without ``mtllib``)."""
     import trimesh
 
     from baker.geometry.mesh_files import check_mesh_file
 
     check_mesh_file(path)  # header counts against the file size, before trimesh allocates anything
+    materials, kwargs = {}, {}
+    if path.suffix.lower() == ".obj":
+        from baker.geometry.mtl import read_obj_materials
+
+        materials, libraries = read_obj_materials(path, allow_outside)
+        kwargs["resolver"] = _LibraryResolver(libraries)
     try:
         # process=False keeps the file's vertices (no merging); OBJ vertices are split where UVs differ
-        loaded = trimesh.load(str(path), process=False)
+        loaded = trimesh.load(str(path), process=False, **kwargs)
     except Exception as exc:  # trimesh raises many types for malformed files
         raise BakerError(path, f"cannot read mesh: {exc}") from None
     if isinstance(loaded, trimesh.PointCloud) and path.suffix.lower() == ".ply":
         loaded = _mesh_from_ply_strips(path, loaded)
-    if path.suffix.lower() == ".obj" and b"mtllib" not in path.read_bytes():
-        # without a .mtl trimesh invents a material with a 2x2 grey image; keep the glTF default material instead
-        geoms = [loaded] if isinstance(loaded, trimesh.Trimesh) else list(getattr(loaded, "geometry", {}).values())
-        for g in geoms:
-            if getattr(g.visual, "kind", None) == "texture":
-                g.visual.material = trimesh.visual.material.PBRMaterial()
-    return loaded
+    return loaded, materials
 
 
 def _mesh_from_ply_strips(path: Path, cloud):
@@ -289,8 +314,9 @@ def _mesh_from_ply_strips(path: Path, cloud):
     return trimesh.Trimesh(vertices=vertices, faces=faces, process=False, **kwargs)
 
 
-def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
-    """Convert what trimesh (or our USD reader) loaded into a glTF document."""
+def _doc_from_trimesh_scene(path: Path, loaded, materials: dict | None = None) -> GltfDocument:
+    """Convert what trimesh (or our USD reader) loaded into a glTF document; each mesh gets the MTL material
+    ``materials`` holds under its trimesh material's name, or the explicit dielectric."""
     import trimesh
 
     if isinstance(loaded, trimesh.Trimesh):
@@ -302,6 +328,13 @@ def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
     meshes = [g for g in scene.geometry.values() if isinstance(g, trimesh.Trimesh)]
     if not meshes or sum(len(g.faces) for g in meshes) == 0:
         raise BakerError(path, "no triangle faces")
+    # trimesh's own material (an MTL's, or a 2x2 grey image it invents without one) is replaced by baker's: its
+    # export would re-encode images and write a metallic default. UVs stay
+    material_of = {}
+    for key, g in scene.geometry.items():
+        if getattr(g.visual, "kind", None) == "texture":
+            material_of[key] = (materials or {}).get(getattr(g.visual.material, "name", None))
+            g.visual.material = trimesh.visual.material.PBRMaterial()
     import tempfile
 
     with tempfile.TemporaryDirectory() as d:
@@ -325,7 +358,36 @@ def _doc_from_trimesh_scene(path: Path, loaded) -> GltfDocument:
             if "indices" in prim:
                 _set_view_target(doc, prim["indices"], 34963)
     doc.json["asset"]["generator"] = "baker (converted from " + path.suffix.lower().lstrip(".") + ")"
+    for key in ("materials", "textures", "images", "samplers"):
+        doc.json.pop(key, None)  # only the (image-less) PBRMaterial placeholders were written
+    assign_materials(doc, {m: material_of.get(mesh.get("name")) for m, mesh in enumerate(doc.json.get("meshes", []))})
     return doc
+
+
+def assign_materials(doc: GltfDocument, mtl_by_mesh: dict) -> None:
+    """Give every primitive of a converted document its material: ``mtl_by_mesh`` maps a mesh index to its
+    :class:`baker.geometry.mtl.MtlMaterial` (absent or None: the explicit dielectric). A material's textures are
+    kept when every primitive using it has TEXCOORD_0."""
+    from baker.geometry.mtl import MaterialWriter
+
+    meshes = doc.json.get("meshes", [])
+    textured: dict = {}
+    for m, mesh in enumerate(meshes):
+        mtl = mtl_by_mesh.get(m)
+        key = None if mtl is None else mtl.name
+        textured[key] = textured.get(key, True) and all("TEXCOORD_0" in prim.get("attributes", {})
+                                                          for prim in mesh.get("primitives", []))
+    writer = MaterialWriter(doc)
+    materials = doc.json["materials"] = []
+    index_of: dict = {}
+    for m, mesh in enumerate(meshes):
+        mtl = mtl_by_mesh.get(m)
+        key = None if mtl is None else mtl.name
+        if key not in index_of:
+            materials.append(writer.material(mtl, textured[key]))
+            index_of[key] = len(materials) - 1
+        for prim in mesh.get("primitives", []):
+            prim["material"] = index_of[key]
 
 
 def _check_finite(path: Path, meshes: list) -> None:

@@ -41,14 +41,30 @@ class MaterialTarget:
         return m
 
 
+UNLIT = "KHR_materials_unlit"
+
+
+def is_unlit(doc, material: int) -> bool:
+    materials = doc.json.get("materials") or []
+    return 0 <= material < len(materials) and UNLIT in (materials[material].get("extensions") or {})
+
+
 def material_groups(asset: Asset) -> dict[int, list[tuple[int, int]]]:
-    """Triangle primitives by material index; primitives without one get a new default material (same look)."""
+    """Triangle primitives by material index; primitives without one get a new default material (same look).
+
+    ``KHR_materials_unlit`` materials are left out: the material bakes are lighting models (translucency, skin,
+    toon, hatching, fur shading) that an unlit material does not evaluate, and the Khronos validator warns
+    (MULTIPLE_EXTENSIONS) about any other extension beside KHR_materials_unlit. The asset notes which."""
     doc = asset.doc
     groups: dict[int, list] = {}
     default = None
+    unlit = set()
     for m in range(len(asset.meshes())):
         for p in asset.triangle_primitives(m):
             prim = asset.meshes()[m]["primitives"][p]
+            if "material" in prim and is_unlit(doc, prim["material"]):
+                unlit.add(prim["material"])
+                continue
             if "material" not in prim:
                 if default is None:
                     mats = doc.json.setdefault("materials", [])
@@ -56,7 +72,15 @@ def material_groups(asset: Asset) -> dict[int, list[tuple[int, int]]]:
                     default = len(mats) - 1
                 asset.assign_material(m, p, default)
             groups.setdefault(prim["material"], []).append((m, p))
+    if unlit:
+        names = ", ".join(material_label(doc, i) for i in sorted(unlit))
+        asset.note(f"unlit (KHR_materials_unlit) materials get no baked material data: {names}")
     return dict(sorted(groups.items()))
+
+
+def material_label(doc, material: int) -> str:
+    name = doc.json["materials"][material].get("name")
+    return f"{material} {name!r}" if name else str(material)
 
 
 def smooth_normals(geometry: PrimitiveGeometry) -> np.ndarray:

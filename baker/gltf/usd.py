@@ -36,15 +36,20 @@ cameras, lights, ``KHR_texture_transform``. Per primitive:
   interpolation; integer data is converted to float, normalized integers to [0, 1]).
 
 Each glTF material a written primitive uses becomes a ``UsdShade.Material`` under ``/Root/Materials`` with a
-``UsdPreviewSurface`` (``diffuseColor``, ``opacity``, ``metallic``, ``roughness``, ``emissiveColor``; the base
-color texture through ``UsdUVTexture`` and a ``UsdPrimvarReader_float2`` per UV set). Images are written beside the
+``UsdPreviewSurface`` (``diffuseColor``, ``opacity``, ``metallic``, ``roughness``, ``emissiveColor`` times
+``KHR_materials_emissive_strength``; the base color texture (and its alpha as ``opacity`` when the alpha mode is
+MASK or BLEND), the emissive texture and the normal texture through ``UsdUVTexture`` and a
+``UsdPrimvarReader_float2`` per UV set). ``metallic`` and ``roughness`` follow glTF: a factor the material does not
+write is 1 (its default), so a material without ``pbrMetallicRoughness`` is metallic; baker's mesh-format
+conversion writes both factors (``metallic`` 0, see :mod:`baker.geometry.mtl`). Images are written beside the
 stage in ``<stem>_textures/`` (``.usda``/``.usdc``/``.usd``) or inside the package (``.usdz``).
 
 Baked data on materials:
 
-- ``KHR_materials_volume.thicknessTexture``: a ``UsdUVTexture`` shader ``ThicknessTexture`` (raw color space) whose
-  ``outputs:g`` feeds the material output ``outputs:baker:thickness`` (float); the material input
-  ``inputs:baker:thicknessFactor`` (float) holds ``thicknessFactor`` (texel value 1.0 = that many units).
+- ``BAKER_thickness.thicknessTexture`` (or, without it, ``KHR_materials_volume.thicknessTexture``): a
+  ``UsdUVTexture`` shader ``ThicknessTexture`` (raw color space) whose ``outputs:g`` feeds the material output
+  ``outputs:baker:thickness`` (float); the material input ``inputs:baker:thicknessFactor`` (float) holds
+  ``thicknessFactor`` (texel value 1.0 = that many units).
 - Every ``BAKER_<name>`` material extension is written as typed **custom attributes** on the Material prim, named
   ``baker:<name>:<key>`` (e.g. ``baker:thickness:rays`` int, ``baker:thickness:subsurfaceColor`` float3,
   ``baker:thickness:distribution`` string). Attributes rather than ``customData`` so they are typed, can be
@@ -526,9 +531,12 @@ class _Writer:
         surface.CreateInput("opacity", Sdf.ValueTypeNames.Float).Set(color[3])
         surface.CreateInput("metallic", Sdf.ValueTypeNames.Float).Set(float(pbr.get("metallicFactor", 1.0)))
         surface.CreateInput("roughness", Sdf.ValueTypeNames.Float).Set(float(pbr.get("roughnessFactor", 1.0)))
-        emissive = gltf.get("emissiveFactor")
-        if emissive:
-            surface.CreateInput("emissiveColor", Sdf.ValueTypeNames.Color3f).Set(Gf.Vec3f(*map(float, emissive)))
+        # KHR_materials_emissive_strength multiplies the factor (UsdPreviewSurface's emissiveColor is unbounded)
+        strength = float(((gltf.get("extensions") or {}).get("KHR_materials_emissive_strength") or {})
+                         .get("emissiveStrength", 1.0))
+        emissive = [float(c) * strength for c in gltf.get("emissiveFactor") or [0.0, 0.0, 0.0]]
+        if any(emissive):
+            surface.CreateInput("emissiveColor", Sdf.ValueTypeNames.Color3f).Set(Gf.Vec3f(*emissive))
         if gltf.get("alphaMode") == "MASK":
             surface.CreateInput("opacityThreshold", Sdf.ValueTypeNames.Float).Set(float(gltf.get("alphaCutoff", 0.5)))
         material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
@@ -540,16 +548,39 @@ class _Writer:
                 tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(*color))
                 tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
                 surface.GetInput("diffuseColor").ConnectToSource(tex.ConnectableAPI(), "rgb")
+                if gltf.get("alphaMode") in ("MASK", "BLEND"):  # glTF's alpha is the base colour's
+                    tex.CreateOutput("a", Sdf.ValueTypeNames.Float)
+                    surface.GetInput("opacity").ConnectToSource(tex.ConnectableAPI(), "a")
+        emissive_texture = gltf.get("emissiveTexture")
+        if emissive_texture is not None and any(emissive):
+            tex = self._texture(mat_path, "EmissiveTexture", emissive_texture, "sRGB", readers)
+            if tex is not None:
+                tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(*emissive, 1.0))
+                tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
+                surface.GetInput("emissiveColor").ConnectToSource(tex.ConnectableAPI(), "rgb")
+        normal_texture = gltf.get("normalTexture")
+        if normal_texture is not None:
+            tex = self._texture(mat_path, "NormalTexture", normal_texture, "raw", readers)
+            if tex is not None:  # [0, 1] texels -> [-1, 1] tangent-space normal, x and y scaled by glTF's scale
+                scale = float(normal_texture.get("scale", 1.0))
+                tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(2 * scale, 2 * scale, 2, 1))
+                tex.CreateInput("bias", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(-scale, -scale, -1, 0))
+                tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
+                surface.CreateInput("normal", Sdf.ValueTypeNames.Normal3f).ConnectToSource(tex.ConnectableAPI(), "rgb")
 
+        # the thickness texture: BAKER_thickness's (on every material baker bakes), else KHR_materials_volume's
         volume = gltf.get("extensions", {}).get("KHR_materials_volume", {})
-        if "thicknessTexture" in volume:
-            tex = self._texture(mat_path, "ThicknessTexture", volume["thicknessTexture"], "raw", readers)
+        baked = gltf.get("extensions", {}).get("BAKER_thickness", {})
+        if not isinstance(baked.get("thicknessTexture"), dict):
+            baked = volume
+        if "thicknessTexture" in baked:
+            tex = self._texture(mat_path, "ThicknessTexture", baked["thicknessTexture"], "raw", readers)
             if tex is not None:
                 out = tex.CreateOutput("g", Sdf.ValueTypeNames.Float)
                 material.CreateOutput("baker:thickness", Sdf.ValueTypeNames.Float).ConnectToSource(out)
-        if volume:
+        if "thicknessFactor" in baked:
             material.CreateInput("baker:thicknessFactor", Sdf.ValueTypeNames.Float).Set(
-                float(volume.get("thicknessFactor", 0.0)))
+                float(baked.get("thicknessFactor", 0.0)))
 
         prim = material.GetPrim()
         for ext_name, params in gltf.get("extensions", {}).items():

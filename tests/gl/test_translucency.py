@@ -217,7 +217,7 @@ def test_written_parameters(baked_sphere):
                                     "subsurfaceColor"])
     for name in names:
         assert name in params, name
-    assert params["attribute"] == "_THICKNESS" and params["thicknessTexture"] is False
+    assert params["attribute"] == "_THICKNESS" and "thicknessTexture" not in params
     assert params["subsurfaceColor"] == list(SPHERE_OPTIONS["subsurface_color"])
     assert (params["ambient"], params["distortion"], params["power"]) == (0.05, 0.3, 3.0)
 

@@ -51,7 +51,7 @@ def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = Q
         if all(0 in g.texcoords for g in geoms):
             furred[material] = (members, geoms)
     if not furred:
-        raise BakerError(asset.source, "the fur bake needs TEXCOORD_0 on the primitives it covers; none has it")
+        raise BakerError(asset.source, "the fur bake needs TEXCOORD_0 on the primitives it covers (unlit ones are left out); none has it")
     all_pos = np.concatenate([asset.mesh_triangles(m)[0] for m in range(len(asset.meshes()))])
     diag = float(np.linalg.norm(all_pos.max(0) - all_pos.min(0))) or 1.0
     length = options.length if options.length else 0.02 * diag

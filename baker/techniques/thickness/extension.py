@@ -3,7 +3,9 @@
 Where the data goes (see ``schemas/BAKER_thickness/README.md``):
 - per vertex: the primitive attribute ``_THICKNESS`` (FLOAT VEC3: mean chord in mesh units in x, y = z = 0, the custom
   attribute layout of :mod:`baker.gltf.vertex_attributes` that Blender imports);
-- per texel: ``KHR_materials_volume.thicknessTexture`` (green channel, 1.0 = ``thicknessFactor`` mesh units);
+- per texel: ``BAKER_thickness.thicknessTexture`` (green channel, 1.0 = ``BAKER_thickness.thicknessFactor`` mesh
+  units), mirrored in ``KHR_materials_volume.thicknessTexture``/``thicknessFactor`` on single-sided materials only
+  (the Khronos validator warns about KHR_materials_volume on a double-sided one);
 - ``BAKER_thickness`` on the material: how it was baked and the translucency parameters of RTR4 eq. 14.30.
 
 KHR_materials_transmission is never added: KHR_materials_volume without a transmission extension has no effect in
@@ -46,24 +48,34 @@ def encode_thickness_texture(thickness: np.ndarray, bits: int) -> tuple[bytes, f
     return encode_image(pixels, ".png"), factor
 
 
-def write_thickness_texture(doc: GltfDocument, material: int, png: bytes, factor: float, texcoord: int) -> int:
-    """Point ``KHR_materials_volume.thicknessTexture`` of ``material`` at a new texture; returns the texture index."""
+def volume_allowed(doc: GltfDocument, material: int) -> bool:
+    """Whether ``KHR_materials_volume`` is valid on ``material``: the extension describes a closed volume, so the
+    Khronos validator warns about it on a double-sided material (KHR_MATERIALS_VOLUME_DOUBLE_SIDED)."""
+    return not doc.json["materials"][material].get("doubleSided", False)
+
+
+def write_thickness_texture(doc: GltfDocument, material: int, png: bytes, factor: float, texcoord: int) -> dict:
+    """Add the thickness texture of ``material``; returns its textureInfo (``{"index", "texCoord"?}``), which
+    :func:`write_material_parameters` keeps in ``BAKER_thickness``. Where ``KHR_materials_volume`` is valid
+    (:func:`volume_allowed`) its ``thicknessTexture``/``thicknessFactor`` point at the same texture."""
     image = doc.add_image(png, "image/png", f"thickness_m{material}")
     texture = doc.add_texture(image, sampler={"magFilter": 9729, "minFilter": 9987},
                               name=f"baker thickness (material {material})")
-    volume = doc.json["materials"][material].setdefault("extensions", {}).setdefault(KHR_VOLUME, {})
     info = {"index": texture}
     if texcoord:
         info["texCoord"] = texcoord
-    volume["thicknessTexture"] = info
-    volume["thicknessFactor"] = factor
-    doc.use_extension(KHR_VOLUME)
-    return texture
+    if volume_allowed(doc, material):
+        volume = doc.json["materials"][material].setdefault("extensions", {}).setdefault(KHR_VOLUME, {})
+        volume["thicknessTexture"] = dict(info)
+        volume["thicknessFactor"] = factor
+        doc.use_extension(KHR_VOLUME)
+    return {"texture": info, "factor": factor}
 
 
 def write_material_parameters(doc: GltfDocument, material: int, *, options, max_distance: float, bias: float,
-                              mean_thickness: float, per_vertex: bool, texture: bool) -> dict:
-    """Write ``BAKER_thickness`` on ``material``: bake settings and eq. 14.30 parameters."""
+                              mean_thickness: float, per_vertex: bool, texture: dict | None) -> dict:
+    """Write ``BAKER_thickness`` on ``material``: bake settings, eq. 14.30 parameters and the thickness texture
+    (``texture``: what :func:`write_thickness_texture` returned, or None)."""
     ext = {
         "rays": int(options.rays),
         "distribution": options.distribution,
@@ -78,8 +90,10 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, max_
         "scale": float(options.scale),
         "ambient": float(options.ambient),
         "subsurfaceColor": [float(c) for c in options.subsurface_color],
-        "thicknessTexture": bool(texture),
     }
+    if texture is not None:
+        ext["thicknessTexture"] = dict(texture["texture"])
+        ext["thicknessFactor"] = float(texture["factor"])
     if per_vertex:
         ext["attribute"] = ATTRIBUTE
     doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
@@ -112,30 +126,24 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                 if is_number(max_distance) and len(values) and values.max() > max_distance * 1.001:
                     issues.warning("BAKER_THICKNESS_VALUE_ABOVE_MAX", f"largest value {values.max():g} exceeds "
                                    f"maxDistance {max_distance:g}", acc_ptr)
-        if ext.get("thicknessTexture") is True:
-            volume = (gltf["materials"][material].get("extensions") or {}).get(KHR_VOLUME)
-            info = volume.get("thicknessTexture") if isinstance(volume, dict) else None
-            vol_ptr = pointer("materials", material, "extensions", KHR_VOLUME)
-            if not isinstance(info, dict):
-                issues.error("BAKER_THICKNESS_TEXTURE_MISSING", "BAKER_thickness.thicknessTexture is true but the "
-                             "material has no KHR_materials_volume.thicknessTexture", ext_ptr + "/thicknessTexture")
-                continue
-            if not is_index(info.get("index"), gltf.get("textures") or []):
-                continue  # reported as UNRESOLVED_REFERENCE
-            texcoord = info.get("texCoord", 0)
-            for m, p, prim in users:
-                if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
-                    issues.error("BAKER_THICKNESS_TEXCOORD_MISSING", f"the thickness texture reads TEXCOORD_{texcoord}"
-                                 " but this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
-            if KHR_VOLUME not in (gltf.get("extensionsUsed") or []):
-                issues.warning("BAKER_EXTENSION_NOT_DECLARED", "KHR_materials_volume is used but missing from "
-                               "extensionsUsed", vol_ptr)
+        info = ext.get("thicknessTexture")
+        if not isinstance(info, dict) or not is_index(info.get("index"), gltf.get("textures") or []):
+            continue  # absent, or reported as UNRESOLVED_REFERENCE
+        texcoord = info.get("texCoord", 0)
+        for m, p, prim in users:
+            if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
+                issues.error("BAKER_THICKNESS_TEXCOORD_MISSING", f"the thickness texture reads TEXCOORD_{texcoord}"
+                             " but this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
+        volume = (gltf["materials"][material].get("extensions") or {}).get(KHR_VOLUME)
+        if isinstance(volume, dict) and KHR_VOLUME not in (gltf.get("extensionsUsed") or []):
+            issues.warning("BAKER_EXTENSION_NOT_DECLARED", "KHR_materials_volume is used but missing from "
+                           "extensionsUsed", pointer("materials", material, "extensions", KHR_VOLUME))
 
 
 # ---------------------------------------------------------------------------------------------------- reading back
 @dataclass(frozen=True)
 class ThicknessMaterial:
-    """``BAKER_thickness`` of one material as read back, with the ``KHR_materials_volume`` thickness texture.
+    """``BAKER_thickness`` of one material as read back, with its thickness texture.
 
     The translucency parameters (RTR4 eq. 14.30, GDC 2011) default to what a runtime assumes when a field is absent.
     """
@@ -154,7 +162,7 @@ class ThicknessMaterial:
     bias: float | None = None
     mean_thickness: float | None = None
     has_texture: bool = False  # ``thicknessTexture``: whether the bake wrote the per-texel map
-    thickness_texture: int | None = None  # KHR_materials_volume.thicknessTexture.index (green channel)
+    thickness_texture: int | None = None  # BAKER_thickness.thicknessTexture.index (green channel)
     thickness_texcoord: int = 0
     thickness_factor: float = 1.0  # mesh units at texel value 1.0
 
@@ -166,8 +174,7 @@ def read(doc: GltfDocument, material: int) -> ThicknessMaterial | None:
     ext = extensions.get(NAME)
     if ext is None:
         return None
-    volume = extensions.get(KHR_VOLUME) or {}
-    info = volume.get("thicknessTexture") or {}
+    info = ext.get("thicknessTexture") if isinstance(ext.get("thicknessTexture"), dict) else {}
 
     def optional(key, kind):
         return kind(ext[key]) if key in ext else None
@@ -179,6 +186,5 @@ def read(doc: GltfDocument, material: int) -> ThicknessMaterial | None:
         attribute=ext.get("attribute"), rays=optional("rays", int), distribution=ext.get("distribution"),
         spread_angle=optional("spreadAngle", float), max_distance=optional("maxDistance", float),
         bias=optional("bias", float), mean_thickness=optional("meanThickness", float),
-        has_texture=bool(ext.get("thicknessTexture", False)),
-        thickness_texture=int(info["index"]) if "index" in info else None,
-        thickness_texcoord=int(info.get("texCoord", 0)), thickness_factor=float(volume.get("thicknessFactor", 1.0)))
+        has_texture="index" in info, thickness_texture=int(info["index"]) if "index" in info else None,
+        thickness_texcoord=int(info.get("texCoord", 0)), thickness_factor=float(ext.get("thicknessFactor", 1.0)))

@@ -35,7 +35,7 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
 
     from baker.geometry.normals import vertex_normals
     from baker.geometry.texture_space import dilate, interpolate
-    from baker.geometry.texture_target import material_groups, material_targets
+    from baker.geometry.texture_target import material_groups, material_label, material_targets
     from baker.techniques.thickness.kernel import local_thickness
 
     def cast(mesh, points, normals, label):
@@ -54,6 +54,8 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
     if options.per_vertex:
         for m in scenes:
             prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
+            if not prims:
+                continue  # every primitive of the mesh is unlit (material_groups leaves them out)
             # welded across UV/normal seams and primitives: one sample per position, so split vertices agree
             mesh = asset.welded(m, prims)
             geoms, welded, inverse, offsets = mesh.geometries, mesh.positions, mesh.inverse, mesh.offsets
@@ -66,7 +68,7 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
                 s[0] += float(per_vertex.sum())
                 s[1] += len(per_vertex)
 
-    textured = set()
+    textured = {}
     if options.per_texel:
         for target in material_targets(asset, options.texture_size, seed):
             image = np.zeros((target.size, target.size), np.float64)
@@ -80,8 +82,12 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
                 sums[target.material][0] += float(image[mask].sum())
                 sums[target.material][1] += int(mask.sum())
             png, factor = ext.encode_thickness_texture(dilate(image, mask), options.texture_bits)
-            ext.write_thickness_texture(doc, target.material, png, factor, target.texcoord)
-            textured.add(target.material)
+            textured[target.material] = ext.write_thickness_texture(doc, target.material, png, factor,
+                                                                    target.texcoord)
+        double_sided = [material_label(doc, m) for m in textured if not ext.volume_allowed(doc, m)]
+        if double_sided:
+            asset.note("KHR_materials_volume is not valid on double-sided materials: their thickness texture is in "
+                       f"BAKER_thickness only: {', '.join(double_sided)}")
 
     for material, members in groups.items():
         mesh_limits = [limits[m] for m, _ in members if m in limits]
@@ -90,4 +96,4 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
         total, count = sums[material]
         ext.write_material_parameters(doc, material, options=options, max_distance=max(l[0] for l in mesh_limits),
                                       bias=max(l[1] for l in mesh_limits), mean_thickness=total / count if count else 0.0,
-                                      per_vertex=options.per_vertex, texture=material in textured)
+                                      per_vertex=options.per_vertex, texture=textured.get(material))

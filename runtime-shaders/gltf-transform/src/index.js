@@ -2,7 +2,7 @@
 //
 // glTF-Transform drops extensions it has no class for when it writes a document, so a pipeline running
 // `optimize`, `prune` or `dedup` on a baked asset would lose the baked data. Register these classes (next to
-// KHRONOS_EXTENSIONS, which carries KHR_materials_volume's thickness texture) and the data survives:
+// KHRONOS_EXTENSIONS, which carries KHR_materials_volume on single-sided materials) and the data survives:
 //
 //   import { NodeIO } from '@gltf-transform/core';
 //   import { KHRONOS_EXTENSIONS } from '@gltf-transform/extensions';

@@ -71,7 +71,9 @@ export const REFERENCES = {
 		],
 	},
 	"BAKER_thickness": {
-		"material": [],
+		"material": [
+			["thicknessTexture", "texture"],
+		],
 	},
 	"BAKER_tonal_art_map": {
 		"material": [
