@@ -249,6 +249,19 @@ def test_max_memory_refuses_a_job_that_would_not_fit(tmp_path, capsys):
     refused(["bake", path, "-o", out, "--bakes", "edges", "--max-memory", "lots"], capsys, "--max-memory")
 
 
+@pytest.mark.parametrize("command", [["inspect"], ["lines", "-o", "{out}.svg"], ["preview", "-o", "{out}.png"],
+                                     ["hair", "-o", "{out}.glb"]])
+def test_max_memory_on_every_command_that_loads_a_mesh(tmp_path, capsys, command):
+    """inspect, lines, preview and hair take ``--max-memory`` as bake does: a limit below the process itself is
+    refused with one line (exit 2) and nothing is written."""
+    path = tmp_path / "t.obj"
+    path.write_text(_obj(TETRA, TETRA_FACES))
+    verb, *rest = [a.replace("{out}", str(tmp_path / "out")) for a in command]
+    refused([verb, path, *rest, "--max-memory", "1M"], capsys, "--max-memory", "1.0 MiB")
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith("out")]
+    refused([verb, path, *rest, "--max-memory", "lots"], capsys, "--max-memory")
+
+
 def test_max_memory_refuses_before_reading(tmp_path, capsys, monkeypatch):
     """The file estimate comes before trimesh: a binary PLY's counts alone decide."""
     path = tmp_path / "big.ply"

@@ -3,14 +3,16 @@ from __future__ import annotations
 
 import json
 
+from baker import memory
 
-def describe(path, allow_outside=None) -> dict:
+
+def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
     import numpy as np
 
-    from baker.geometry.asset import Asset
     from baker.gltf.vertex_attributes import used_columns
+    from baker.memory import load_asset
 
-    asset = Asset.load(path, allow_outside=allow_outside)
+    asset = load_asset(path, max_memory, what="inspecting this asset", allow_outside=allow_outside)
     doc = asset.doc
     meshes = []
     for m, mesh in enumerate(asset.meshes()):
@@ -63,15 +65,17 @@ def add_parser(sub) -> None:
     p.add_argument("--format", choices=("text", "json"), default="text")
     p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
                    "(default: only inside the asset's folder); repeatable")
+    memory.add_argument(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    return main(args.file, fmt=args.format, allow_outside=args.allow_outside)
+    return main(args.file, fmt=args.format, allow_outside=args.allow_outside,
+                max_memory=memory.parse_limit(args.max_memory))
 
 
-def main(path, fmt: str = "text", allow_outside=None) -> int:
-    info = describe(path, allow_outside)
+def main(path, fmt: str = "text", allow_outside=None, max_memory: int | None = None) -> int:
+    info = describe(path, allow_outside, max_memory)
     if fmt == "json":
         print(json.dumps(info, indent=2))
         return 0
