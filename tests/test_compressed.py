@@ -84,11 +84,15 @@ def assert_decoded_output(out: Path, extension: str) -> dict:
 
 
 # ---------------------------------------------------------------------------------------------- Draco
-def draco_glb(path: Path):
+def draco_glb(path: Path, nan_vertex: int | None = None):
+    """``nan_vertex``: that vertex's position is NaN (encoded without quantization, which keeps it)."""
     import DracoPy
 
     positions, normals, faces = source_mesh()
-    encoded = DracoPy.encode(positions.astype(np.float64), faces.astype(np.uint32), quantization_bits=14,
+    if nan_vertex is not None:
+        positions[nan_vertex] = np.nan
+    encoded = DracoPy.encode(positions.astype(np.float64), faces.astype(np.uint32),
+                             quantization_bits=14 if nan_vertex is None else 0,
                              normals=normals.astype(np.float64),
                              normal_quantization_bits=10, compression_level=7)
     probe = DracoPy.decode(encoded)  # the counts and ids the JSON must state, from the encoder's side
@@ -97,8 +101,8 @@ def draco_glb(path: Path):
     points = np.asarray(probe.points, np.float32)
     gltf = scene(["KHR_draco_mesh_compression"], ["KHR_draco_mesh_compression"])
     gltf["accessors"] = [
-        {"componentType": 5126, "count": n, "type": "VEC3", "min": points.min(0).tolist(),
-         "max": points.max(0).tolist()},
+        {"componentType": 5126, "count": n, "type": "VEC3", "min": np.nanmin(points, 0).tolist(),
+         "max": np.nanmax(points, 0).tolist()},
         {"componentType": 5126, "count": n, "type": "VEC3"},
         {"componentType": 5125 if n > 65535 else 5123, "count": int(probe.faces.size), "type": "SCALAR"},
     ]
@@ -146,10 +150,13 @@ def test_draco_output_as_gltf_is_clean(tmp_path):
 
 
 # ---------------------------------------------------------------------------------------------- meshopt
-def meshopt_glb(path: Path):
+def meshopt_glb(path: Path, nan_vertex: int | None = None):
+    """``nan_vertex``: that vertex's position is NaN (the vertex codec keeps the bytes)."""
     import meshopt
 
     positions, normals, faces = source_mesh()
+    if nan_vertex is not None:
+        positions[nan_vertex] = np.nan
     n = len(positions)
     indices = faces.reshape(-1).astype(np.uint16)
     oct_rows = meshopt.encode_filter_oct(np.hstack([normals, np.zeros((n, 1), np.float32)]), 4, 8)
@@ -176,8 +183,8 @@ def meshopt_glb(path: Path):
     names = ["EXT_meshopt_compression", "KHR_mesh_quantization"]
     gltf = scene(list(names), list(names))
     gltf["accessors"] = [
-        {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3", "min": positions.min(0).tolist(),
-         "max": positions.max(0).tolist()},
+        {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
+         "min": np.nanmin(positions, 0).tolist(), "max": np.nanmax(positions, 0).tolist()},
         {"bufferView": 1, "componentType": 5120, "normalized": True, "count": n, "type": "VEC3"},
         {"bufferView": 2, "componentType": 5123, "count": len(indices), "type": "SCALAR"},
     ]
@@ -232,6 +239,24 @@ def test_undecodable_meshopt_is_one_line(tmp_path):
     assert result.returncode == 2, result.stderr
     assert len(result.stderr.strip().splitlines()) == 1 and "EXT_meshopt_compression" in result.stderr
     assert not out.exists()
+
+
+@pytest.mark.parametrize("make, extension", [(draco_glb, "KHR_draco_mesh_compression"),
+                                             (meshopt_glb, "EXT_meshopt_compression")])
+def test_decoded_nan_positions_are_refused(tmp_path, make, extension):
+    """The NaN/inf check runs on what the decoder made (the load's check saw only the compressed placeholders):
+    exit 2, one line naming the accessor, nothing written."""
+    src = tmp_path / "nan.glb"
+    make(src, nan_vertex=5)
+    out = tmp_path / "o.glb"
+    result = subprocess.run([sys.executable, "-m", "baker.cli", "bake", str(src), "-o", str(out), "--bakes", "edges",
+                             "-q"], capture_output=True, text=True)
+    assert result.returncode == 2, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "/accessors/0" in lines[0] and "NaN" in lines[0] and extension in lines[0], lines
+    assert not out.exists()
+    result = subprocess.run([sys.executable, "-m", "baker.cli", "inspect", str(src)], capture_output=True, text=True)
+    assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1, result.stderr
 
 
 @pytest.mark.parametrize("module", ["DracoPy", "meshopt"])

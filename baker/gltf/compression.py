@@ -20,8 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from baker.checks import pointer
+from baker.checks import Issues, pointer
 from baker.errors import BakerError
+from baker.gltf.structure import check_finite_attributes, first_error
 
 # no import of baker.gltf.document: GltfDocument.load may call decompress() (``doc`` is any GltfDocument)
 COMPONENT_DTYPES = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32,
@@ -62,9 +63,17 @@ def decompress(doc) -> list[dict]:
     views = _decode_meshopt(doc)
     if views:
         record.append({"extension": MESHOPT, "decoder": _version("meshopt"), "bufferViews": views})
-    prims = _decode_draco(doc)
+    prims, filled = _decode_draco(doc)
     if prims:
         record.append({"extension": DRACO, "decoder": _version("DracoPy"), "primitives": prims})
+    # the load's finite check saw the compressed accessors' placeholders: check what the decoders made
+    decoded = filled | {a for a, acc in enumerate(gltf.get("accessors") or []) if acc.get("bufferView") in views}
+    issues = Issues()
+    check_finite_attributes(doc, issues, only=decoded,
+                            decoded=f" (decoded from {' and '.join(r['extension'] for r in record)})")
+    problem = first_error(issues)
+    if problem:
+        raise BakerError(doc.path, problem)
     for name in DECODED:
         _unuse(gltf, name)
     for buffer in gltf.get("buffers") or []:
@@ -112,7 +121,8 @@ def _decode_meshopt(doc) -> list[int]:
 
 
 # ---------------------------------------------------------------------------------------------- Draco
-def _decode_draco(doc) -> list[str]:
+def _decode_draco(doc) -> tuple[list[str], set]:
+    """Decode every Draco primitive; returns the decoded primitives' pointers and the accessors filled."""
     gltf = doc.json
     decoded, done = [], {}  # done: (bufferView, attribute ids) -> decoded mesh, for primitives sharing one
     reusable = set()  # compressed bufferViews whose slot the next decoded array may take
@@ -156,7 +166,7 @@ def _decode_draco(doc) -> list[str]:
                 prim["indices"] = doc.add_accessor(faces.astype(np.uint32), target=TARGET_ELEMENT_ARRAY_BUFFER)
             _drop_extension(prim, DRACO)
             decoded.append(pointer("meshes", m, "primitives", p))
-    return decoded
+    return decoded, filled
 
 
 def _fill_accessor(doc, index: int, values: np.ndarray, target: int, reusable: set, filled: set,

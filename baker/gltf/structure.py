@@ -939,21 +939,10 @@ def check_data(doc, issues: Issues) -> None:
             except BakerError as exc:
                 issues.error("ACCESSOR_SPARSE_INDEX_OOB", exc.message.split(": ", 1)[-1], pointer("accessors", a))
                 finite_checked.add(a)
+    check_finite_attributes(doc, issues, skip=finite_checked)
     for m, mesh in enumerate(doc.json.get("meshes") or []):
         for p, prim in enumerate(mesh.get("primitives") or []):
             attrs = prim.get("attributes") or {}
-            for name, a in attrs.items():
-                if attribute_semantic(name) in FINITE_ATTRIBUTES:
-                    if a in finite_checked or accessors[a].get("componentType") != FLOAT:
-                        continue
-                    finite_checked.add(a)
-                    values = doc.accessor(a)
-                    bad = ~np.isfinite(values)
-                    if bad.any():
-                        row = int(np.argwhere(bad)[0][0])
-                        issues.error("ACCESSOR_INVALID_FLOAT", f"{int(bad.sum())} of {values.size} values of {name} "
-                                     f"are NaN or infinite (first at element {row}); no bake may read or write them",
-                                     pointer("accessors", a))
             if "indices" not in prim or "POSITION" not in attrs:
                 continue
             vertex_count = accessors[attrs["POSITION"]]["count"]
@@ -963,3 +952,27 @@ def check_data(doc, issues: Issues) -> None:
                 issues.error("ACCESSOR_INDEX_OOB", f"{bad} indices are >= the vertex count {vertex_count} "
                              f"(largest {int(indices.max())})", pointer("meshes", m, "primitives", p, "indices"))
 
+
+
+def check_finite_attributes(doc, issues: Issues, only=None, skip=(), decoded: str = "") -> None:
+    """The float POSITION, NORMAL and TEXCOORD_n accessors of every primitive hold no NaN or infinity: each accessor
+    once, those in ``only`` when it is given (the ones a decoder just filled), none in ``skip``. ``decoded`` names
+    where the values came from, for the message."""
+    accessors = doc.json.get("accessors") or []
+    checked = set(skip)
+    for mesh in doc.json.get("meshes") or []:
+        for prim in mesh.get("primitives") or []:
+            for name, a in (prim.get("attributes") or {}).items():
+                if attribute_semantic(name) not in FINITE_ATTRIBUTES or a in checked or (only is not None
+                                                                                         and a not in only):
+                    continue
+                checked.add(a)
+                if accessors[a].get("componentType") != FLOAT:
+                    continue
+                values = doc.accessor(a)
+                bad = ~np.isfinite(values)
+                if bad.any():
+                    row = int(np.argwhere(bad)[0][0])
+                    issues.error("ACCESSOR_INVALID_FLOAT", f"{int(bad.sum())} of {values.size} values of {name}"
+                                 f"{decoded} are NaN or infinite (first at element {row}); no bake may read or write "
+                                 "them", pointer("accessors", a))
