@@ -138,19 +138,6 @@ def test_readme_documents_every_option_and_command():
         assert command in readme
 
 
-def test_compressed_geometry_baker_cannot_decode_is_refused(tmp_path, sphere_glb):
-    # Draco and EXT_meshopt_compression are decoded (tests/test_compressed.py); KHR_meshopt_compression is not yet
-    from baker.gltf.document import GltfDocument as Doc
-
-    doc = Doc.load(sphere_glb)
-    doc.use_extension("KHR_meshopt_compression", required=True)
-    src = tmp_path / "meshopt.glb"
-    doc.save(src)
-    result = run("bake", src, "-o", tmp_path / "o.glb", "-q")
-    assert result.returncode == 2 and "KHR_meshopt_compression" in result.stderr and str(src) in result.stderr
-    assert not (tmp_path / "o.glb").exists()
-
-
 def test_python_api_example_runs(tmp_path):
     example = Path(__file__).parents[1] / "examples" / "bake_api.py"
     spot = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"

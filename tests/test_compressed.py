@@ -150,8 +150,11 @@ def test_draco_output_as_gltf_is_clean(tmp_path):
 
 
 # ---------------------------------------------------------------------------------------------- meshopt
-def meshopt_glb(path: Path, nan_vertex: int | None = None):
-    """``nan_vertex``: that vertex's position is NaN (the vertex codec keeps the bytes)."""
+def meshopt_glb(path: Path, nan_vertex: int | None = None, extension: str = "EXT_meshopt_compression",
+                version: int = 0, colors: np.ndarray | None = None):
+    """``nan_vertex``: that vertex's position is NaN (the vertex codec keeps the bytes). ``extension``: EXT_ or
+    KHR_meshopt_compression; ``version``: the vertex codec's (1 is KHR's addition); ``colors``: (n, 4) in [0, 1],
+    written as COLOR_0 through the COLOR filter (KHR's addition) as a fourth bufferView."""
     import meshopt
 
     positions, normals, faces = source_mesh()
@@ -165,9 +168,11 @@ def meshopt_glb(path: Path, nan_vertex: int | None = None):
         (oct_rows.view(np.int8).reshape(n, 4), n, 4, "ATTRIBUTES", "OCTAHEDRAL", 34962),
         (indices, len(indices), 2, "TRIANGLES", None, 34963),
     ]
+    if colors is not None:
+        streams.append((meshopt.encode_filter_color(colors, 4, 8), n, 4, "ATTRIBUTES", "COLOR", 34962))
     binary, views, fallback = bytearray(), [], 0
     for data, count, stride, mode, filt, target in streams:
-        encoded = meshopt.encode_gltf_buffer(np.ascontiguousarray(data), mode)
+        encoded = meshopt.encode_gltf_buffer(np.ascontiguousarray(data), mode, version if mode == "ATTRIBUTES" else 0)
         binary.extend(b"\0" * (-len(binary) % 4))
         ext = {"buffer": 0, "byteOffset": len(binary), "byteLength": len(encoded), "byteStride": stride,
                "count": count, "mode": mode}
@@ -175,12 +180,12 @@ def meshopt_glb(path: Path, nan_vertex: int | None = None):
             ext["filter"] = filt
         binary.extend(encoded)
         view = {"buffer": 1, "byteOffset": fallback, "byteLength": count * stride, "target": target,
-                "extensions": {"EXT_meshopt_compression": ext}}
+                "extensions": {extension: ext}}
         if mode == "ATTRIBUTES":
             view["byteStride"] = stride
         fallback += count * stride + (-(count * stride) % 4)
         views.append(view)
-    names = ["EXT_meshopt_compression", "KHR_mesh_quantization"]
+    names = [extension, "KHR_mesh_quantization"]
     gltf = scene(list(names), list(names))
     gltf["accessors"] = [
         {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
@@ -190,9 +195,13 @@ def meshopt_glb(path: Path, nan_vertex: int | None = None):
     ]
     gltf["meshes"] = [{"name": "ball", "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2,
                                                        "material": 0}]}]
+    if colors is not None:
+        gltf["accessors"].append({"bufferView": 3, "componentType": 5121, "normalized": True, "count": n,
+                                  "type": "VEC4"})
+        gltf["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 3
     gltf["bufferViews"] = views
     gltf["buffers"] = [{"byteLength": len(binary)},
-                       {"byteLength": fallback, "extensions": {"EXT_meshopt_compression": {"fallback": True}}}]
+                       {"byteLength": fallback, "extensions": {extension: {"fallback": True}}}]
     write_glb(path, gltf, bytes(binary))
     return positions, normals, indices
 
@@ -221,6 +230,44 @@ def test_meshopt_input_is_decoded_and_baked(tmp_path):
     assert np.abs(normal - normals).max() < 0.03  # 8-bit octahedral
     # the fallback buffer is gone with the compressed bytes: what is left is the decoded data and the bakes' own
     assert g["buffers"][0]["byteLength"] < 4 * len(positions) * 200
+
+
+def test_khr_meshopt_is_decoded_like_ext(tmp_path):
+    """KHR_meshopt_compression (the ratified successor): the same JSON, data in the vertex codec's version 1 and a
+    COLOR-filtered COLOR_0; decoded, recorded and removed like EXT_meshopt_compression."""
+    src = tmp_path / "khr.glb"
+    colors = np.random.default_rng(4).random((len(source_mesh()[0]), 4)).astype(np.float32)
+    positions, normals, indices = meshopt_glb(src, extension="KHR_meshopt_compression", version=1, colors=colors)
+    assert src.read_bytes().count(b"\xa1") >= 1  # a version-1 vertex stream header is in the file
+    out = tmp_path / "out.glb"
+    bake(src, out)
+    g, buffers, record = assert_decoded_output(out, "KHR_meshopt_compression")
+    assert record["decoder"].startswith("meshopt") and record["bufferViews"] == [0, 1, 2, 3]
+    assert all("EXT_meshopt_compression" not in b.get("extensions", {}) for b in g["buffers"])
+    assert np.array_equal(read_accessor(g, buffers, 0), positions)
+    got = read_accessor(g, buffers, 2)[:, 0].astype(np.int64).reshape(-1, 3)
+    assert sorted(map(sorted, got.tolist())) == sorted(map(sorted, indices.astype(np.int64).reshape(-1, 3).tolist()))
+    assert np.abs(read_accessor(g, buffers, 1).astype(np.float64) / 127.0 - normals).max() < 0.03
+    assert np.abs(read_accessor(g, buffers, 3).astype(np.float64) / 255.0 - colors).max() < 0.02  # 8-bit YCoCg
+
+
+def test_khr_meshopt_unknown_filter_is_one_line(tmp_path):
+    src = tmp_path / "khr.glb"
+    meshopt_glb(src, extension="KHR_meshopt_compression")
+    data = bytearray(src.read_bytes())
+    length = struct.unpack_from("<I", data, 12)[0]
+    gltf = json.loads(data[20: 20 + length])
+    gltf["bufferViews"][1]["extensions"]["KHR_meshopt_compression"]["filter"] = "WAVELET"
+    bad = tmp_path / "bad.glb"
+    write_glb(bad, gltf, bytes(data[28 + length:]))
+    out = tmp_path / "o.glb"
+    result = subprocess.run([sys.executable, "-m", "baker.cli", "bake", str(bad), "-o", str(out), "-q", *FAST],
+                            capture_output=True, text=True)
+    assert result.returncode == 2, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "/bufferViews/1/extensions/KHR_meshopt_compression" in lines[0] \
+        and "WAVELET" in lines[0], lines
+    assert not out.exists()
 
 
 def test_undecodable_meshopt_is_one_line(tmp_path):

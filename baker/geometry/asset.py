@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from baker.errors import BakerError
-from baker.gltf.compression import NOT_DECODED, decompress
+from baker.gltf.compression import decompress
 from baker.gltf.document import GltfDocument
 from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, faces_from_indices, is_derived_fins, to_float
 
@@ -78,21 +78,8 @@ class Asset:
         else:
             doc = _read_direct(path) or _doc_from_trimesh_scene(path, _load_trimesh(path))
         asset = cls(doc=doc, source=path)
-        asset.check_supported()
         asset.check_has_triangles()
         return asset
-
-    # compressed geometry keeps its vertices inside the extension: reading the accessors would give zeros.
-    # KHR_draco_mesh_compression and EXT_meshopt_compression are decoded at load (baker.gltf.compression); what is
-    # left here is refused
-    UNSUPPORTED = NOT_DECODED
-
-    def check_supported(self) -> None:
-        used = self.doc.json.get("extensionsUsed") or []
-        for name, what in self.UNSUPPORTED.items():
-            if name in used:
-                raise BakerError(self.source, f"{what} geometry is not supported: decompress it first "
-                                              "(e.g. gltf-transform copy) and bake the result")
 
     # ------------------------------------------------------------------ geometry
     def meshes(self) -> list:
