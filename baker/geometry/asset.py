@@ -61,7 +61,9 @@ class Asset:
     cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @classmethod
-    def load(cls, path, allow_outside=None) -> "Asset":
+    def load(cls, path, allow_outside=None, require_triangles: bool = True) -> "Asset":
+        """Read any input; ``require_triangles=False`` also takes a glTF of lines or points only (a groom), which
+        ``baker inspect`` lists but no bake can use."""
         path = Path(path)
         suffix = path.suffix.lower()
         if not path.exists():
@@ -78,7 +80,8 @@ class Asset:
         else:
             doc = _read_direct(path) or _doc_from_trimesh_scene(path, _load_trimesh(path))
         asset = cls(doc=doc, source=path)
-        asset.check_has_triangles()
+        if require_triangles:
+            asset.check_has_triangles()
         return asset
 
     # ------------------------------------------------------------------ geometry
