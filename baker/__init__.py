@@ -16,11 +16,15 @@ if "NUMBA_CACHE_DIR" not in os.environ:
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"), "baker", "numba")
 
 
-def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None):
+def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None, allow_outside=None,
+         max_memory: int | None = None):
     """Bake ``bakes`` into an asset and return it (an ``Asset``); write it with :func:`baker.api.save`.
 
-    ``options`` maps a bake name to its options dataclass instance or to a dict of option values.
+    ``options`` maps a bake name to its options dataclass instance or to a dict of option values;
+    ``allow_outside`` and ``max_memory`` are those of :func:`baker.api.bake` (more folders the asset's URIs may
+    point into; a memory limit in bytes, None for none).
     """
     from baker.api import bake as api_bake
 
-    return api_bake(path_or_asset, bakes=bakes, options=options, seed=seed, progress=progress)
+    return api_bake(path_or_asset, bakes=bakes, options=options, seed=seed, progress=progress,
+                    allow_outside=allow_outside, max_memory=max_memory)

@@ -19,12 +19,13 @@ def validate(path, khronos: bool = True, allow_outside=None) -> dict:
 
 
 def build(recipe_path=None, *, jobs: int = 1, scheduler: str | None = None, fail_fast: bool = False,
-          progress=None) -> dict:
-    """Bake every stale asset of a recipe (``baker.toml``); returns the build report."""
+          progress=None, max_memory: int | None = None) -> dict:
+    """Bake every stale asset of a recipe (``baker.toml``); returns the build report. ``max_memory``: bytes each bake
+    job may need (None: no limit)."""
     from baker.commands.build import build as run_build, find_recipe, load_recipe
 
     return run_build(load_recipe(find_recipe(recipe_path)), jobs=jobs, scheduler=scheduler, fail_fast=fail_fast,
-                     progress=progress)
+                     progress=progress, max_memory=max_memory)
 
 
 def run_command(argv) -> int:

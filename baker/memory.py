@@ -177,10 +177,33 @@ def _index_count(asset, prim) -> int:
         return 0
 
 
-def check_bake(asset, bakes, options: dict | None, limit: int | None) -> int:
+def check_bake(asset, bakes, options: dict | None, limit: int | None, what: str | None = None) -> int:
     """Refuse running ``bakes`` on ``asset`` when the estimate exceeds ``limit`` bytes (None: no limit); returns the
-    estimate."""
+    estimate. ``what`` names the job in the refusal (default: the bakes)."""
     need = bake_estimate(asset_triangles(asset), bakes, options)
     if limit is not None and need > limit:
-        _refuse(asset.source, f"baking {', '.join(bakes)} on {asset_triangles(asset)} triangles", need, limit)
+        triangles = asset_triangles(asset)
+        doing = f"{what} ({triangles} triangles)" if what else f"baking {', '.join(bakes)} on {triangles} triangles"
+        _refuse(asset.source, doing, need, limit)
     return need
+
+
+MAX_MEMORY_HELP = ("refuse a job whose estimated working memory is larger: bytes (512M, 2G), a share of RAM (50%%) "
+                   "or 'none' (default: 75%% of RAM)")
+
+
+def add_argument(parser, help: str = MAX_MEMORY_HELP) -> None:
+    """``--max-memory SIZE`` on a command's parser (read with :func:`parse_limit`)."""
+    parser.add_argument("--max-memory", metavar="SIZE", help=help)
+
+
+def load_asset(path, limit: int | None, work=(), what: str | None = None, **load_options):
+    """``Asset.load(path, **load_options)`` under ``limit`` bytes: a mesh file is checked before it is read
+    (:func:`check_file`), the loaded mesh plus the cost of ``work`` (bake names whose per-triangle figures the job's
+    work resembles) before the work starts (:func:`check_bake`)."""
+    from baker.geometry.asset import Asset
+
+    check_file(path, limit)
+    asset = Asset.load(path, **load_options)
+    check_bake(asset, tuple(work), None, limit, what or "loading this asset")
+    return asset

@@ -145,6 +145,20 @@ def test_failing_asset_does_not_stop_the_others(project):
     assert len(fast["failed"]) == 1
 
 
+def test_max_memory_limits_each_bake_job(project, capsys):
+    """``baker build --max-memory``: a bake job estimated above the limit fails with the reason; the rest of the
+    recipe (the preview command, which takes its own ``--max-memory``) still runs."""
+    from baker.commands.build import job_memory_limit
+    from baker.memory import parse_limit
+
+    assert main(["build", "--recipe", str(project / "baker.toml"), "--max-memory", "1M", "-q"]) == 1
+    table = capsys.readouterr().out
+    assert "--max-memory" in table and not (project / "baked").exists()
+    assert (project / "previews" / "box.png").is_file()
+    assert job_memory_limit(None, 4, None) == parse_limit(None) // 4  # the default is shared by the jobs
+    assert job_memory_limit(None, 4, "tcp://elsewhere:8786") is None and job_memory_limit("2G", 4, None) == 2 << 30
+
+
 def test_parallel_and_dask_builds_are_byte_identical(project, tmp_path_factory):
     build(load_recipe(project / "baker.toml"))
     serial = _files(project)

@@ -161,19 +161,6 @@ def test_readme_documents_every_option_and_command():
         assert command in readme
 
 
-def test_compressed_geometry_baker_cannot_decode_is_refused(tmp_path, sphere_glb):
-    # Draco and EXT_meshopt_compression are decoded (tests/test_compressed.py); KHR_meshopt_compression is not yet
-    from baker.gltf.document import GltfDocument as Doc
-
-    doc = Doc.load(sphere_glb)
-    doc.use_extension("KHR_meshopt_compression", required=True)
-    src = tmp_path / "meshopt.glb"
-    doc.save(src)
-    result = run("bake", src, "-o", tmp_path / "o.glb", "-q")
-    assert result.returncode == 2 and "KHR_meshopt_compression" in result.stderr and str(src) in result.stderr
-    assert not (tmp_path / "o.glb").exists()
-
-
 def test_python_api_example_runs(tmp_path):
     example = Path(__file__).parents[1] / "examples" / "bake_api.py"
     spot = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
@@ -181,3 +168,35 @@ def test_python_api_example_runs(tmp_path):
     assert result.returncode == 0, result.stderr
     assert "validation errors: 0" in result.stdout
     assert {"spot.glb", "spot.usdz", "spot_preview.png"} <= {p.name for p in tmp_path.iterdir()}
+
+
+def test_inspect_lists_lines_strips_and_points(tmp_path, capsys):
+    """A glTF of lines and points only: LINES chained into strands through shared vertices (two chains, 3 + 1
+    segments), a LINE_STRIP (one strand), POINTS; inspect exits 0 and counts them."""
+    positions = np.arange(3 * 12, dtype=np.float32).reshape(12, 3)
+    lines = np.array([0, 1, 1, 2, 2, 3, 5, 6], np.uint16)  # 0-1-2-3 and 5-6
+    data = positions.tobytes() + lines.tobytes()
+    gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+            "meshes": [{"name": "wires", "primitives": [
+                {"attributes": {"POSITION": 0}, "indices": 1, "mode": 1},
+                {"attributes": {"POSITION": 0}, "mode": 3},
+                {"attributes": {"POSITION": 0}, "mode": 0}]}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 12, "type": "VEC3",
+                           "min": positions.min(0).tolist(), "max": positions.max(0).tolist()},
+                          {"bufferView": 1, "componentType": 5123, "count": len(lines), "type": "SCALAR"}],
+            "bufferViews": [{"buffer": 0, "byteLength": positions.nbytes, "target": 34962},
+                            {"buffer": 0, "byteOffset": positions.nbytes, "byteLength": lines.nbytes,
+                             "target": 34963}],
+            "buffers": [{"byteLength": len(data), "uri": "wires.bin"}]}
+    (tmp_path / "wires.bin").write_bytes(data)
+    path = tmp_path / "wires.gltf"
+    path.write_text(json.dumps(gltf))
+    assert main(["inspect", str(path), "--format", "json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["meshes"]
+    got = [(r["modeName"], r["vertices"], r["triangles"], r["lines"], r["strands"], r["points"]) for r in rows]
+    assert got == [("LINES", 12, 0, 4, 2, 0), ("LINE_STRIP", 12, 0, 11, 1, 0), ("POINTS", 12, 0, 0, 0, 12)]
+    assert main(["inspect", str(path)]) == 0
+    text = capsys.readouterr().out
+    assert "LINE_STRIP" in text and "POINTS" in text
+    assert main(["bake", str(path), "-o", str(tmp_path / "o.glb"), "-q"]) == 2  # a bake still needs triangles
+    assert "no triangle faces" in capsys.readouterr().err

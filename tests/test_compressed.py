@@ -84,11 +84,15 @@ def assert_decoded_output(out: Path, extension: str) -> dict:
 
 
 # ---------------------------------------------------------------------------------------------- Draco
-def draco_glb(path: Path):
+def draco_glb(path: Path, nan_vertex: int | None = None):
+    """``nan_vertex``: that vertex's position is NaN (encoded without quantization, which keeps it)."""
     import DracoPy
 
     positions, normals, faces = source_mesh()
-    encoded = DracoPy.encode(positions.astype(np.float64), faces.astype(np.uint32), quantization_bits=14,
+    if nan_vertex is not None:
+        positions[nan_vertex] = np.nan
+    encoded = DracoPy.encode(positions.astype(np.float64), faces.astype(np.uint32),
+                             quantization_bits=14 if nan_vertex is None else 0,
                              normals=normals.astype(np.float64),
                              normal_quantization_bits=10, compression_level=7)
     probe = DracoPy.decode(encoded)  # the counts and ids the JSON must state, from the encoder's side
@@ -97,8 +101,8 @@ def draco_glb(path: Path):
     points = np.asarray(probe.points, np.float32)
     gltf = scene(["KHR_draco_mesh_compression"], ["KHR_draco_mesh_compression"])
     gltf["accessors"] = [
-        {"componentType": 5126, "count": n, "type": "VEC3", "min": points.min(0).tolist(),
-         "max": points.max(0).tolist()},
+        {"componentType": 5126, "count": n, "type": "VEC3", "min": np.nanmin(points, 0).tolist(),
+         "max": np.nanmax(points, 0).tolist()},
         {"componentType": 5126, "count": n, "type": "VEC3"},
         {"componentType": 5125 if n > 65535 else 5123, "count": int(probe.faces.size), "type": "SCALAR"},
     ]
@@ -146,10 +150,16 @@ def test_draco_output_as_gltf_is_clean(tmp_path):
 
 
 # ---------------------------------------------------------------------------------------------- meshopt
-def meshopt_glb(path: Path):
+def meshopt_glb(path: Path, nan_vertex: int | None = None, extension: str = "EXT_meshopt_compression",
+                version: int = 0, colors: np.ndarray | None = None):
+    """``nan_vertex``: that vertex's position is NaN (the vertex codec keeps the bytes). ``extension``: EXT_ or
+    KHR_meshopt_compression; ``version``: the vertex codec's (1 is KHR's addition); ``colors``: (n, 4) in [0, 1],
+    written as COLOR_0 through the COLOR filter (KHR's addition) as a fourth bufferView."""
     import meshopt
 
     positions, normals, faces = source_mesh()
+    if nan_vertex is not None:
+        positions[nan_vertex] = np.nan
     n = len(positions)
     indices = faces.reshape(-1).astype(np.uint16)
     oct_rows = meshopt.encode_filter_oct(np.hstack([normals, np.zeros((n, 1), np.float32)]), 4, 8)
@@ -158,9 +168,11 @@ def meshopt_glb(path: Path):
         (oct_rows.view(np.int8).reshape(n, 4), n, 4, "ATTRIBUTES", "OCTAHEDRAL", 34962),
         (indices, len(indices), 2, "TRIANGLES", None, 34963),
     ]
+    if colors is not None:
+        streams.append((meshopt.encode_filter_color(colors, 4, 8), n, 4, "ATTRIBUTES", "COLOR", 34962))
     binary, views, fallback = bytearray(), [], 0
     for data, count, stride, mode, filt, target in streams:
-        encoded = meshopt.encode_gltf_buffer(np.ascontiguousarray(data), mode)
+        encoded = meshopt.encode_gltf_buffer(np.ascontiguousarray(data), mode, version if mode == "ATTRIBUTES" else 0)
         binary.extend(b"\0" * (-len(binary) % 4))
         ext = {"buffer": 0, "byteOffset": len(binary), "byteLength": len(encoded), "byteStride": stride,
                "count": count, "mode": mode}
@@ -168,24 +180,28 @@ def meshopt_glb(path: Path):
             ext["filter"] = filt
         binary.extend(encoded)
         view = {"buffer": 1, "byteOffset": fallback, "byteLength": count * stride, "target": target,
-                "extensions": {"EXT_meshopt_compression": ext}}
+                "extensions": {extension: ext}}
         if mode == "ATTRIBUTES":
             view["byteStride"] = stride
         fallback += count * stride + (-(count * stride) % 4)
         views.append(view)
-    names = ["EXT_meshopt_compression", "KHR_mesh_quantization"]
+    names = [extension, "KHR_mesh_quantization"]
     gltf = scene(list(names), list(names))
     gltf["accessors"] = [
-        {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3", "min": positions.min(0).tolist(),
-         "max": positions.max(0).tolist()},
+        {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
+         "min": np.nanmin(positions, 0).tolist(), "max": np.nanmax(positions, 0).tolist()},
         {"bufferView": 1, "componentType": 5120, "normalized": True, "count": n, "type": "VEC3"},
         {"bufferView": 2, "componentType": 5123, "count": len(indices), "type": "SCALAR"},
     ]
     gltf["meshes"] = [{"name": "ball", "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2,
                                                        "material": 0}]}]
+    if colors is not None:
+        gltf["accessors"].append({"bufferView": 3, "componentType": 5121, "normalized": True, "count": n,
+                                  "type": "VEC4"})
+        gltf["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 3
     gltf["bufferViews"] = views
     gltf["buffers"] = [{"byteLength": len(binary)},
-                       {"byteLength": fallback, "extensions": {"EXT_meshopt_compression": {"fallback": True}}}]
+                       {"byteLength": fallback, "extensions": {extension: {"fallback": True}}}]
     write_glb(path, gltf, bytes(binary))
     return positions, normals, indices
 
@@ -216,6 +232,44 @@ def test_meshopt_input_is_decoded_and_baked(tmp_path):
     assert g["buffers"][0]["byteLength"] < 4 * len(positions) * 200
 
 
+def test_khr_meshopt_is_decoded_like_ext(tmp_path):
+    """KHR_meshopt_compression (the ratified successor): the same JSON, data in the vertex codec's version 1 and a
+    COLOR-filtered COLOR_0; decoded, recorded and removed like EXT_meshopt_compression."""
+    src = tmp_path / "khr.glb"
+    colors = np.random.default_rng(4).random((len(source_mesh()[0]), 4)).astype(np.float32)
+    positions, normals, indices = meshopt_glb(src, extension="KHR_meshopt_compression", version=1, colors=colors)
+    assert src.read_bytes().count(b"\xa1") >= 1  # a version-1 vertex stream header is in the file
+    out = tmp_path / "out.glb"
+    bake(src, out)
+    g, buffers, record = assert_decoded_output(out, "KHR_meshopt_compression")
+    assert record["decoder"].startswith("meshopt") and record["bufferViews"] == [0, 1, 2, 3]
+    assert all("EXT_meshopt_compression" not in b.get("extensions", {}) for b in g["buffers"])
+    assert np.array_equal(read_accessor(g, buffers, 0), positions)
+    got = read_accessor(g, buffers, 2)[:, 0].astype(np.int64).reshape(-1, 3)
+    assert sorted(map(sorted, got.tolist())) == sorted(map(sorted, indices.astype(np.int64).reshape(-1, 3).tolist()))
+    assert np.abs(read_accessor(g, buffers, 1).astype(np.float64) / 127.0 - normals).max() < 0.03
+    assert np.abs(read_accessor(g, buffers, 3).astype(np.float64) / 255.0 - colors).max() < 0.02  # 8-bit YCoCg
+
+
+def test_khr_meshopt_unknown_filter_is_one_line(tmp_path):
+    src = tmp_path / "khr.glb"
+    meshopt_glb(src, extension="KHR_meshopt_compression")
+    data = bytearray(src.read_bytes())
+    length = struct.unpack_from("<I", data, 12)[0]
+    gltf = json.loads(data[20: 20 + length])
+    gltf["bufferViews"][1]["extensions"]["KHR_meshopt_compression"]["filter"] = "WAVELET"
+    bad = tmp_path / "bad.glb"
+    write_glb(bad, gltf, bytes(data[28 + length:]))
+    out = tmp_path / "o.glb"
+    result = subprocess.run([sys.executable, "-m", "baker.cli", "bake", str(bad), "-o", str(out), "-q", *FAST],
+                            capture_output=True, text=True)
+    assert result.returncode == 2, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "/bufferViews/1/extensions/KHR_meshopt_compression" in lines[0] \
+        and "WAVELET" in lines[0], lines
+    assert not out.exists()
+
+
 def test_undecodable_meshopt_is_one_line(tmp_path):
     src = tmp_path / "meshopt.glb"
     meshopt_glb(src)
@@ -232,6 +286,24 @@ def test_undecodable_meshopt_is_one_line(tmp_path):
     assert result.returncode == 2, result.stderr
     assert len(result.stderr.strip().splitlines()) == 1 and "EXT_meshopt_compression" in result.stderr
     assert not out.exists()
+
+
+@pytest.mark.parametrize("make, extension", [(draco_glb, "KHR_draco_mesh_compression"),
+                                             (meshopt_glb, "EXT_meshopt_compression")])
+def test_decoded_nan_positions_are_refused(tmp_path, make, extension):
+    """The NaN/inf check runs on what the decoder made (the load's check saw only the compressed placeholders):
+    exit 2, one line naming the accessor, nothing written."""
+    src = tmp_path / "nan.glb"
+    make(src, nan_vertex=5)
+    out = tmp_path / "o.glb"
+    result = subprocess.run([sys.executable, "-m", "baker.cli", "bake", str(src), "-o", str(out), "--bakes", "edges",
+                             "-q"], capture_output=True, text=True)
+    assert result.returncode == 2, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "/accessors/0" in lines[0] and "NaN" in lines[0] and extension in lines[0], lines
+    assert not out.exists()
+    result = subprocess.run([sys.executable, "-m", "baker.cli", "inspect", str(src)], capture_output=True, text=True)
+    assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1, result.stderr
 
 
 @pytest.mark.parametrize("module", ["DracoPy", "meshopt"])

@@ -237,6 +237,41 @@ def test_degenerate_meshes_bake_finite(tmp_path, capsys, name):
     assert not json_non_finite(gltf)
 
 
+def test_mesh_collapsed_to_a_point_bakes_valid_thickness(tmp_path, capsys):
+    """Every vertex at one place: the default maxDistance (the bounding-box diagonal, here 0) falls back to one mesh
+    unit, so BAKER_thickness keeps its schema's maxDistance > 0 and ``baker validate`` (schemas, semantics and
+    Khronos) passes; the OBJ form passes baker's own checks (its Khronos NORMAL complaint comes from the mesh
+    conversion's zero normals, not from the bake)."""
+    from conftest import assert_khronos_clean
+
+    point = np.full((3, 3), 0.5, np.float32)
+    indices = np.array([0, 1, 2, 2, 1, 0], np.uint16)
+    data = point.tobytes() + indices.tobytes()
+    gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                           "min": [0.5] * 3, "max": [0.5] * 3},
+                          {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+            "bufferViews": [{"buffer": 0, "byteLength": point.nbytes, "target": 34962},
+                            {"buffer": 0, "byteOffset": point.nbytes, "byteLength": indices.nbytes, "target": 34963}],
+            "buffers": [{"byteLength": len(data), "uri": "point.bin"}]}
+    (tmp_path / "point.bin").write_bytes(data)
+    src = tmp_path / "point.gltf"
+    src.write_text(json.dumps(gltf))
+    obj = tmp_path / "point.obj"
+    obj.write_text(DEGENERATE["point"])
+    for path, validate in ((src, ["validate"]), (obj, ["validate", "--no-khronos"])):
+        out = tmp_path / f"{path.stem}-{path.suffix[1:]}.glb"
+        code, lines = run(["bake", path, "-o", out, "--bakes", "thickness", "-q", "--thickness-rays", "8",
+                           "--thickness-texture-size", "32"], capsys)
+        assert code == 0 and not lines, lines
+        ext = glb_floats(out)[0]["materials"][0]["extensions"]["BAKER_thickness"]
+        assert ext["maxDistance"] == 1.0 and ext["attenuationDistance"] > 0
+        assert main([*validate, str(out)]) == 0, capsys.readouterr().out
+        capsys.readouterr()
+    assert_khronos_clean(tmp_path / "point-gltf.glb")
+
+
 # ------------------------------------------------------------------------------------------------ memory
 def test_max_memory_refuses_a_job_that_would_not_fit(tmp_path, capsys):
     path = tmp_path / "t.obj"
@@ -247,6 +282,19 @@ def test_max_memory_refuses_a_job_that_would_not_fit(tmp_path, capsys):
     code, lines = run(["bake", path, "-o", out, "--bakes", "edges", "--max-memory", "none", "-q"], capsys)
     assert code == 0, lines
     refused(["bake", path, "-o", out, "--bakes", "edges", "--max-memory", "lots"], capsys, "--max-memory")
+
+
+@pytest.mark.parametrize("command", [["inspect"], ["lines", "-o", "{out}.svg"], ["preview", "-o", "{out}.png"],
+                                     ["hair", "-o", "{out}.glb"]])
+def test_max_memory_on_every_command_that_loads_a_mesh(tmp_path, capsys, command):
+    """inspect, lines, preview and hair take ``--max-memory`` as bake does: a limit below the process itself is
+    refused with one line (exit 2) and nothing is written."""
+    path = tmp_path / "t.obj"
+    path.write_text(_obj(TETRA, TETRA_FACES))
+    verb, *rest = [a.replace("{out}", str(tmp_path / "out")) for a in command]
+    refused([verb, path, *rest, "--max-memory", "1M"], capsys, "--max-memory", "1.0 MiB")
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith("out")]
+    refused([verb, path, *rest, "--max-memory", "lots"], capsys, "--max-memory")
 
 
 def test_max_memory_refuses_before_reading(tmp_path, capsys, monkeypatch):

@@ -435,3 +435,36 @@ def test_every_bake_keeps_everything_the_input_held(rich, tmp_path, out_name):
         assert name in used, name
     attrs = g1["meshes"][0]["primitives"][0]["attributes"]
     assert {"_THICKNESS", "_CURVATURE", "_OUTLINE_NORMAL"} <= set(attrs)
+
+
+def test_fins_of_a_skinned_mesh_carry_its_joints_and_weights(rich, tmp_path):
+    """Edge fins and fur fins of the skinned cube get JOINTS_0/WEIGHTS_0: each fin vertex those of the cube vertex
+    it sits on (this cube's weights are a function of the position, so any cube vertex at that place tells), stored
+    as the source stores them; Khronos finds every primitive with the same joint sets."""
+    from scipy.spatial import cKDTree
+
+    from conftest import khronos_validate
+
+    out = tmp_path / "fins.glb"
+    result = subprocess.run([sys.executable, "-m", "baker.cli", "bake", str(rich), "-o", str(out), "--bakes",
+                             "edges,fur", "--edges-fins", "true", "-q"], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert_khronos_clean(out)
+    codes = {m["code"] for m in khronos_validate(out)["issues"]["messages"]}
+    assert "MESH_PRIMITIVES_UNEQUAL_JOINTS_COUNT" not in codes
+    g, buffers = read_gltf(out)
+    prims = g["meshes"][0]["primitives"]
+    source = prims[0]["attributes"]
+    cube = read_accessor(g, buffers, source["POSITION"]).astype(np.float64)
+    joints, weights = (read_accessor(g, buffers, source[k]) for k in ("JOINTS_0", "WEIGHTS_0"))
+    fins = {name: [p for p in prims if (p.get("extensions") or {}).get(name, {}).get("finsOf") == 0]
+            for name in ("BAKER_edges", "BAKER_fur")}
+    assert all(len(found) == 1 for found in fins.values()), fins
+    for fin in (found[0] for found in fins.values()):
+        at = fin["attributes"]
+        position = read_accessor(g, buffers, at["POSITION"]).astype(np.float64)
+        distance, nearest = cKDTree(cube).query(position)
+        assert distance.max() < 1e-6  # every fin vertex sits on a cube vertex (corners v0, v1, v1, v0)
+        for key, truth in (("JOINTS_0", joints), ("WEIGHTS_0", weights)):
+            assert g["accessors"][at[key]]["componentType"] == g["accessors"][source[key]]["componentType"]
+            assert np.array_equal(read_accessor(g, buffers, at[key]), truth[nearest]), key

@@ -230,6 +230,21 @@ def test_allow_outside_widens_the_root(tmp_path, capsys):
         GltfDocument.load(path, allow_outside=tmp_path / "elsewhere")
 
 
+def test_top_level_bake_takes_allow_outside_and_max_memory(tmp_path):
+    """``baker.bake`` is the API's bake: the same URI root and the same memory limit as ``baker.api.bake``."""
+    from baker.errors import BakerError
+
+    path, data = _triangle_files(tmp_path / "asset", "../shared/tri.bin")
+    (tmp_path / "shared").mkdir()
+    (tmp_path / "shared" / "tri.bin").write_bytes(data)
+    with pytest.raises(BakerError, match="/buffers/0/uri"):
+        baker.bake(path, bakes=["edges"])
+    asset = baker.bake(path, bakes=["edges"], allow_outside=tmp_path / "shared")
+    assert bytes(asset.doc.bin[:len(data)]) == data
+    with pytest.raises(BakerError, match="--max-memory"):
+        baker.bake(path, bakes=["edges"], allow_outside=[tmp_path / "shared"], max_memory=1 << 20)
+
+
 @pytest.mark.parametrize("uri", ["sub/tri.bin", "sub%2Ftri.bin", "./sub/../sub/tri.bin", "tri%20copy.bin"])
 def test_relative_uris_inside_the_folder_are_read(tmp_path, uri):
     path, data = _triangle_files(tmp_path, uri)

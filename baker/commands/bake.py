@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import sys
 
-from baker import registry
+from baker import memory, registry
 from baker.errors import BakerError
 from baker.options import add_arguments, from_args
 
@@ -16,8 +16,7 @@ def add_parser(sub) -> None:
     p.add_argument("--bakes", default="thickness", help=f"comma-separated bakes to run (known: {', '.join(bakes)})")
     p.add_argument("--seed", type=int, default=0, help="random seed; the same seed gives byte-identical output")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars or summary")
-    p.add_argument("--max-memory", metavar="SIZE", help="refuse a job whose estimated working memory is larger: bytes "
-                   "(512M, 2G), a share of RAM (50%%) or 'none' (default: 75%% of RAM)")
+    memory.add_argument(p)
     p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
                    "(default: only inside the asset's folder); repeatable")
     for name, technique in bakes.items():

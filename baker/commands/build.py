@@ -316,7 +316,7 @@ def run_task(payload: dict) -> dict:
         try:
             if payload["kind"] == "bake":
                 asset = bake(scratch / "in" / payload["input"], bakes=payload["bakes"], options=payload["options"],
-                             seed=payload["seed"])
+                             seed=payload["seed"], max_memory=payload.get("max_memory"))
                 save(asset, out_main)
             else:
                 subst = {"{output}": str(out_main),
@@ -340,10 +340,10 @@ def run_task(payload: dict) -> dict:
     return {"output": payload["output"], "error": None, "files": files, "seconds": time.perf_counter() - start}
 
 
-def _payload(root: Path, task: Task) -> dict:
+def _payload(root: Path, task: Task, max_memory: int | None = None) -> dict:
     return {"kind": task.kind, "output": task.output, "input": task.input, "bakes": task.bakes,
             "options": task.options, "seed": task.seed, "command": task.command, "args": task.args,
-            "files": {rel: (root / rel).read_bytes() for rel in task.inputs}}
+            "max_memory": max_memory, "files": {rel: (root / rel).read_bytes() for rel in task.inputs}}
 
 
 def worker_threads(jobs: int) -> int:
@@ -473,9 +473,10 @@ def _outputs_current(root: Path, entry: dict) -> bool:
 
 # ---------------------------------------------------------------------------------------------------- commands
 def build(recipe: Recipe, *, jobs: int = 1, scheduler: str | None = None, fail_fast: bool = False,
-          progress=None) -> dict:
+          progress=None, max_memory: int | None = None) -> dict:
     """Bake what is stale; returns {'baked': [...], 'skipped': [...], 'failed': [(output, reason)], 'tracebacks':
-    {output: traceback of an unexpected failure}, 'seconds'}."""
+    {output: traceback of an unexpected failure}, 'seconds'}. ``max_memory``: bytes each bake job may need (a job
+    estimated above it fails with the reason; None: no limit)."""
     start = time.perf_counter()
     root = recipe.root
     lock = read_lock(root)
@@ -498,7 +499,7 @@ def build(recipe: Recipe, *, jobs: int = 1, scheduler: str | None = None, fail_f
             else:
                 todo.append((task, task_inputs))
         by_output = {t.output: (t, i) for t, i in todo}
-        for result in _execute([_payload(root, t) for t, _ in todo], jobs, scheduler, fail_fast):
+        for result in _execute([_payload(root, t, max_memory) for t, _ in todo], jobs, scheduler, fail_fast):
             task, task_inputs = by_output[result["output"]]
             if result["error"]:
                 report["failed"].append((task.output, result["error"]))
@@ -585,6 +586,17 @@ def _table(report: dict) -> str:
     return "\n".join(lines)
 
 
+def job_memory_limit(text: str | None, jobs: int, scheduler: str | None) -> int | None:
+    """Each bake job's limit from ``--max-memory``: as given, or by default 75% of this machine's RAM shared by the
+    ``jobs`` running at once; no default on a Dask cluster, whose workers' RAM this machine does not know."""
+    from baker.memory import parse_limit
+
+    if text is None and scheduler:
+        return None
+    limit = parse_limit(text)
+    return limit // max(1, jobs) if text is None and limit is not None else limit
+
+
 def main(args) -> int:
     from baker.progress import Progress
 
@@ -599,7 +611,8 @@ def main(args) -> int:
             print(f"{len(recipe.tasks) - len(problems)} of {len(recipe.tasks)} outputs current and valid")
         return 1 if problems else 0
     report = build(recipe, jobs=args.jobs, scheduler=args.scheduler, fail_fast=args.fail_fast,
-                   progress=Progress(enabled=False if args.quiet else None))
+                   progress=Progress(enabled=False if args.quiet else None),
+                   max_memory=job_memory_limit(args.max_memory, args.jobs, args.scheduler))
     if args.format == "json":
         print(json.dumps({**report, "failed": [{"output": o, "reason": r} for o, r in report["failed"]]}, indent=2))
     elif not args.quiet or report["failed"]:
@@ -617,4 +630,8 @@ def add_parser(sub) -> None:
     p.add_argument("--format", choices=("text", "json"), default="text", help="report format")
     p.add_argument("--no-khronos", action="store_true", help="--check: skip Khronos' glTF-Validator")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar; print the table only on failure")
+    from baker.memory import add_argument
+
+    add_argument(p, help="refuse a bake job whose estimated working memory is larger: bytes (512M, 2G), a share of "
+                 "RAM (50%%) or 'none' (default: 75%% of RAM shared by --jobs; none with --scheduler)")
     p.set_defaults(func=main)

@@ -3,30 +3,78 @@ from __future__ import annotations
 
 import json
 
+from baker import memory
 
-def describe(path, allow_outside=None) -> dict:
+
+MODE_NAMES = {0: "POINTS", 1: "LINES", 2: "LINE_LOOP", 3: "LINE_STRIP", 4: "TRIANGLES", 5: "TRIANGLE_STRIP",
+              6: "TRIANGLE_FAN"}
+
+
+def line_strands(indices, mode: int) -> tuple[int, int]:
+    """(segments, strands) of a line primitive: a strand is a connected run of segments (a LINE_STRIP or LINE_LOOP
+    is one; LINES are chained through shared vertices)."""
     import numpy as np
 
-    from baker.geometry.asset import Asset
-    from baker.gltf.vertex_attributes import used_columns
+    n = len(indices)
+    if mode == 3:
+        return max(n - 1, 0), int(n >= 2)
+    if mode == 2:
+        return (n if n >= 2 else 0), int(n >= 2)
+    pairs = np.asarray(indices, np.int64)[: n - n % 2].reshape(-1, 2)
+    if not len(pairs):
+        return 0, 0
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
 
-    asset = Asset.load(path, allow_outside=allow_outside)
+    used, local = np.unique(pairs, return_inverse=True)
+    local = local.reshape(-1, 2)
+    graph = coo_matrix((np.ones(len(local)), (local[:, 0], local[:, 1])), shape=(len(used), len(used)))
+    return len(pairs), int(connected_components(graph, directed=False)[0])
+
+
+def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
+    import numpy as np
+
+    from baker import registry
+    from baker.gltf.vertex_attributes import used_columns
+    from baker.memory import load_asset
+
+    # a groom (lines or points only) is a good glTF too: listed, not refused
+    asset = load_asset(path, max_memory, what="inspecting this asset", allow_outside=allow_outside,
+                       require_triangles=False)
     doc = asset.doc
+    summaries = {name: ext.summary for name, ext in registry.extensions().items() if hasattr(ext, "summary")}
     meshes = []
     for m, mesh in enumerate(asset.meshes()):
+        triangle_prims = asset.triangle_primitives(m)
         for p, prim in enumerate(mesh.get("primitives", [])):
             attrs = prim.get("attributes", {})
+            mode = prim.get("mode", 4)
+            vertices = doc.json["accessors"][attrs["POSITION"]]["count"] if "POSITION" in attrs else 0
             row = {
                 "mesh": m,
                 "name": mesh.get("name", ""),
                 "primitive": p,
-                "mode": prim.get("mode", 4),
-                "vertices": doc.json["accessors"][attrs["POSITION"]]["count"] if "POSITION" in attrs else 0,
-                "triangles": len(asset.primitive(m, p).faces) if p in asset.triangle_primitives(m) else 0,
+                "mode": mode,
+                "modeName": MODE_NAMES.get(mode, str(mode)),
+                "vertices": vertices,
+                "triangles": len(asset.primitive(m, p).faces) if p in triangle_prims else 0,
+                "lines": 0,
+                "strands": 0,
+                "points": vertices if mode == 0 else 0,
                 "material": prim.get("material"),
                 "attributes": sorted(attrs),
                 "baked": {},
+                "extensions": {},
             }
+            if mode in (1, 2, 3):
+                indices = doc.accessor(prim["indices"]).reshape(-1) if "indices" in prim else np.arange(vertices)
+                row["lines"], row["strands"] = line_strands(indices, mode)
+            for name in sorted(prim.get("extensions") or {}):
+                info = summaries[name](doc, m, p) if name in summaries else None
+                row["extensions"][name] = info or {}
+                if info and "strands" in info:  # the extension knows its strands (BAKER_hair: strandCount)
+                    row["strands"] = info["strands"]
             for key in sorted(attrs):
                 if key.startswith("_"):
                     values = used_columns(doc.accessor(attrs[key]).astype(np.float64))
@@ -57,21 +105,31 @@ def _table(headers: list[str], rows: list[list]) -> str:
     return "\n".join([line(headers), line(["-" * w for w in widths])] + [line(r) for r in cells])
 
 
+def _value(v) -> str:
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    if isinstance(v, list):
+        return ",".join(_value(x) for x in v)
+    return str(v)
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser("inspect", help="print a table of what is in an asset")
     p.add_argument("file")
     p.add_argument("--format", choices=("text", "json"), default="text")
     p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
                    "(default: only inside the asset's folder); repeatable")
+    memory.add_argument(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    return main(args.file, fmt=args.format, allow_outside=args.allow_outside)
+    return main(args.file, fmt=args.format, allow_outside=args.allow_outside,
+                max_memory=memory.parse_limit(args.max_memory))
 
 
-def main(path, fmt: str = "text", allow_outside=None) -> int:
-    info = describe(path, allow_outside)
+def main(path, fmt: str = "text", allow_outside=None, max_memory: int | None = None) -> int:
+    info = describe(path, allow_outside, max_memory)
     if fmt == "json":
         print(json.dumps(info, indent=2))
         return 0
@@ -80,9 +138,16 @@ def main(path, fmt: str = "text", allow_outside=None) -> int:
           f"animations {info['animations']}  skins {info['skins']}")
     print(f"extensionsUsed: {', '.join(info['extensionsUsed']) or '-'}")
     print()
-    rows = [[r["mesh"], r["name"], r["primitive"], r["vertices"], r["triangles"], r["material"],
-             " ".join(a for a in r["attributes"] if not a.startswith("_"))] for r in info["meshes"]]
-    print(_table(["mesh", "name", "prim", "vertices", "triangles", "material", "attributes"], rows))
+    rows = [[r["mesh"], r["name"], r["primitive"], r["modeName"], r["vertices"], r["triangles"], r["lines"],
+             r["strands"], r["material"], " ".join(a for a in r["attributes"] if not a.startswith("_"))]
+            for r in info["meshes"]]
+    print(_table(["mesh", "name", "prim", "mode", "vertices", "triangles", "lines", "strands", "material",
+                  "attributes"], rows))
+    extensions = [[r["mesh"], r["primitive"], name, "  ".join(f"{k} {_value(v)}" for k, v in data.items()) or "-"]
+                  for r in info["meshes"] for name, data in r["extensions"].items()]
+    if extensions:
+        print()
+        print(_table(["mesh", "prim", "primitive extension", "summary"], extensions))
     baked = [[r["mesh"], r["primitive"], k, f"{v.get('min', 0):.6g}", f"{v.get('mean', 0):.6g}", f"{v.get('max', 0):.6g}"]
              for r in info["meshes"] for k, v in r["baked"].items()]
     if baked:

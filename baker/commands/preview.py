@@ -2,6 +2,8 @@
 the runtime shaders (:mod:`baker.preview.core`)."""
 from __future__ import annotations
 
+from baker import memory
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("preview", help="render a baked asset with the runtime shaders as a labelled contact sheet")
@@ -12,6 +14,7 @@ def add_parser(sub) -> None:
     p.add_argument("--panels", default=None, help="comma-separated panels (default: every one the asset has data for; "
                                                   "the names are listed in the README)")
     p.add_argument("-q", "--quiet", action="store_true")
+    memory.add_argument(p)
     p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
                    "(default: only inside the asset's folder); repeatable")
     p.set_defaults(func=run)
@@ -21,8 +24,7 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     from baker.preview.core import main
 
-    if args.allow_outside:  # preview() takes an Asset as well as a path
-        from baker.geometry.asset import Asset
-
-        args.input = Asset.load(args.input, allow_outside=args.allow_outside)
+    # preview() takes an Asset as well as a path: loaded here under the URI roots and the memory limit
+    args.input = memory.load_asset(args.input, memory.parse_limit(args.max_memory), what="previewing this asset",
+                                   allow_outside=args.allow_outside)
     return main(args)

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from baker.errors import BakerError
-from baker.gltf.compression import NOT_DECODED, decompress
+from baker.gltf.compression import decompress
 from baker.gltf.document import GltfDocument
 from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, faces_from_indices, is_derived_fins, to_float
 
@@ -68,7 +68,9 @@ class Asset:
             self.notes.append(text)
 
     @classmethod
-    def load(cls, path, allow_outside=None) -> "Asset":
+    def load(cls, path, allow_outside=None, require_triangles: bool = True) -> "Asset":
+        """Read any input; ``require_triangles=False`` also takes a glTF of lines or points only (a groom), which
+        ``baker inspect`` lists but no bake can use."""
         path = Path(path)
         suffix = path.suffix.lower()
         if not path.exists():
@@ -85,21 +87,9 @@ class Asset:
         else:
             doc = _read_direct(path) or _doc_from_trimesh_scene(path, *_load_trimesh(path, allow_outside))
         asset = cls(doc=doc, source=path)
-        asset.check_supported()
-        asset.check_has_triangles()
+        if require_triangles:
+            asset.check_has_triangles()
         return asset
-
-    # compressed geometry keeps its vertices inside the extension: reading the accessors would give zeros.
-    # KHR_draco_mesh_compression and EXT_meshopt_compression are decoded at load (baker.gltf.compression); what is
-    # left here is refused
-    UNSUPPORTED = NOT_DECODED
-
-    def check_supported(self) -> None:
-        used = self.doc.json.get("extensionsUsed") or []
-        for name, what in self.UNSUPPORTED.items():
-            if name in used:
-                raise BakerError(self.source, f"{what} geometry is not supported: decompress it first "
-                                              "(e.g. gltf-transform copy) and bake the result")
 
     # ------------------------------------------------------------------ geometry
     def meshes(self) -> list:

@@ -4,24 +4,26 @@
   the extension names, and the indices, become ordinary data in the primitive's own accessors (same indices; their
   ``count`` is the decoded count, ``min``/``max`` those of the decoded values, which Draco's quantization moves
   slightly); the compressed bufferView is reused for the first decoded array, so no bufferView is left unused.
-- ``EXT_meshopt_compression`` (on a bufferView): decoded with ``meshopt`` (meshoptimizer's decoder, vendored from
-  meshoptimizer 1.3; filters OCTAHEDRAL, QUATERNION, EXPONENTIAL, COLOR undone). The bufferView keeps its index and
-  gets the decoded bytes; the fallback buffer (size only, no data) goes away.
+- ``EXT_meshopt_compression`` and ``KHR_meshopt_compression`` (on a bufferView; the KHR one is the ratified
+  successor with the same JSON, whose data may also use the vertex codec's version 1 and the COLOR filter): decoded
+  with ``meshopt`` (meshoptimizer's decoder, vendored from meshoptimizer 1.3: vertex codec versions 0 and 1, modes
+  ATTRIBUTES, TRIANGLES, INDICES, filters OCTAHEDRAL, QUATERNION, EXPONENTIAL, COLOR undone; any other mode or filter
+  is refused with one line). The bufferView keeps its index and gets the decoded bytes; the fallback buffer (size
+  only, no data) goes away.
 
 The extension is then removed from the primitive or bufferView and from ``extensionsUsed``/``extensionsRequired``,
 bytes nothing points at any more (compressed data, the fallback buffer's zeros) are dropped from the binary buffer,
 and ``asset.extras.baker.decompressed`` records how the input was stored: one entry per extension with the decoder
-and the primitives or bufferViews it decoded. Accessor, mesh and bufferView indices never change.
-
-``KHR_meshopt_compression`` is not decoded here (the buffer merge of :mod:`baker.gltf.document` places only
-``EXT_meshopt_compression``'s data); :data:`NOT_DECODED` names it for the refusal in ``Asset.check_supported``.
+and the primitives or bufferViews it decoded. Accessor, mesh and bufferView indices never change. The decoded
+positions, normals and UVs then get the NaN/infinity check the load gave the plain ones.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from baker.checks import pointer
+from baker.checks import Issues, pointer
 from baker.errors import BakerError
+from baker.gltf.structure import MESHOPT_EXTENSIONS, check_finite_attributes, first_error, meshopt_extension
 
 # no import of baker.gltf.document: GltfDocument.load may call decompress() (``doc`` is any GltfDocument)
 COMPONENT_DTYPES = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32,
@@ -31,9 +33,7 @@ TARGET_ARRAY_BUFFER = 34962
 TARGET_ELEMENT_ARRAY_BUFFER = 34963
 
 DRACO = "KHR_draco_mesh_compression"
-MESHOPT = "EXT_meshopt_compression"
-DECODED = (DRACO, MESHOPT)
-NOT_DECODED = {"KHR_meshopt_compression": "meshopt-compressed (KHR_meshopt_compression)"}
+DECODED = (DRACO, *MESHOPT_EXTENSIONS)
 
 MESHOPT_MODES = ("ATTRIBUTES", "TRIANGLES", "INDICES")
 MESHOPT_FILTERS = ("NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL", "COLOR")
@@ -45,12 +45,6 @@ def is_compressed(gltf: dict) -> bool:
     return any(name in used for name in DECODED)
 
 
-def is_fallback_buffer(buffer: dict) -> bool:
-    """An ``EXT_meshopt_compression`` fallback buffer: a size and no data, read by nothing once decoded."""
-    ext = (buffer.get("extensions") or {}).get(MESHOPT) if isinstance(buffer, dict) else None
-    return isinstance(ext, dict) and bool(ext.get("fallback"))
-
-
 def decompress(doc) -> list[dict]:
     """Decode every Draco primitive and meshopt bufferView of ``doc`` in place (see the module docstring).
 
@@ -59,16 +53,28 @@ def decompress(doc) -> list[dict]:
     if not is_compressed(gltf):
         return []
     record = []
-    views = _decode_meshopt(doc)
-    if views:
-        record.append({"extension": MESHOPT, "decoder": _version("meshopt"), "bufferViews": views})
-    prims = _decode_draco(doc)
+    views = _decode_meshopt(doc)  # extension name -> bufferViews
+    for name in MESHOPT_EXTENSIONS:
+        if views.get(name):
+            record.append({"extension": name, "decoder": _version("meshopt"), "bufferViews": views[name]})
+    prims, filled = _decode_draco(doc)
     if prims:
         record.append({"extension": DRACO, "decoder": _version("DracoPy"), "primitives": prims})
+    # the load's finite check saw the compressed accessors' placeholders: check what the decoders made
+    decoded_views = {v for found in views.values() for v in found}
+    decoded = filled | {a for a, acc in enumerate(gltf.get("accessors") or [])
+                        if acc.get("bufferView") in decoded_views}
+    issues = Issues()
+    check_finite_attributes(doc, issues, only=decoded,
+                            decoded=f" (decoded from {' and '.join(r['extension'] for r in record)})")
+    problem = first_error(issues)
+    if problem:
+        raise BakerError(doc.path, problem)
     for name in DECODED:
         _unuse(gltf, name)
     for buffer in gltf.get("buffers") or []:
-        _drop_extension(buffer, MESHOPT)
+        for name in MESHOPT_EXTENSIONS:
+            _drop_extension(buffer, name)
     _compact(doc)
     if record:
         asset = gltf.setdefault("asset", {})
@@ -81,14 +87,15 @@ def decompress(doc) -> list[dict]:
 
 
 # ---------------------------------------------------------------------------------------------- meshopt
-def _decode_meshopt(doc) -> list[int]:
-    decoded = []
+def _decode_meshopt(doc) -> dict[str, list[int]]:
+    """Decode every meshopt-compressed bufferView; returns the decoded bufferViews by extension name."""
+    decoded = {}
     for i, view in enumerate(doc.json.get("bufferViews") or []):
-        ext = (view.get("extensions") or {}).get(MESHOPT)
-        if not isinstance(ext, dict):
+        name, ext = meshopt_extension(view)
+        if ext is None:
             continue
-        meshopt = _import(doc, "meshopt", MESHOPT)
-        ptr = pointer("bufferViews", i, "extensions", MESHOPT)
+        meshopt = _import(doc, "meshopt", name)
+        ptr = pointer("bufferViews", i, "extensions", name)
         count, stride = int(ext.get("count", 0)), int(ext.get("byteStride", 0))
         mode, filt = ext.get("mode"), ext.get("filter", "NONE")
         start, length = int(ext.get("byteOffset", 0)), int(ext.get("byteLength", 0))
@@ -106,13 +113,14 @@ def _decode_meshopt(doc) -> list[int]:
         view["byteOffset"] = _append(doc, data)
         view["byteLength"] = len(data)
         view["buffer"] = 0
-        _drop_extension(view, MESHOPT)
-        decoded.append(i)
+        _drop_extension(view, name)
+        decoded.setdefault(name, []).append(i)
     return decoded
 
 
 # ---------------------------------------------------------------------------------------------- Draco
-def _decode_draco(doc) -> list[str]:
+def _decode_draco(doc) -> tuple[list[str], set]:
+    """Decode every Draco primitive; returns the decoded primitives' pointers and the accessors filled."""
     gltf = doc.json
     decoded, done = [], {}  # done: (bufferView, attribute ids) -> decoded mesh, for primitives sharing one
     reusable = set()  # compressed bufferViews whose slot the next decoded array may take
@@ -156,7 +164,7 @@ def _decode_draco(doc) -> list[str]:
                 prim["indices"] = doc.add_accessor(faces.astype(np.uint32), target=TARGET_ELEMENT_ARRAY_BUFFER)
             _drop_extension(prim, DRACO)
             decoded.append(pointer("meshes", m, "primitives", p))
-    return decoded
+    return decoded, filled
 
 
 def _fill_accessor(doc, index: int, values: np.ndarray, target: int, reusable: set, filled: set,

@@ -22,8 +22,8 @@ from baker.checks import Issues, pointer
 from baker.errors import BakerError
 from baker.gltf.atomic import write_files_atomic
 from baker.gltf.structure import (CHUNK_BIN, CHUNK_JSON, COMPONENT_DTYPES, GLB_MAGIC, TYPE_SIZES, align,
-                                  check_data, check_structure, decode_data_uri, first_error, local_file, parse_glb,
-                                  read_container)
+                                  check_data, check_structure, decode_data_uri, first_error, local_file,
+                                  meshopt_extension, parse_glb, read_container)
 
 __all__ = ["GltfDocument", "node_matrix", "world_nodes", "sniff_mime", "parse_glb", "COMPONENT_DTYPES", "TYPE_SIZES",
            "DTYPE_COMPONENTS", "SIZE_TYPES", "GLB_MAGIC", "CHUNK_JSON", "CHUNK_BIN", "TARGET_ARRAY_BUFFER",
@@ -141,7 +141,7 @@ class GltfDocument:
                 data = bin_chunk
             else:
                 # nothing reads it (check_structure refuses a buffer without data that is read), e.g. the fallback
-                # buffer of EXT_meshopt_compression views: only a size
+                # buffer of EXT_/KHR_meshopt_compression views: only a size
                 data = b"\0" * length
             if len(data) < length:
                 raise BakerError(self.path, f"{pointer('buffers', i)}: buffer is truncated ({len(data)} of {length} "
@@ -153,7 +153,7 @@ class GltfDocument:
             b = view.get("buffer", 0)
             view["buffer"] = 0
             view["byteOffset"] = view.get("byteOffset", 0) + offsets[b]
-            meshopt = (view.get("extensions") or {}).get("EXT_meshopt_compression")
+            _, meshopt = meshopt_extension(view)
             if isinstance(meshopt, dict) and "buffer" in meshopt:
                 meshopt["byteOffset"] = meshopt.get("byteOffset", 0) + offsets[meshopt["buffer"]]
                 meshopt["buffer"] = 0

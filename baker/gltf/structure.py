@@ -63,6 +63,9 @@ ATTRIBUTE_FORMATS = {
     "COLOR": (("VEC3", "VEC4"), {5126, 5121, 5123}),
 }
 INDEX_COMPONENTS = (5121, 5123, 5125)
+# bufferView compression: the ratified KHR_meshopt_compression keeps EXT_meshopt_compression's JSON (and adds the
+# vertex codec's version 1 and the COLOR filter to what the data may hold)
+MESHOPT_EXTENSIONS = ("EXT_meshopt_compression", "KHR_meshopt_compression")
 # float attributes a bake reads: NaN or infinity there is an error
 FINITE_ATTRIBUTES = ("POSITION", "NORMAL", "TEXCOORD")
 
@@ -87,6 +90,15 @@ def extension(obj, name: str):
     exts = obj.get("extensions") if isinstance(obj, dict) else None
     value = exts.get(name) if isinstance(exts, dict) else None
     return value if isinstance(value, dict) else None
+
+
+def meshopt_extension(view) -> tuple[str, dict] | tuple[None, None]:
+    """The meshopt extension of a bufferView as (name, object), or (None, None) when it has none."""
+    for name in MESHOPT_EXTENSIONS:
+        ext = extension(view, name)
+        if isinstance(ext, dict):
+            return name, ext
+    return None, None
 
 
 def one_of(value, allowed) -> bool:
@@ -250,7 +262,8 @@ def normalise_integers(gltf: dict) -> None:
         _fix(view, "buffer", "byteOffset", "byteLength", "byteStride", "target")
         exts = view.get("extensions")
         if isinstance(exts, dict):
-            _fix(exts.get("EXT_meshopt_compression"), "buffer", "byteOffset", "byteLength", "byteStride", "count")
+            for name in MESHOPT_EXTENSIONS:
+                _fix(exts.get(name), "buffer", "byteOffset", "byteLength", "byteStride", "count")
     for image in _dicts(gltf, "images"):
         _fix(image, "bufferView")
     for mesh in _dicts(gltf, "meshes"):
@@ -550,9 +563,13 @@ class _Checker:
                 self.error("BUFFER_VIEW_TOO_LONG", f"bytes {offset}..{offset + length} run past the end of buffer "
                            f"{b} ({sizes[b]} bytes)", ptr)
                 continue
-            meshopt = extension(view, "EXT_meshopt_compression")
+            name, meshopt = meshopt_extension(view)
+            if sum(isinstance(extension(view, n), dict) for n in MESHOPT_EXTENSIONS) > 1:
+                self.error("BUFFER_VIEW_MESHOPT_TWICE", "a bufferView may use only one of "
+                           f"{' and '.join(MESHOPT_EXTENSIONS)}", ptr + "/extensions")
+                continue
             if isinstance(meshopt, dict):
-                mp = ptr + "/extensions/EXT_meshopt_compression"
+                mp = ptr + "/extensions/" + name
                 mb = meshopt.get("buffer")
                 if not self.ref(mb, buffers, mp + "/buffer", "buffer"):
                     continue
@@ -866,7 +883,7 @@ class _Checker:
     def missing_data(self, empty: dict) -> None:
         """A buffer without data is an error when something reads it: an accessor (directly or sparse), an image or
         a Draco primitive through one of its bufferViews, or a meshopt-compressed view's source. A bufferView
-        decoded by EXT_meshopt_compression reads no bytes of its own buffer (a fallback buffer)."""
+        decoded by EXT_ or KHR_meshopt_compression reads no bytes of its own buffer (a fallback buffer)."""
         if not empty:
             return
         views = self.collection("bufferViews")
@@ -894,7 +911,7 @@ class _Checker:
         for v, view in enumerate(views):
             if not isinstance(view, dict):
                 continue
-            meshopt = extension(view, "EXT_meshopt_compression")
+            _, meshopt = meshopt_extension(view)
             if isinstance(meshopt, dict):
                 if v in used and one_of(meshopt.get("buffer"), empty):
                     needed.setdefault(meshopt["buffer"], used[v])
@@ -939,21 +956,10 @@ def check_data(doc, issues: Issues) -> None:
             except BakerError as exc:
                 issues.error("ACCESSOR_SPARSE_INDEX_OOB", exc.message.split(": ", 1)[-1], pointer("accessors", a))
                 finite_checked.add(a)
+    check_finite_attributes(doc, issues, skip=finite_checked)
     for m, mesh in enumerate(doc.json.get("meshes") or []):
         for p, prim in enumerate(mesh.get("primitives") or []):
             attrs = prim.get("attributes") or {}
-            for name, a in attrs.items():
-                if attribute_semantic(name) in FINITE_ATTRIBUTES:
-                    if a in finite_checked or accessors[a].get("componentType") != FLOAT:
-                        continue
-                    finite_checked.add(a)
-                    values = doc.accessor(a)
-                    bad = ~np.isfinite(values)
-                    if bad.any():
-                        row = int(np.argwhere(bad)[0][0])
-                        issues.error("ACCESSOR_INVALID_FLOAT", f"{int(bad.sum())} of {values.size} values of {name} "
-                                     f"are NaN or infinite (first at element {row}); no bake may read or write them",
-                                     pointer("accessors", a))
             if "indices" not in prim or "POSITION" not in attrs:
                 continue
             vertex_count = accessors[attrs["POSITION"]]["count"]
@@ -963,3 +969,27 @@ def check_data(doc, issues: Issues) -> None:
                 issues.error("ACCESSOR_INDEX_OOB", f"{bad} indices are >= the vertex count {vertex_count} "
                              f"(largest {int(indices.max())})", pointer("meshes", m, "primitives", p, "indices"))
 
+
+
+def check_finite_attributes(doc, issues: Issues, only=None, skip=(), decoded: str = "") -> None:
+    """The float POSITION, NORMAL and TEXCOORD_n accessors of every primitive hold no NaN or infinity: each accessor
+    once, those in ``only`` when it is given (the ones a decoder just filled), none in ``skip``. ``decoded`` names
+    where the values came from, for the message."""
+    accessors = doc.json.get("accessors") or []
+    checked = set(skip)
+    for mesh in doc.json.get("meshes") or []:
+        for prim in mesh.get("primitives") or []:
+            for name, a in (prim.get("attributes") or {}).items():
+                if attribute_semantic(name) not in FINITE_ATTRIBUTES or a in checked or (only is not None
+                                                                                         and a not in only):
+                    continue
+                checked.add(a)
+                if accessors[a].get("componentType") != FLOAT:
+                    continue
+                values = doc.accessor(a)
+                bad = ~np.isfinite(values)
+                if bad.any():
+                    row = int(np.argwhere(bad)[0][0])
+                    issues.error("ACCESSOR_INVALID_FLOAT", f"{int(bad.sum())} of {values.size} values of {name}"
+                                 f"{decoded} are NaN or infinite (first at element {row}); no bake may read or write "
+                                 "them", pointer("accessors", a))

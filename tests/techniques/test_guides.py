@@ -558,3 +558,34 @@ def test_scalp_binding(tmp_path, offset):
     assert np.abs(np.linalg.norm(children[:, 0], axis=1) - 1.0).max() < 0.01
     inside = sphere.contains(children[:, 1:].reshape(-1, 3))
     assert not inside.any()
+
+
+def test_inspect_lists_a_groom(baked, capsys):
+    """`baker inspect` on a `baker guides` output (lines only): exit 0, its LINES primitives with the strand counts
+    and BAKER_hair data this test reads from the GLB's own JSON and BIN chunk."""
+    path = baked[".glb"]
+    gltf, accessor = read_glb(path)
+    assert cli_main(["inspect", str(path), "--format", "json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    rows = {(r["mesh"], r["primitive"]): r for r in info["meshes"]}
+    hair_prims = [(m, p, prim) for m, mesh in enumerate(gltf["meshes"]) for p, prim in enumerate(mesh["primitives"])
+                  if "BAKER_hair" in prim.get("extensions", {})]
+    assert {prim["extensions"]["BAKER_hair"]["strandSet"] for _, _, prim in hair_prims} == {"guides", "children"}
+    for m, p, prim in hair_prims:
+        ext, row = prim["extensions"]["BAKER_hair"], rows[(m, p)]
+        s, v = ext["strandCount"], ext["verticesPerStrand"]
+        assert row["mode"] == 1 and row["modeName"] == "LINES" and row["triangles"] == 0
+        assert row["vertices"] == gltf["accessors"][prim["attributes"]["POSITION"]]["count"] == s * v
+        assert row["strands"] == s and row["lines"] == len(accessor(prim["indices"])) // 2 == s * (v - 1)
+        summary = row["extensions"]["BAKER_hair"]
+        assert summary["strandSet"] == ext["strandSet"] and summary["strands"] == s
+        assert summary["verticesPerStrand"] == v
+        assert summary["rootWidth"] == pytest.approx(ext["rootWidth"]) and summary["tipWidth"] == pytest.approx(
+            ext["tipWidth"])
+        assert summary.get("lodStrands", []) == [lod["strandCount"] for lod in ext.get("lods", [])]
+        assert summary.get("guidesPrimitive") == ext.get("guides", {}).get("primitive")
+        strands = accessor(prim["attributes"]["POSITION"]).astype(np.float64).reshape(s, v, 3)
+        assert summary["meanLength"] == pytest.approx(polyline_length(strands).mean(), rel=1e-6)
+    assert cli_main(["inspect", str(path)]) == 0
+    text = capsys.readouterr().out
+    assert "LINES" in text and "BAKER_hair" in text and "strandSet guides" in text and f"strands {N}" in text

@@ -1,6 +1,7 @@
 """``baker lines IN -o drawing.svg``: the parser; the work is in :mod:`baker.techniques.edges.svg`, imported when it runs."""
 from __future__ import annotations
 
+from baker import memory
 from baker.technique import lazy
 
 
@@ -22,4 +23,5 @@ def add_parser(subparsers) -> None:
     p.add_argument("--widths", default=None, help="stroke widths in pixels, e.g. contour=2,boundary=1.5,crease=1,"
                                                   "material=1")
     p.add_argument("--step", type=float, default=2.0, help="visibility sampling step along lines, pixels (default 2)")
+    memory.add_argument(p)
     p.set_defaults(func=lazy("baker.techniques.edges.svg:run"))

@@ -22,7 +22,7 @@ import numpy as np
 
 from baker.geometry import edge_codes
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
-from baker.gltf.derived import match_morph_targets
+from baker.gltf.derived import copy_skinning, match_morph_targets
 from baker.gltf.vertex_attributes import padded, unpadded
 
 if TYPE_CHECKING:  # the writers take the kernel's results; validation must not import the numba kernels
@@ -91,6 +91,7 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: Primit
     # no material: fins are drawn by baker_edges.glsl with the source primitive's material (found through finsOf);
     # copying it would bind its textures to a primitive without their TEXCOORD sets (invalid glTF)
     match_morph_targets(doc, mesh, fin, len(position))
+    copy_skinning(doc, mesh, primitive, fin, pe.edges[np.repeat(np.arange(n), 4), np.tile(at_v1, n)])
     prims.append(fin)
     return len(prims) - 1
 

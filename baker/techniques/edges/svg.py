@@ -141,7 +141,6 @@ def svg_document(lines: list, width: int, height: int, widths: dict, hidden: boo
 
 
 def run(args) -> int:
-    from baker.geometry.asset import Asset
     from baker.geometry.raycast import RayScene
     from baker.gltf.atomic import write_bytes_atomic
 
@@ -160,7 +159,11 @@ def run(args) -> int:
                 raise BakerError(None, f"--widths: {item!r} is not TYPE=NUMBER") from None
     if args.step <= 0:
         raise BakerError(None, "--step must be > 0")
-    asset = Asset.load(args.input)
+    from baker.memory import load_asset, parse_limit
+
+    # the edge analysis and the ray scene cost what the edges bake does per triangle
+    asset = load_asset(args.input, parse_limit(args.max_memory), work=("edges",),
+                       what="drawing the lines of this asset")
     positions, faces, groups = scene_triangles(asset)
     camera = make_camera(args, asset, positions)
     options = E.EdgeSettings(crease_angle=args.crease_angle)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
-from baker.gltf.derived import match_morph_targets
+from baker.gltf.derived import copy_skinning, match_morph_targets
 from baker.gltf.images import encode_image
 from baker.gltf.vertex_attributes import padded
 
@@ -43,11 +43,12 @@ def write_fur_textures(doc: GltfDocument, shells: np.ndarray, fin: np.ndarray) -
 
 
 def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: np.ndarray, normals: np.ndarray,
-                        fin_u: np.ndarray) -> int:
+                        fin_u: np.ndarray, edges: np.ndarray | None = None) -> int:
     """Append the fur fin primitive of ``primitive``.
 
     corners: (E, 4, 3) v0, v1, v2, v3 of every edge; normals: (E, 2, 3) extrusion normals at v0, v1; fin_u: (E, 2)
-    fin texture u at v0, v1 (tile units)."""
+    fin texture u at v0, v1 (tile units); edges: (E, 2) the primitive's vertices v0, v1 (their joints and weights
+    are copied on a skinned mesh)."""
     prims = doc.json["meshes"][mesh]["primitives"]
     n = len(corners)
     corners = corners.astype(np.float32)
@@ -74,6 +75,8 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: n
     # no material: the fur runtime takes BAKER_fur from the source primitive's material (through finsOf); binding it
     # here would ask for TEXCOORD sets the fin lacks (invalid glTF when the material has textures)
     match_morph_targets(doc, mesh, fin, len(position))
+    if edges is not None:
+        copy_skinning(doc, mesh, primitive, fin, np.asarray(edges)[rows, np.tile(at, n)])
     prims.append(fin)
     return len(prims) - 1
 

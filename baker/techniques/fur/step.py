@@ -16,7 +16,7 @@ from baker.geometry.texture_target import material_groups
 
 
 def _fins(asset: Asset, m: int, prims: list, tile_size: float):
-    """Fin corners, extrusion normals and fin u for each primitive in ``prims`` of mesh ``m``."""
+    """Fin corners, extrusion normals, fin u and edge vertices for each primitive in ``prims`` of mesh ``m``."""
     from baker.geometry.edges import analyze_mesh, primitive_edges
 
     geoms = [asset.primitive(m, p) for p in asset.triangle_primitives(m)]
@@ -38,7 +38,7 @@ def _fins(asset: Asset, m: int, prims: list, tile_size: float):
         # neighbouring fins do not repeat the same hairs side by side
         start = (np.arange(len(length)) * 0.618034) % 1.0
         fin_u = np.stack([start, start + length / tile_size], axis=1)
-        out[p] = (pe.fin_corners, normals, fin_u)
+        out[p] = (pe.fin_corners, normals, fin_u, pe.edges)
     return out
 
 
@@ -77,7 +77,7 @@ def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = Q
             for m, p in members:
                 by_mesh.setdefault(m, []).append(p)
             for m, prims in sorted(by_mesh.items()):
-                for p, (corners, normals, fin_u) in sorted(_fins(asset, m, prims, tile_size).items()):
-                    fins.append((m, ext.write_fin_primitive(doc, m, p, corners, normals, fin_u)))
+                for p, (corners, normals, fin_u, edges) in sorted(_fins(asset, m, prims, tile_size).items()):
+                    fins.append((m, ext.write_fin_primitive(doc, m, p, corners, normals, fin_u, edges)))
         ext.write_material(doc, material, options=options, length=length, shell_textures=shell_tex,
                            fin_texture=fin_tex, fins=fins, coverage=textures.coverage, tile_size=tile_size)

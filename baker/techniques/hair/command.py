@@ -1,6 +1,7 @@
 """``baker hair SCALP -o OUT``: the parser; the work is in :mod:`baker.techniques.hair.grow`, imported when it runs."""
 from __future__ import annotations
 
+from baker import memory
 from baker.options import add_arguments, from_args
 from baker.technique import lazy
 from baker.techniques.hair.options import HairOptions
@@ -14,6 +15,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("-o", "--output", required=True, help=f"output file ({' '.join(OUTPUT_SUFFIXES)})")
     p.add_argument("--seed", type=int, default=0, help="random seed; the same seed gives byte-identical output")
     p.add_argument("-q", "--quiet", action="store_true", help="no summary")
+    memory.add_argument(p)
     add_arguments(p, HairOptions, "hair", prefixed_flags=False)
     p.set_defaults(func=lazy("baker.techniques.hair.grow:run"))
 

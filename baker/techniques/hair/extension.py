@@ -322,3 +322,24 @@ def read(doc: GltfDocument, mesh: int, primitive: int) -> HairStrands | None:
         root_binding=None if "rootBinding" not in ext else {
             "mesh": int(ext["rootBinding"]["mesh"]),
             **{k: doc.accessor(ext["rootBinding"][k]) for k in ("primitives", "triangles", "barycentrics")}})
+
+
+def summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
+    """What ``baker inspect`` shows of one ``BAKER_hair`` primitive (from :func:`read`): the strand set, counts,
+    widths, the mean strand length (in mesh units, from the positions), guides, LODs and the root binding."""
+    hair = read(doc, mesh, primitive)
+    if hair is None:
+        return None
+    ext = doc.json["meshes"][mesh]["primitives"][primitive]["extensions"][NAME]
+    strands = np.asarray(hair.positions, np.float64).reshape(hair.strand_count, hair.vertices_per_strand, 3)
+    lengths = np.linalg.norm(np.diff(strands, axis=1), axis=2).sum(axis=1)
+    out = {"strandSet": ext.get("strandSet", ""), "strands": hair.strand_count,
+           "verticesPerStrand": hair.vertices_per_strand, "rootWidth": hair.root_width, "tipWidth": hair.tip_width,
+           "meanLength": float(lengths.mean()) if len(lengths) else 0.0}
+    if hair.guides_primitive is not None:
+        out["guidesPrimitive"] = hair.guides_primitive
+    if hair.lods:
+        out["lodStrands"] = [count for count, _ in hair.lods]
+    if hair.root_binding is not None:
+        out["rootBindingMesh"] = hair.root_binding["mesh"]
+    return out

@@ -94,8 +94,12 @@ def emitter_from_asset(asset: Asset, options: HairOptions) -> Emitter:
                    collider_faces=colliders, texcoords=texcoords)
 
 
-def make_hair(input_path, options: HairOptions, seed: int = 0) -> tuple[Asset, HairResult]:
-    asset = Asset.load(input_path)
+def make_hair(input_path, options: HairOptions, seed: int = 0, max_memory: int | None = None
+              ) -> tuple[Asset, HairResult]:
+    """Grow hair on the mesh of ``input_path``; ``max_memory``: bytes the loaded emitter may need (None: no limit)."""
+    from baker.memory import load_asset
+
+    asset = load_asset(input_path, max_memory, what="growing hair on this emitter")
     emitter = emitter_from_asset(asset, options)
     try:
         result = generate_hair(emitter, options, seed=seed)
@@ -127,8 +131,10 @@ def write_output(asset: Asset, result: HairResult, options: HairOptions, output)
 
 
 def run(args) -> int:
+    from baker.memory import parse_limit
+
     options = checked_options(args, HairOptions, "hair", OUTPUT_SUFFIXES)
-    asset, result = make_hair(args.input, options, seed=args.seed)
+    asset, result = make_hair(args.input, options, seed=args.seed, max_memory=parse_limit(args.max_memory))
     write_output(asset, result, options, args.output)
     if not args.quiet:
         print(f"hair: {result.guides.count} guides + {result.children.count} children x {result.guides.vertices} "

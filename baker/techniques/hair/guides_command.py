@@ -1,6 +1,7 @@
 """``baker guides GROOM -o OUT``: the parser; the work is in :mod:`baker.techniques.hair.guides_run`."""
 from __future__ import annotations
 
+from baker import memory
 from baker.options import add_arguments
 from baker.technique import lazy
 from baker.techniques.hair.guides_options import GuidesOptions
@@ -15,5 +16,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("-o", "--output", required=True, help=f"output file ({' '.join(GUIDES_OUTPUT_SUFFIXES)})")
     p.add_argument("--format", choices=("text", "json"), default="text", help="summary format (stdout for json)")
     p.add_argument("-q", "--quiet", action="store_true", help="no summary, no progress bar")
+    memory.add_argument(p, help="refuse a --scalp mesh whose estimated working memory is larger: bytes (512M, 2G), "
+                        "a share of RAM (50%%) or 'none' (default: 75%% of RAM)")
     add_arguments(p, GuidesOptions, "guides", prefixed_flags=False)
     p.set_defaults(func=lazy("baker.techniques.hair.guides_run:run"))

@@ -107,7 +107,10 @@ def bind_to_scalp(asset, strands: np.ndarray, seed: int):
 
 
 # ------------------------------------------------------------------------------------------------------------- bake
-def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET) -> GuidesBake:
+def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET,
+                max_memory: int | None = None) -> GuidesBake:
+    """Guides, child weights and LODs of a groom; ``max_memory``: bytes the ``scalp`` mesh may need (None: no
+    limit)."""
     timings = {}
     start = time.perf_counter()
     groom = clean_groom(read_groom(groom_path), groom_path, options.bad_curves)
@@ -116,9 +119,9 @@ def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET) 
     timings["read"] = time.perf_counter() - start
     asset, binding, inside, normals = None, None, 0, np.zeros((len(strands), 3))
     if options.scalp:
-        from baker.geometry.asset import Asset
+        from baker.memory import load_asset
 
-        asset = Asset.load(options.scalp)
+        asset = load_asset(options.scalp, max_memory, what="binding roots to this scalp")
         # the hair is written under the scalp's node (glTF) or with its transform (USD): work in its mesh space
         from baker.techniques.hair.usd import emitter_world_matrix
 
@@ -270,7 +273,9 @@ def summary(bake: GuidesBake, input_path, output) -> dict:
 def run(args) -> int:
     options = checked_options(args, GuidesOptions, "guides", GUIDES_OUTPUT_SUFFIXES)
     progress = Progress(enabled=False) if args.quiet else Progress()
-    bake = make_guides(args.input, options, progress)
+    from baker.memory import parse_limit
+
+    bake = make_guides(args.input, options, progress, max_memory=parse_limit(args.max_memory))
     write_output(bake, args.output, options)
     info = summary(bake, args.input, args.output)
     if args.format == "json":

@@ -250,7 +250,10 @@ def unit_samples(sampler: str, rays: int, count: int, seed: int = 0) -> np.ndarr
 
 
 def default_max_distance(vertices: np.ndarray) -> float:
-    return float(np.linalg.norm(vertices.max(0) - vertices.min(0))) if len(vertices) else 1.0
+    """The bounding-box diagonal; 1 (a mesh unit) when there is none: no vertices, or a mesh collapsed to a point,
+    whose zero would break BAKER_thickness' ``maxDistance > 0``."""
+    diagonal = float(np.linalg.norm(vertices.max(0) - vertices.min(0))) if len(vertices) else 0.0
+    return diagonal if diagonal > 0 else 1.0
 
 
 def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *, rays: int = 64,

@@ -18,7 +18,8 @@ class ThicknessOptions:
     distribution: str = opt("cosine", "ray distribution around the inverted normal", choices=("cosine", "uniform"))
     spread: float = opt(180.0, "full cone angle of the rays in degrees (180 = the whole hemisphere)", min=1e-3, max=180.0)
     max_distance: float | None = opt(None, "distance given to rays that miss, and the clamp of hits, in mesh units "
-                                           "(default: the mesh's bounding-box diagonal)", min=0.0)
+                                           "(default: the mesh's bounding-box diagonal; 1 for a mesh collapsed to a "
+                                           "point)", min=0.0)
     bias: float | None = opt(None, "ray start offset against self-hits, in mesh units (default: 1e-5 x diagonal)", min=0.0)
     per_vertex: bool = opt(True, "write the per-vertex attribute _THICKNESS")
     per_texel: bool = opt(True, "bake the thickness texture (KHR_materials_volume.thicknessTexture)")
