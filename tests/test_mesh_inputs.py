@@ -235,13 +235,15 @@ def test_degenerate_meshes_bake_finite(tmp_path, capsys, name):
     bad = [i for i, values in floats if not np.isfinite(values).all()]
     assert not bad, [(i, gltf["accessors"][i]) for i in bad]
     assert not json_non_finite(gltf)
+    from conftest import assert_khronos_clean
+
+    assert_khronos_clean(out)  # the converted normals are unit length even where every triangle is degenerate
 
 
 def test_mesh_collapsed_to_a_point_bakes_valid_thickness(tmp_path, capsys):
     """Every vertex at one place: the default maxDistance (the bounding-box diagonal, here 0) falls back to one mesh
     unit, so BAKER_thickness keeps its schema's maxDistance > 0 and ``baker validate`` (schemas, semantics and
-    Khronos) passes; the OBJ form passes baker's own checks (its Khronos NORMAL complaint comes from the mesh
-    conversion's zero normals, not from the bake)."""
+    Khronos) passes, on the glTF form and on the OBJ form (whose converted normals are zero-length until made unit)."""
     from conftest import assert_khronos_clean
 
     point = np.full((3, 3), 0.5, np.float32)
@@ -260,7 +262,7 @@ def test_mesh_collapsed_to_a_point_bakes_valid_thickness(tmp_path, capsys):
     src.write_text(json.dumps(gltf))
     obj = tmp_path / "point.obj"
     obj.write_text(DEGENERATE["point"])
-    for path, validate in ((src, ["validate"]), (obj, ["validate", "--no-khronos"])):
+    for path, validate in ((src, ["validate"]), (obj, ["validate"])):
         out = tmp_path / f"{path.stem}-{path.suffix[1:]}.glb"
         code, lines = run(["bake", path, "-o", out, "--bakes", "thickness", "-q", "--thickness-rays", "8",
                            "--thickness-texture-size", "32"], capsys)
@@ -270,6 +272,7 @@ def test_mesh_collapsed_to_a_point_bakes_valid_thickness(tmp_path, capsys):
         assert main([*validate, str(out)]) == 0, capsys.readouterr().out
         capsys.readouterr()
     assert_khronos_clean(tmp_path / "point-gltf.glb")
+    assert_khronos_clean(tmp_path / "point-obj.glb")
 
 
 # ------------------------------------------------------------------------------------------------ memory

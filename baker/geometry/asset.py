@@ -304,6 +304,20 @@ def _mesh_from_ply_strips(path: Path, cloud):
     return trimesh.Trimesh(vertices=vertices, faces=faces, process=False, **kwargs)
 
 
+def unit_normals(normals: np.ndarray) -> np.ndarray:
+    """Vertex normals as glTF requires them (unit length): the file's, or those trimesh computes when it has none,
+    are zero where every adjacent triangle is degenerate (a mesh collapsed to a point or a line), which Khronos'
+    validator reports as ACCESSOR_VECTOR3_NON_UNIT. Those get +Z (any unit vector: such a vertex shades nothing);
+    the others are renormalised only where float rounding left them off unit length."""
+    normals = np.array(normals, np.float64)
+    length = np.linalg.norm(normals, axis=1) if len(normals) else np.zeros(0)
+    off = np.abs(length - 1.0) > 1e-4
+    usable = off & (length > 1e-12)
+    normals[usable] /= length[usable, None]
+    normals[off & ~usable] = (0.0, 0.0, 1.0)
+    return normals
+
+
 def _doc_from_trimesh_scene(path: Path, loaded, materials: dict | None = None) -> GltfDocument:
     """Convert what trimesh (or our USD reader) loaded into a glTF document; each mesh gets the MTL material
     ``materials`` holds under its trimesh material's name, or the explicit dielectric."""
@@ -329,11 +343,12 @@ def _doc_from_trimesh_scene(path: Path, loaded, materials: dict | None = None) -
 
     with tempfile.TemporaryDirectory() as d:
         glb = Path(d) / "converted.glb"
-        # trimesh writes vertex normals only when it has them; keep what the file had. NaN or float32 overflow in
-        # the input would warn here: _check_finite refuses such a file first
+        # NaN or float32 overflow in the input would warn here: _check_finite refuses such a file first
         _check_finite(path, meshes)
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
+            for g in meshes:
+                g.vertex_normals = unit_normals(g.vertex_normals)
             glb.write_bytes(trimesh.exchange.gltf.export_glb(scene, include_normals=True))
         try:
             doc = GltfDocument.load(glb)
