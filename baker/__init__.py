@@ -16,11 +16,15 @@ if "NUMBA_CACHE_DIR" not in os.environ:
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"), "baker", "numba")
 
 
-def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None):
+def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None,
+         attribute_layout: str = "blender"):
     """Bake ``bakes`` into an asset and return it (an ``Asset``); write it with :func:`baker.api.save`.
 
     ``options`` maps a bake name to its options dataclass instance or to a dict of option values.
+    ``attribute_layout``: ``"blender"`` (default: custom vertex attributes padded to one width per mesh, which
+    Blender 4.5 imports) or ``"native"`` (each at its own width: SCALAR, VEC2, VEC3).
     """
     from baker.api import bake as api_bake
 
-    return api_bake(path_or_asset, bakes=bakes, options=options, seed=seed, progress=progress)
+    return api_bake(path_or_asset, bakes=bakes, options=options, seed=seed, progress=progress,
+                    attribute_layout=attribute_layout)
