@@ -23,6 +23,7 @@ NAME = "BAKER_curvature"
 ATTRIBUTE = "_CURVATURE"
 PRINCIPAL = "_PRINCIPAL_CURVATURES"
 DIRECTION = "_PRINCIPAL_DIRECTION"
+VERTEX_ATTRIBUTES = {ATTRIBUTE: 1, PRINCIPAL: 2, DIRECTION: 3}  # name -> the data's width (baker.registry)
 
 
 def write_vertex_curvature(doc: GltfDocument, mesh: int, primitive: int, mean: np.ndarray,

@@ -23,6 +23,9 @@ from baker.gltf.images import encode_image
 from baker.gltf.vertex_attributes import add_vertex_attribute
 
 NAME = "BAKER_fur"
+# name -> the data's width (baker.registry)
+VERTEX_ATTRIBUTES = {"_FIN_V0": 3, "_FIN_V1": 3, "_FIN_V2": 3, "_FIN_V3": 3, "_FIN_CORNER": 1, "_FUR_FIN_NORMAL": 3,
+                     "_FUR_FIN_UV": 2}
 SAMPLER_REPEAT = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}
 SAMPLER_FIN = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 33071}
 

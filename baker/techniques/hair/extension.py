@@ -25,6 +25,7 @@ if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
 NAME = "BAKER_hair"
 TANGENT = "_STRAND_TANGENT"
 PARAM = "_STRAND_PARAM"
+VERTEX_ATTRIBUTES = {TANGENT: 3, PARAM: 1}  # name -> the data's width (baker.registry)
 MODE_LINES = 1
 
 

@@ -22,6 +22,7 @@ from baker.gltf.vertex_attributes import add_vertex_attribute
 
 NAME = "BAKER_thickness"
 ATTRIBUTE = "_THICKNESS"
+VERTEX_ATTRIBUTES = {ATTRIBUTE: 1}  # name -> the data's width (USD writes it so; baker.registry)
 KHR_VOLUME = "KHR_materials_volume"
 
 
