@@ -189,3 +189,14 @@ def test_cli_and_recipe_take_the_layout(sphere, tmp_path, capsys):
     (tmp_path / "baker.toml").write_text('[build]\nattribute-layout = "compact"\n')
     with pytest.raises(BakerError, match="attribute-layout"):
         load_recipe(tmp_path / "baker.toml")
+
+
+def test_preview_draws_both_layouts_alike(baked):
+    """``baker preview`` binds either layout's attributes the same way: identical panels."""
+    from baker.preview.core import preview
+
+    sheets = {layout: preview(path, size=96) for layout, path in baked.items()}
+    names = [name for name, _, _ in sheets["native"].panels]
+    assert {"thickness", "translucency", "outline"} <= set(names)
+    assert names == [name for name, _, _ in sheets["blender"].panels]
+    np.testing.assert_array_equal(sheets["native"].sheet, sheets["blender"].sheet)
