@@ -59,6 +59,7 @@ class AttributeLayout:
     layout: Layout = DEFAULT
     # (mesh index, mesh name, attribute written, its data width, {other attribute: width}, option that leaves it out)
     conflicts: list = field(default_factory=list)
+    written: set = field(default_factory=set)  # names this bake wrote (not the mesh's own)
 
     def __post_init__(self):
         self.layout = parse(self.layout)
@@ -70,7 +71,8 @@ class AttributeLayout:
         mesh, mesh_name, _, _, others, _ = self.conflicts[0]
         wide = sorted({c[2] for c in self.conflicts if c[0] == mesh})
         options = sorted({c[5] for c in self.conflicts if c[5]})
-        own = ", ".join(f"'{name}' ({width})" for name, width in sorted(others.items()) if name not in wide)
+        own = ", ".join(f"'{name}' ({width})" for name, width in sorted(others.items())
+                        if name not in wide and name not in self.written)
         more = len({c[0] for c in self.conflicts}) - 1
         where = f"{source}: " if source else ""
         text = (f"{where}mesh {mesh}{f' ({mesh_name!r})' if mesh_name else ''} has custom attributes {own} that "
@@ -168,4 +170,5 @@ def add_vertex_attribute(doc, mesh: int | None, attributes: dict, name: str, val
     else:
         target = width
     attributes[name] = doc.add_accessor(padded(values, target), min_max=min_max)
+    layout.written.add(name)
     return attributes[name]
