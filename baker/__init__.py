@@ -17,14 +17,16 @@ if "NUMBA_CACHE_DIR" not in os.environ:
 
 
 def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None, allow_outside=None,
-         max_memory: int | None = None):
+         max_memory: int | None = None, attribute_layout: str = "blender"):
     """Bake ``bakes`` into an asset and return it (an ``Asset``); write it with :func:`baker.api.save`.
 
     ``options`` maps a bake name to its options dataclass instance or to a dict of option values;
     ``allow_outside`` and ``max_memory`` are those of :func:`baker.api.bake` (more folders the asset's URIs may
-    point into; a memory limit in bytes, None for none).
+    point into; a memory limit in bytes, None for none). ``attribute_layout``: ``"blender"`` (default: custom
+    vertex attributes padded to one width per mesh, which Blender 4.5 imports) or ``"native"`` (each at its own
+    width: SCALAR, VEC2, VEC3).
     """
     from baker.api import bake as api_bake
 
     return api_bake(path_or_asset, bakes=bakes, options=options, seed=seed, progress=progress,
-                    allow_outside=allow_outside, max_memory=max_memory)
+                    allow_outside=allow_outside, max_memory=max_memory, attribute_layout=attribute_layout)

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from baker.gltf.vertex_attributes import TYPE as VERTEX_ATTRIBUTE_TYPE, unpadded
+from baker.gltf.vertex_attributes import accepted_types, unpadded
 
 ERROR, WARNING, INFO, HINT = 0, 1, 2, 3
 TRIANGLE_MODES = (4, 5, 6)
@@ -91,11 +91,12 @@ def is_number(value) -> bool:
 
 
 def check_vertex_attribute(doc, mesh: int, primitive: int, name: str, issues: Issues, *,
-                           code: str, width: int = 1, types: tuple = (VERTEX_ATTRIBUTE_TYPE,),
+                           code: str, width: int = 1, types: tuple | None = None,
                            component_type: int = 5126) -> np.ndarray | None:
     """Shared rules for a baked per-vertex attribute of ``doc`` (a :class:`~baker.gltf.document.GltfDocument`):
-    present, FLOAT VEC3 (the layout of :mod:`baker.gltf.vertex_attributes`, the one Blender's importer reads next
-    to other custom attributes), one value per vertex, finite. Returns the ``width`` meaningful components
+    present, FLOAT of at least ``width`` components (``types``, default: either layout of
+    :mod:`baker.gltf.vertex_attributes`, the data's own width or padded), one value per vertex, finite. Returns the
+    ``width`` meaningful components
     (float64, (N,) for width 1; non-finite values included and reported) when the accessor can be read, else None
     (errors reported).
     """
@@ -113,10 +114,10 @@ def check_vertex_attribute(doc, mesh: int, primitive: int, name: str, issues: Is
         return None  # reported as UNRESOLVED_REFERENCE
     acc = accessors[a]
     acc_ptr = pointer("accessors", a)
+    types = types or accepted_types(width)
     if acc.get("componentType") != component_type or acc.get("type") not in types or acc.get("normalized"):
         issues.error(f"{code}_ACCESSOR_FORMAT", f"'{name}' must be componentType {component_type} "
-                     f"{' or '.join(types)}, not {acc.get('componentType')} {acc.get('type')} (custom attributes of "
-                     "one mesh must share a width to import in Blender)", acc_ptr)
+                     f"{' or '.join(types)}, not {acc.get('componentType')} {acc.get('type')}", acc_ptr)
         return None
     positions = attrs.get("POSITION")
     if is_index(positions, accessors) and acc.get("count") != accessors[positions].get("count"):

@@ -9,3 +9,11 @@ class BakerError(Exception):
         self.path = str(path) if path is not None else None
         self.message = message
         super().__init__(f"{self.path}: {message}" if self.path else message)
+
+
+class BakeNote(UserWarning):
+    """Something the user should know about a bake's result, though nothing failed (a Khronos field left out,
+    materials skipped, attribute widths Blender cannot import). Issued as a Python warning, so API callers see it
+    too; ``baker bake`` and ``baker build`` print each once as ``baker: <label>: ...`` on stderr."""
+
+    label = "note"

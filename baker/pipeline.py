@@ -1,12 +1,12 @@
 """Run bakes on an asset in dependency order and write the result atomically: the engine behind ``baker bake``."""
 from __future__ import annotations
 
-import sys
+import warnings
 
 from pathlib import Path
 
 from baker import registry
-from baker.errors import BakerError
+from baker.errors import BakeNote, BakerError
 from baker.geometry.asset import Asset
 from baker.options import from_mapping
 from baker.progress import QUIET
@@ -25,12 +25,20 @@ def resolve_options(name: str, value):
 
 
 def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None,
-         allow_outside=None, max_memory: int | None = None) -> Asset:
+         allow_outside=None, max_memory: int | None = None, attribute_layout="blender") -> Asset:
     """Load (or take) an asset and run ``bakes`` on it; each technique runs after those it ``requires``.
     ``allow_outside``: folders (beside the asset's own) its buffer and image URIs may point into. ``max_memory``:
     bytes; a job whose estimated working memory (:mod:`baker.memory`) exceeds it is refused before it starts (None:
-    no limit; ``baker bake`` defaults to 75% of RAM)."""
+    no limit; ``baker bake`` defaults to 75% of RAM). ``attribute_layout``: ``"blender"`` (custom vertex attributes
+    share one width per mesh) or ``"native"`` (each at its data's width), see :mod:`baker.gltf.vertex_attributes`;
+    a mesh whose attributes cannot share a width under ``"blender"`` gives one ``BlenderWidthWarning``."""
     from baker import memory
+    from baker.gltf.vertex_attributes import AttributeLayout, parse
+
+    try:
+        layout = AttributeLayout(parse(attribute_layout))
+    except ValueError as exc:
+        raise BakerError(None, str(exc)) from None
 
     order = registry.bake_order(bakes)
     if not isinstance(path_or_asset, Asset):
@@ -39,11 +47,13 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
     options = options or {}
     resolved = {name: resolve_options(name, options.get(name)) for name in order}
     memory.check_bake(asset, order, resolved, max_memory)
+    asset.doc.attribute_layout = layout
     techniques = registry.bakes()
     for name in order:
         techniques[name].bake(asset, resolved[name], seed=seed, progress=progress or QUIET)
     for text in asset.notes:
-        print(f"baker: note: {text}", file=sys.stderr)
+        warnings.warn(BakeNote(text), stacklevel=2)
+    layout.warn(asset.doc.path.name if asset.doc.path else None)
     return asset
 
 
@@ -57,4 +67,4 @@ def save(asset: Asset, path) -> list[Path]:
         return asset.doc.save(path)
     from baker.gltf.usd import write_usd
 
-    return write_usd(asset.doc, path, registry.usd_primitive_hooks())
+    return write_usd(asset.doc, path, registry.usd_primitive_hooks(), registry.vertex_attribute_widths())

@@ -68,6 +68,15 @@ def usd_primitive_hooks() -> dict:
     return {name: ext.to_usd_primitive for name, ext in extensions().items() if hasattr(ext, "to_usd_primitive")}
 
 
+def vertex_attribute_widths() -> dict:
+    """Custom attribute name -> its data's component count, from each extension's ``VERTEX_ATTRIBUTES``: what a
+    padded glTF layout (:mod:`baker.gltf.vertex_attributes`) hides and USD writes at its own width."""
+    widths = {}
+    for ext in extensions().values():
+        widths.update(getattr(ext, "VERTEX_ATTRIBUTES", {}))
+    return widths
+
+
 def semantic_checks() -> dict:
     """Extension name -> its ``check(doc, places, issues)`` for ``baker validate``."""
     return {name: ext.check for name, ext in extensions().items() if hasattr(ext, "check")}

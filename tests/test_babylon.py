@@ -47,6 +47,16 @@ DELTA_RATIO = 0.35
 BLUR = 1.5
 
 
+OPTIONS = {
+    "thickness": {"rays": 8, "per_texel": False},
+    # a 20 mm cow: curvatures where the skin LUT departs from Lambert (at 1 m the pre-integration changes no pixel)
+    "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 20.0},
+    "edges": {"fins": True},
+    "tam": {"size": 64, "levels": 3},
+    "fur": {"shells": 4, "texture_size": 64},
+}
+
+
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     """The built viewer (both engines' bundles) and the three assets, served on the loopback."""
@@ -54,19 +64,12 @@ def site(tmp_path_factory):
     root = tmp_path_factory.mktemp("babylon-site")
     build_viewer(root, ("viewer.js", "babylon.js"))
     bakes = tuple(registry.bakes())  # every bake there is
-    asset = baker.bake(SPOT, bakes=bakes, options={
-        "thickness": {"rays": 8, "per_texel": False},
-        # a 20 mm cow: curvatures where the skin LUT departs from Lambert (at 1 m the pre-integration changes no pixel)
-        "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 20.0},
-        "edges": {"fins": True},
-        "tam": {"size": 64, "levels": 3},
-        "fur": {"shells": 4, "texture_size": 64},
-    })
+    asset = baker.bake(SPOT, bakes=bakes, options=OPTIONS)
     save(asset, root / "spot_all.glb")
     write_label_and_groom(root)
     assets = {name: techniques_in(gltf_json(root / name)) for name in ("spot_all.glb", "label.glb", "hair.glb")}
     server, url = serve(root)
-    yield {"url": url, "assets": assets, "bakes": bakes}
+    yield {"url": url, "assets": assets, "bakes": bakes, "root": root, "options": OPTIONS}
     server.shutdown()
 
 
@@ -206,4 +209,46 @@ def test_babylon_without_extensions_is_standard_pbr(site, frames):
                             f"(artifacts: {_keep(f'{name}-plain', three, babylon)})")
         with_baker = images[("babylon", name, "default")]
         assert (np.abs(with_baker - babylon).max(axis=2) > 4 / 255).sum() >= 100, name
+    assert not failures, "\n".join(failures)
+
+
+def test_native_attribute_layout_draws_like_the_blender_layout(site, tmp_path):
+    """The same bakes in ``--attribute-layout native`` (SCALAR / VEC2 custom attributes, baker.gltf.vertex_attributes)
+    load without errors in both engines, report the same techniques, and draw every technique as the default (VEC3)
+    layout does in the same engine, within TIGHT_MAD."""
+    native = "spot_native.glb"
+    save(baker.bake(SPOT, bakes=site["bakes"], options=site["options"], attribute_layout="native"), site["root"] / native)
+    types = {gltf_json(site["root"] / native)["accessors"][i]["type"]
+             for m in gltf_json(site["root"] / native)["meshes"] for p in m["primitives"]
+             for n, i in p["attributes"].items() if n.startswith("_")}
+    assert {"SCALAR", "VEC2"} <= types  # the asset is what the test is about
+    techniques = techniques_in(gltf_json(site["root"] / native))
+    assert techniques == site["assets"]["spot_all.glb"]
+    loads = [(name, query, shots) for name in ("spot_all.glb", native) for query, _, shots in _loads(name, techniques)]
+
+    def jobs(engine, views=None):
+        out = []
+        for i, (name, query, shots) in enumerate(loads):
+            url = f"{site['url']}/index.html?hud=0&src={name}{query}"
+            if views is not None:
+                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            out.append({"url": url, "width": W, "height": H, "shots": [
+                {"on": on, "off": off, "out": str(tmp_path / f"{engine}-{name}-{key}.png")} for key, on, off in shots]})
+        return out
+
+    three = shoot(jobs("three"), tmp_path / "three.json")
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    failures = []
+    for engine, infos in (("three", three), ("babylon", babylon)):
+        for (name, _, _), info in zip(loads, infos):
+            assert info["ready"] and not info["errors"] and not info["warnings"], (engine, name, info)
+            assert set(info["techniques"]) == techniques, (engine, name, info)
+        for _, _, shots in loads[len(loads) // 2:]:
+            for key, _, _ in shots:
+                padded = _image(tmp_path / f"{engine}-spot_all.glb-{key}.png")
+                compact = _image(tmp_path / f"{engine}-{native}-{key}.png")
+                mad = float(np.abs(_blur(padded) - _blur(compact)).max(axis=2).mean())
+                if mad > TIGHT_MAD:
+                    failures.append(f"{engine} {key}: MAD {mad * 255:.2f}/255 "
+                                    f"(artifacts: {_keep(f'native-{engine}-{key}', padded, compact)})")
     assert not failures, "\n".join(failures)

@@ -151,7 +151,8 @@ def test_thickness_accessor_count_mismatch(copy):
 
 
 def test_thickness_accessor_format(copy):
-    copy.primitive["attributes"]["_THICKNESS"] = copy.primitive["attributes"]["TEXCOORD_0"]
+    # the index accessor: integers, not FLOAT (either attribute layout's width would do: SCALAR, VEC2 ... VEC4)
+    copy.primitive["attributes"]["_THICKNESS"] = copy.primitive["indices"]
     report = validate.validate_file(copy.save(), khronos=False)
     assert "BAKER_THICKNESS_ACCESSOR_FORMAT" in codes(report, 0)
 
@@ -168,7 +169,7 @@ def test_negative_thickness(copy):
 
 def test_non_finite_and_too_large_thickness(copy):
     a = copy.primitive["attributes"]["_THICKNESS"]
-    # _THICKNESS is FLOAT VEC3 with the value in x: vertex 0 gets NaN, vertex 1 a value far above maxDistance
+    # _THICKNESS is FLOAT VEC3 (blender attribute layout) with the value in x: vertex 0 gets NaN, vertex 1 a value far above maxDistance
     struct.pack_into("<f8xf", copy.bin, copy.accessor_offset(a), float("nan"), 1e6)
     report = validate.validate_file(copy.save(), khronos=False)
     assert "BAKER_THICKNESS_VALUE_NOT_FINITE" in codes(report, 0)

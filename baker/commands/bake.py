@@ -19,6 +19,10 @@ def add_parser(sub) -> None:
     memory.add_argument(p)
     p.add_argument("--allow-outside", action="append", metavar="PATH", help="also read buffer/image URIs under PATH "
                    "(default: only inside the asset's folder); repeatable")
+    p.add_argument("--attribute-layout", choices=("blender", "native"), default="blender",
+                   help="custom vertex attributes: 'blender' pads them to one width per mesh (FLOAT VEC3, or the "
+                   "width of the mesh's own attributes), which Blender 4.5 imports; 'native' writes each at its "
+                   "width (SCALAR, VEC2, VEC3) (default: blender)")
     for name, technique in bakes.items():
         add_arguments(p, technique.options, name)
     p.set_defaults(func=run)
@@ -27,7 +31,10 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     from pathlib import Path
 
+    import warnings
+
     from baker.api import bake, save
+    from baker.errors import BakeNote
     from baker.pipeline import OUTPUT_SUFFIXES
     from baker.progress import Progress
 
@@ -48,8 +55,15 @@ def run(args) -> int:
     # numba's ~1 s first-call set-up runs while the input is read (started after this command's own imports, which
     # would otherwise share the GIL with it on the way to the read)
     numba_warmup.start()
-    asset = bake(args.input, bakes=names, options=options, seed=args.seed, progress=progress,
-                 allow_outside=args.allow_outside, max_memory=max_memory)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", BakeNote)
+        asset = bake(args.input, bakes=names, options=options, seed=args.seed, progress=progress,
+                     allow_outside=args.allow_outside, max_memory=max_memory, attribute_layout=args.attribute_layout)
+    for warning in caught:
+        if issubclass(warning.category, BakeNote):
+            print(f"baker: {warning.category.label}: {warning.message}", file=sys.stderr)
+        else:  # not ours (a library's): shown as Python would have
+            warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
     asset.cache.clear()  # decoded and welded geometry is done with: free it before the file is assembled
     save(asset, args.output)
     if not args.quiet:

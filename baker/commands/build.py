@@ -7,6 +7,7 @@ Recipe (``baker.toml``, or ``[tool.baker]`` in ``pyproject.toml``), paths relati
     format = "glb"              # glb | gltf | usda | usdc | usdz
     bakes = ["thickness"]
     seed = 0
+    attribute-layout = "blender" # blender | native (custom vertex attributes, as `baker bake --attribute-layout`)
 
     [options.thickness]         # defaults for every asset: the fields of the bake's options dataclass
     rays = 64
@@ -71,6 +72,7 @@ class Task:
     bakes: list = field(default_factory=list)
     options: dict = field(default_factory=dict)  # bake -> {option: value} (every field, resolved)
     seed: int = 0
+    attribute_layout: str = "blender"  # baker.gltf.vertex_attributes: "blender" | "native"
     command: str | None = None
     args: list = field(default_factory=list)
     inputs: list = field(default_factory=list)  # recipe-relative files whose bytes the task needs
@@ -198,21 +200,24 @@ def load_recipe(path) -> Recipe:
     root = path.parent
     build = data.get("build", {})
     for key in build:
-        if key not in ("output", "format", "bakes", "seed"):
-            _fail(path, text, key, f"unknown [build] key '{key}' (known: output, format, bakes, seed)")
+        if key not in ("output", "format", "bakes", "seed", "attribute-layout"):
+            _fail(path, text, key, f"unknown [build] key '{key}' (known: output, format, bakes, seed, "
+                  "attribute-layout)")
     out_dir = build.get("output", "baked")
     fmt = build.get("format", "glb")
     if fmt not in FORMATS:
         _fail(path, text, "format", f"format must be one of {', '.join(FORMATS)}, not {fmt!r}")
     default_bakes = build.get("bakes", ["thickness"])
     seed = build.get("seed", 0)
+    layout = build.get("attribute-layout", "blender")
     global_options = data.get("options", {})
 
     per_input: dict[str, dict] = {}
     for entry in data.get("assets", []):
         for key in entry:
-            if key not in ("inputs", "bakes", "options", "seed"):
-                _fail(path, text, key, f"unknown [[assets]] key '{key}' (known: inputs, bakes, options, seed)")
+            if key not in ("inputs", "bakes", "options", "seed", "attribute-layout"):
+                _fail(path, text, key, f"unknown [[assets]] key '{key}' (known: inputs, bakes, options, seed, "
+                      "attribute-layout)")
         globs = entry.get("inputs", [])
         if isinstance(globs, str):
             globs = [globs]
@@ -220,11 +225,11 @@ def load_recipe(path) -> Recipe:
         if not matched:
             _fail(path, text, "inputs", f"inputs {globs} match no file")
         for rel in matched:
-            config = per_input.setdefault(rel, {"bakes": default_bakes, "layers": [global_options], "seed": seed})
-            if "bakes" in entry:
-                config["bakes"] = entry["bakes"]
-            if "seed" in entry:
-                config["seed"] = entry["seed"]
+            config = per_input.setdefault(rel, {"bakes": default_bakes, "layers": [global_options], "seed": seed,
+                                                "attribute-layout": layout})
+            for key in ("bakes", "seed", "attribute-layout"):
+                if key in entry:
+                    config[key] = entry[key]
             config["layers"] = config["layers"] + [entry.get("options", {})]
 
     tasks = []
@@ -235,7 +240,8 @@ def load_recipe(path) -> Recipe:
         output = (Path(out_dir) / Path(rel).with_suffix("." + fmt)).as_posix()
         options = _resolve_options(path, text, config["bakes"], config["layers"])
         tasks.append(Task(output=output, kind="bake", input=rel, bakes=list(config["bakes"]), options=options,
-                          seed=int(config["seed"]), inputs=[rel] + referenced_files(root, rel)))
+                          seed=int(config["seed"]), attribute_layout=config["attribute-layout"],
+                          inputs=[rel] + referenced_files(root, rel)))
     for entry in data.get("commands", []):
         for key in entry:
             if key not in ("command", "args", "input", "output"):
@@ -292,6 +298,8 @@ def task_key(root: Path, task: Task) -> tuple[str, dict]:
     payload = {"baker": __version__, "kind": task.kind, "inputs": inputs, "bakes": task.bakes,
                "options": task.options, "seed": task.seed, "output": Path(task.output).suffix,
                "command": task.command, "args": task.args}
+    if task.attribute_layout != "blender":  # the default joins no key: locks written before the option stay current
+        payload["attributeLayout"] = task.attribute_layout
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest(), inputs
 
 
@@ -301,10 +309,14 @@ def run_task(payload: dict) -> dict:
 
     Pure function of its payload: runs the same in-process, in a process pool or on a Dask worker.
     """
+    import warnings
+
     from baker import commands
+    from baker.errors import BakeNote
     from baker.pipeline import bake, save
 
     start = time.perf_counter()
+    notes = []
     with tempfile.TemporaryDirectory(prefix="baker-build-") as scratch:
         scratch = Path(scratch)
         for rel, data in payload["files"].items():
@@ -315,8 +327,12 @@ def run_task(payload: dict) -> dict:
         out_main.parent.mkdir(parents=True)
         try:
             if payload["kind"] == "bake":
-                asset = bake(scratch / "in" / payload["input"], bakes=payload["bakes"], options=payload["options"],
-                             seed=payload["seed"], max_memory=payload.get("max_memory"))
+                with warnings.catch_warnings(record=True) as caught:
+                    warnings.simplefilter("always", BakeNote)
+                    asset = bake(scratch / "in" / payload["input"], bakes=payload["bakes"],
+                                 options=payload["options"], seed=payload["seed"],
+                                 max_memory=payload.get("max_memory"), attribute_layout=payload["attribute_layout"])
+                notes = [str(w.message) for w in caught if issubclass(w.category, BakeNote)]
                 save(asset, out_main)
             else:
                 subst = {"{output}": str(out_main),
@@ -337,13 +353,15 @@ def run_task(payload: dict) -> dict:
                     "traceback": traceback.format_exc()}
         files = {p.relative_to(out_main.parent).as_posix(): p.read_bytes()
                  for p in sorted(out_main.parent.rglob("*")) if p.is_file()}
-    return {"output": payload["output"], "error": None, "files": files, "seconds": time.perf_counter() - start}
+    return {"output": payload["output"], "error": None, "files": files, "seconds": time.perf_counter() - start,
+            "warnings": notes}
 
 
 def _payload(root: Path, task: Task, max_memory: int | None = None) -> dict:
     return {"kind": task.kind, "output": task.output, "input": task.input, "bakes": task.bakes,
-            "options": task.options, "seed": task.seed, "command": task.command, "args": task.args,
-            "max_memory": max_memory, "files": {rel: (root / rel).read_bytes() for rel in task.inputs}}
+            "options": task.options, "seed": task.seed, "attribute_layout": task.attribute_layout,
+            "command": task.command, "args": task.args, "max_memory": max_memory,
+            "files": {rel: (root / rel).read_bytes() for rel in task.inputs}}
 
 
 def worker_threads(jobs: int) -> int:
@@ -475,12 +493,12 @@ def _outputs_current(root: Path, entry: dict) -> bool:
 def build(recipe: Recipe, *, jobs: int = 1, scheduler: str | None = None, fail_fast: bool = False,
           progress=None, max_memory: int | None = None) -> dict:
     """Bake what is stale; returns {'baked': [...], 'skipped': [...], 'failed': [(output, reason)], 'tracebacks':
-    {output: traceback of an unexpected failure}, 'seconds'}. ``max_memory``: bytes each bake job may need (a job
-    estimated above it fails with the reason; None: no limit)."""
+    {output: traceback of an unexpected failure}, 'warnings': [(output, message)], 'seconds'}. ``max_memory``:
+    bytes each bake job may need (a job estimated above it fails with the reason; None: no limit)."""
     start = time.perf_counter()
     root = recipe.root
     lock = read_lock(root)
-    report = {"baked": [], "skipped": [], "failed": [], "tracebacks": {}, "seconds": 0.0}
+    report = {"baked": [], "skipped": [], "failed": [], "tracebacks": {}, "warnings": [], "seconds": 0.0}
     bar = _bar(progress, len(recipe.tasks), 0)
     # bakes first, then commands: a command's input may be a baked output, hashed only once it exists
     for phase in ("bake", "command"):
@@ -501,6 +519,7 @@ def build(recipe: Recipe, *, jobs: int = 1, scheduler: str | None = None, fail_f
         by_output = {t.output: (t, i) for t, i in todo}
         for result in _execute([_payload(root, t, max_memory) for t, _ in todo], jobs, scheduler, fail_fast):
             task, task_inputs = by_output[result["output"]]
+            report["warnings"] += [(task.output, note) for note in result.get("warnings", [])]
             if result["error"]:
                 report["failed"].append((task.output, result["error"]))
                 if result.get("traceback"):
@@ -613,8 +632,11 @@ def main(args) -> int:
     report = build(recipe, jobs=args.jobs, scheduler=args.scheduler, fail_fast=args.fail_fast,
                    progress=Progress(enabled=False if args.quiet else None),
                    max_memory=job_memory_limit(args.max_memory, args.jobs, args.scheduler))
+    for output, note in report["warnings"]:
+        print(f"baker: warning: {output}: {note}", file=sys.stderr)
     if args.format == "json":
-        print(json.dumps({**report, "failed": [{"output": o, "reason": r} for o, r in report["failed"]]}, indent=2))
+        print(json.dumps({**report, "failed": [{"output": o, "reason": r} for o, r in report["failed"]],
+                          "warnings": [{"output": o, "message": m} for o, m in report["warnings"]]}, indent=2))
     elif not args.quiet or report["failed"]:
         print(_table(report))
     return 1 if report["failed"] else 0

@@ -21,6 +21,7 @@ import numpy as np
 from baker.checks import Issues, pointer
 from baker.errors import BakerError
 from baker.gltf.atomic import write_files_atomic
+from baker.gltf.vertex_attributes import AttributeLayout
 from baker.gltf.structure import (CHUNK_BIN, CHUNK_JSON, COMPONENT_DTYPES, GLB_MAGIC, TYPE_SIZES, align,
                                   check_data, check_structure, decode_data_uri, first_error, local_file,
                                   meshopt_extension, parse_glb, read_container)
@@ -62,6 +63,8 @@ class GltfDocument:
     new_images: dict = field(default_factory=dict)
     # extra folders external URIs may resolve into (see baker.gltf.structure.local_file)
     allow_outside: object = field(default=None, repr=False, compare=False)
+    # how extension writers lay out custom vertex attributes (baker.gltf.vertex_attributes), set by the bake
+    attribute_layout: AttributeLayout = field(default_factory=AttributeLayout, repr=False, compare=False)
 
     # ------------------------------------------------------------------ reading
     @classmethod

@@ -32,7 +32,9 @@ cameras, lights, ``KHR_texture_transform``. Per primitive:
 - ``primvars:st`` from ``TEXCOORD_0``, ``primvars:st<n>`` from ``TEXCOORD_<n>`` (``texCoord2f``, vertex
   interpolation, ``t = 1 - v``);
 - ``primvars:displayColor`` / ``primvars:displayOpacity`` from ``COLOR_0``;
-- every custom attribute ``_NAME`` as ``primvars:baker:name`` (float, float2, float3 or float4 array, vertex
+- every custom attribute ``_NAME`` as ``primvars:baker:name`` at its data's width whatever the glTF layout (baker's
+  own attributes: ``float[]`` for ``_THICKNESS``, ``float2[]`` for pairs; others as stored: float, float2, float3 or
+  float4 array, vertex
   interpolation; integer data is converted to float, normalized integers to [0, 1]).
 
 Each glTF material a written primitive uses becomes a ``UsdShade.Material`` under ``/Root/Materials`` with a
@@ -282,23 +284,25 @@ def _interpolate(values, interpolation, indices, face_of_corner, n_points):
 
 
 # ====================================================================== writing
-def write_usd(doc, path, primitive_hooks=None) -> list[Path]:
+def write_usd(doc, path, primitive_hooks=None, attribute_widths=None) -> list[Path]:
     """Write ``doc`` (a :class:`~baker.gltf.document.GltfDocument`) as ``.usda``, ``.usdc``, ``.usd`` or ``.usdz``.
 
     The file is written atomically; textures go to ``<stem>_textures/`` beside it, or into the ``.usdz`` package.
     Returns every file written (the stage last). ``primitive_hooks`` maps an extension name to a function
     ``(stage, prim_path, parent_path, doc, mesh, primitive)`` that adds that extension's USD beside each mesh
-    primitive carrying it (see :func:`baker.registry.usd_primitive_hooks`).
+    primitive carrying it (see :func:`baker.registry.usd_primitive_hooks`). ``attribute_widths`` maps a custom
+    attribute name to its data's width (:func:`baker.registry.vertex_attribute_widths`): its primvar takes that many
+    components whatever the glTF layout padded it to.
     """
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".usd", ".usda", ".usdc", ".usdz"):
         raise BakerError(path, "output must end in .usd, .usda, .usdc or .usdz")
     if suffix == ".usdz":
-        _write_usdz(doc, path, primitive_hooks)
+        _write_usdz(doc, path, primitive_hooks, attribute_widths)
         return [path]
     folder = f"{path.stem}_textures"
-    layer, images = build_layer(doc, folder, primitive_hooks)
+    layer, images = build_layer(doc, folder, primitive_hooks, attribute_widths)
     # one atomic group, textures renamed first and the stage last: a reader never sees a stage whose textures are
     # missing, and a failed or killed run keeps every earlier file
     return write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])
@@ -314,10 +318,10 @@ def write_stage_and_textures(layer, path: Path, textures) -> list[Path]:
     return targets
 
 
-def _write_usdz(doc, path: Path, primitive_hooks=None) -> None:
+def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None) -> None:
     from pxr import Sdf, UsdUtils
 
-    layer, images = build_layer(doc, "textures", primitive_hooks)
+    layer, images = build_layer(doc, "textures", primitive_hooks, attribute_widths)
     with tempfile.TemporaryDirectory(prefix=".baker-usdz-") as work:
         work = Path(work)
         root = work / f"{path.stem}.usdc"
@@ -380,7 +384,7 @@ class _Names:
         return candidate
 
 
-def build_layer(doc, texture_folder: str, primitive_hooks=None):
+def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None):
     """Author the stage in memory; returns (root layer, [(texture file name, bytes)]) in a fixed order."""
     from pxr import Gf, Kind, Usd, UsdGeom
 
@@ -391,7 +395,7 @@ def build_layer(doc, texture_folder: str, primitive_hooks=None):
     stage.SetDefaultPrim(root)
     Usd.ModelAPI(root).SetKind(Kind.Tokens.component)  # one asset: what USDZ viewers and assemblies expect
 
-    writer = _Writer(doc, stage, texture_folder, primitive_hooks or {})
+    writer = _Writer(doc, stage, texture_folder, primitive_hooks or {}, attribute_widths or {})
     writer.names.make("/Root", "Materials", "Materials")  # reserved: a node named "Materials" becomes Materials_1
     gltf = doc.json
     nodes = gltf.get("nodes", [])
@@ -423,9 +427,10 @@ def build_layer(doc, texture_folder: str, primitive_hooks=None):
 
 
 class _Writer:
-    def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict):
+    def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict, attribute_widths: dict):
         self.doc = doc
         self.primitive_hooks = primitive_hooks
+        self.attribute_widths = attribute_widths
         self.stage = stage
         self.texture_folder = texture_folder
         self.names = _Names()
@@ -496,8 +501,13 @@ class _Writer:
         from pxr import Sdf, Tf, UsdGeom, Vt
 
         from baker.gltf.accessors import to_float
+        from baker.gltf.vertex_attributes import TYPE_WIDTHS, WIDTH_TYPES, unpadded
 
         kind = self.doc.json["accessors"][acc]["type"]
+        data = to_float(self.doc, acc).astype(np.float32)
+        width = self.attribute_widths.get(key)
+        if width and TYPE_WIDTHS.get(kind, 0) >= width:  # a known attribute: the data's own width, not the padding
+            kind, data = WIDTH_TYPES[width], unpadded(data, width)
         types = {"SCALAR": (Sdf.ValueTypeNames.FloatArray, Vt.FloatArray),
                  "VEC2": (Sdf.ValueTypeNames.Float2Array, Vt.Vec2fArray),
                  "VEC3": (Sdf.ValueTypeNames.Float3Array, Vt.Vec3fArray),
@@ -505,7 +515,7 @@ class _Writer:
         if kind not in types:
             return  # matrices: no vertex primvar type fits
         value_type, array_type = types[kind]
-        data = np.ascontiguousarray(to_float(self.doc, acc).astype(np.float32))
+        data = np.ascontiguousarray(data)
         name = "baker:" + Tf.MakeValidIdentifier(key.lstrip("_").lower())
         primvars.CreatePrimvar(name, value_type, UsdGeom.Tokens.vertex).Set(array_type.FromNumpy(data))
 

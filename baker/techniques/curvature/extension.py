@@ -1,9 +1,9 @@
 """``BAKER_curvature``: per-vertex curvature attributes (and an optional texture) -> glTF, and their checks.
 
 Where the data goes (see ``schemas/BAKER_curvature/README.md``):
-- primitive attributes, all FLOAT VEC3 (the custom attribute layout of :mod:`baker.gltf.vertex_attributes`, which
-  Blender imports): ``_CURVATURE`` (mean curvature H in x), ``_PRINCIPAL_CURVATURES`` (k1 >= k2 in x, y) and
-  ``_PRINCIPAL_DIRECTION`` (unit tangent of k1), curvatures in 1 / mesh units, convex positive;
+- primitive attributes (FLOAT SCALAR / VEC2 / VEC3 in the ``native`` layout, all FLOAT VEC3 in the ``blender`` one:
+  :mod:`baker.gltf.vertex_attributes`): ``_CURVATURE`` (mean curvature H, x), ``_PRINCIPAL_CURVATURES`` (k1 >= k2,
+  x, y) and ``_PRINCIPAL_DIRECTION`` (unit tangent of k1), curvatures in 1 / mesh units, convex positive;
 - optionally ``BAKER_curvature.curvatureTexture``: H per texel, remapped from ``textureRange`` to [0, 1];
 - ``BAKER_curvature`` on the material: how it was baked and which attributes hold what.
 USD gets ``primvars:baker:curvature``, ``primvars:baker:principal_curvatures``, ``primvars:baker:principal_direction``
@@ -17,24 +17,27 @@ import numpy as np
 
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import encode_image
-from baker.gltf.vertex_attributes import padded
+from baker.gltf.vertex_attributes import add_vertex_attribute
 
 NAME = "BAKER_curvature"
 ATTRIBUTE = "_CURVATURE"
 PRINCIPAL = "_PRINCIPAL_CURVATURES"
 DIRECTION = "_PRINCIPAL_DIRECTION"
+VERTEX_ATTRIBUTES = {ATTRIBUTE: 1, PRINCIPAL: 2, DIRECTION: 3}  # name -> the data's width (baker.registry)
 
 
 def write_vertex_curvature(doc: GltfDocument, mesh: int, primitive: int, mean: np.ndarray,
                            principal: np.ndarray | None = None, direction: np.ndarray | None = None) -> dict:
     """Add the curvature attributes to one primitive; returns {attribute name: accessor index}."""
     attrs = doc.json["meshes"][mesh]["primitives"][primitive]["attributes"]
-    written = {ATTRIBUTE: doc.add_accessor(padded(mean), min_max=True)}
+    written = {ATTRIBUTE: add_vertex_attribute(doc, mesh, attrs, ATTRIBUTE, mean, min_max=True,
+                                               leave_out="--curvature-per-vertex false")}
     if principal is not None:
-        written[PRINCIPAL] = doc.add_accessor(padded(principal), min_max=True)
+        written[PRINCIPAL] = add_vertex_attribute(doc, mesh, attrs, PRINCIPAL, principal, min_max=True,
+                                                  leave_out="--curvature-directions false")
     if direction is not None:
-        written[DIRECTION] = doc.add_accessor(padded(direction))
-    attrs.update(written)
+        written[DIRECTION] = add_vertex_attribute(doc, mesh, attrs, DIRECTION, direction,
+                                                  leave_out="--curvature-directions false")
     return written
 
 

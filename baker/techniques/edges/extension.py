@@ -8,8 +8,8 @@ Where the data goes (see ``schemas/BAKER_edges/README.md``):
 - the vertex attribute ``_OUTLINE_NORMAL`` (FLOAT VEC3, unit): one averaged normal per welded position;
 - optionally a fin primitive in the same mesh (4 vertices, 2 degenerate triangles per edge) whose ``BAKER_edges``
   names its source primitive; a viewer that ignores the extensions rasterizes nothing from it. Its attributes
-  ``_FIN_V0.._FIN_V3``, ``_FIN_CORNER`` and ``_FIN_FLAGS`` are all FLOAT VEC3 (scalars in x), the custom attribute
-  layout of :mod:`baker.gltf.vertex_attributes` that Blender imports.
+  ``_FIN_V0.._FIN_V3`` (VEC3), ``_FIN_CORNER`` and ``_FIN_FLAGS`` (scalars) are laid out as
+  :mod:`baker.gltf.vertex_attributes` says (``blender``: all FLOAT VEC3, scalars in x; ``native``: SCALAR).
 """
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ import numpy as np
 from baker.geometry import edge_codes
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
 from baker.gltf.derived import copy_skinning, match_morph_targets
-from baker.gltf.vertex_attributes import padded, unpadded
+from baker.gltf.vertex_attributes import add_vertex_attribute, unpadded
 
 if TYPE_CHECKING:  # the writers take the kernel's results; validation must not import the numba kernels
     from baker.geometry.edges import PrimitiveEdges
@@ -34,6 +34,8 @@ EXT_VISIBILITY = "EXT_mesh_primitive_edge_visibility"
 ALSO_CHECKS = {EXT_VISIBILITY: ("visibility", "silhouetteMates")}
 OUTLINE_NORMAL = "_OUTLINE_NORMAL"
 FIN_ATTRIBUTES = ("_FIN_V0", "_FIN_V1", "_FIN_V2", "_FIN_V3", "_FIN_CORNER", "_FIN_FLAGS")
+# name -> the data's width (baker.registry); the fur fins share the _FIN_ names
+VERTEX_ATTRIBUTES = {OUTLINE_NORMAL: 3, **dict(zip(FIN_ATTRIBUTES, (3, 3, 3, 3, 1, 1)))}
 FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
 INDEX_MAX = {UBYTE: 0xFF, USHORT: 0xFFFF, UINT: 0xFFFFFFFF}
 
@@ -60,9 +62,9 @@ def write_edge_visibility(doc: GltfDocument, mesh: int, primitive: int, codes: n
 
 
 def write_outline_normals(doc: GltfDocument, mesh: int, primitive: int, normals: np.ndarray) -> int:
-    acc = doc.add_accessor(normals.astype(np.float32), min_max=True)
-    doc.json["meshes"][mesh]["primitives"][primitive]["attributes"][OUTLINE_NORMAL] = acc
-    return acc
+    attributes = doc.json["meshes"][mesh]["primitives"][primitive]["attributes"]
+    return add_vertex_attribute(doc, mesh, attributes, OUTLINE_NORMAL, normals, min_max=True,
+                                leave_out="--edges-outline-normals false")
 
 
 def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: PrimitiveEdges) -> int:
@@ -77,10 +79,9 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, pe: Primit
     quad = np.array([0, 1, 2, 0, 2, 3], np.int64)
     indices = (np.arange(n)[:, None] * 4 + quad[None, :]).reshape(-1)
     attributes = {"POSITION": doc.add_accessor(position, min_max=True)}
-    for j, name in enumerate(FIN_ATTRIBUTES[:4]):
-        attributes[name] = doc.add_accessor(np.repeat(corners[:, j], 4, axis=0))
-    attributes["_FIN_CORNER"] = doc.add_accessor(padded(corner))
-    attributes["_FIN_FLAGS"] = doc.add_accessor(padded(np.repeat(pe.flags.astype(np.float32), 4)))
+    columns = [np.repeat(corners[:, j], 4, axis=0) for j in range(4)] + [corner, np.repeat(pe.flags.astype(np.float32), 4)]
+    for name, values in zip(FIN_ATTRIBUTES, columns):
+        add_vertex_attribute(doc, mesh, attributes, name, values, leave_out="--edges-fins false")
     fin = {
         "attributes": attributes,
         "indices": doc.add_accessor(indices.astype(np.uint16 if 4 * n <= 0xFFFF else np.uint32),

@@ -7,8 +7,8 @@ Where the data goes (see ``schemas/BAKER_fur/README.md``):
   a plain viewer rasterizes nothing; each vertex carries the edge's corners ``_FIN_V0.._FIN_V3`` (v2, v3: the
   vertices opposite the edge in its two faces, as in BAKER_edges), its corner number ``_FIN_CORNER`` (0, 1 on the
   surface at v0, v1; 2, 3 at the fur tips above v1, v0), the extrusion normal ``_FUR_FIN_NORMAL`` and the fin texture
-  coordinate ``_FUR_FIN_UV`` (u, v in x, y), all FLOAT VEC3 (scalars in x: the custom attribute layout of
-  :mod:`baker.gltf.vertex_attributes` that Blender imports); ``BAKER_fur`` on it names its source primitive
+  coordinate ``_FUR_FIN_UV`` (u, v in x, y), laid out as :mod:`baker.gltf.vertex_attributes` says (``blender``: all
+  FLOAT VEC3, scalars in x; ``native``: SCALAR, VEC2, VEC3); ``BAKER_fur`` on it names its source primitive
   (``finsOf``).
 """
 from __future__ import annotations
@@ -20,9 +20,12 @@ import numpy as np
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
 from baker.gltf.derived import copy_skinning, match_morph_targets
 from baker.gltf.images import encode_image
-from baker.gltf.vertex_attributes import padded
+from baker.gltf.vertex_attributes import add_vertex_attribute
 
 NAME = "BAKER_fur"
+# name -> the data's width (baker.registry)
+VERTEX_ATTRIBUTES = {"_FIN_V0": 3, "_FIN_V1": 3, "_FIN_V2": 3, "_FIN_V3": 3, "_FIN_CORNER": 1, "_FUR_FIN_NORMAL": 3,
+                     "_FUR_FIN_UV": 2}
 SAMPLER_REPEAT = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}
 SAMPLER_FIN = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 33071}
 
@@ -56,13 +59,13 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: n
     rows = np.repeat(np.arange(n), 4)
     position = corners[rows, np.tile(at, n)]
     attributes = {"POSITION": doc.add_accessor(position, min_max=True)}
-    for j in range(4):
-        attributes[f"_FIN_V{j}"] = doc.add_accessor(np.repeat(corners[:, j], 4, axis=0))
-    attributes["_FIN_CORNER"] = doc.add_accessor(padded(np.tile(np.arange(4, dtype=np.float32), n)))
-    attributes["_FUR_FIN_NORMAL"] = doc.add_accessor(normals.astype(np.float32)[rows, np.tile(at, n)])
     v = np.tile(np.array([0.0, 0.0, 1.0, 1.0], np.float32), n)  # 0 at the root, 1 at the tip
     u = fin_u.astype(np.float32)[rows, np.tile(at, n)]
-    attributes["_FUR_FIN_UV"] = doc.add_accessor(padded(np.stack([u, v], axis=1)))
+    columns = {**{f"_FIN_V{j}": np.repeat(corners[:, j], 4, axis=0) for j in range(4)},
+               "_FIN_CORNER": np.tile(np.arange(4, dtype=np.float32), n),
+               "_FUR_FIN_NORMAL": normals.astype(np.float32)[rows, np.tile(at, n)], "_FUR_FIN_UV": np.stack([u, v], axis=1)}
+    for name, values in columns.items():
+        add_vertex_attribute(doc, mesh, attributes, name, values, leave_out="--fur-fins false")
     quad = np.array([0, 1, 2, 0, 2, 3], np.int64)
     indices = (np.arange(n)[:, None] * 4 + quad[None, :]).reshape(-1)
     fin = {

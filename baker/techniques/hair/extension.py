@@ -4,8 +4,8 @@ Where the data goes (see ``schemas/BAKER_hair/README.md``):
 - one ``LINES`` primitive per strand set (guides, children), vertices strand by strand from root to tip, strands
   ordered nearest-the-emitter first (RTR4 14.7.1: a pre-sorted buffer limits alpha-blending errors); plain viewers
   draw the lines;
-- vertex attributes ``_STRAND_TANGENT`` (FLOAT VEC3, unit) and ``_STRAND_PARAM`` (FLOAT VEC3, x: 0 at the root,
-  1 at the tip; y = z = 0: the custom attribute layout of :mod:`baker.gltf.vertex_attributes` that Blender imports);
+- vertex attributes ``_STRAND_TANGENT`` (FLOAT VEC3, unit) and ``_STRAND_PARAM`` (0 at the root, 1 at the tip: FLOAT
+  SCALAR in the ``native`` layout, x of a FLOAT VEC3 in the ``blender`` one, :mod:`baker.gltf.vertex_attributes`);
 - ``BAKER_hair`` on the primitive: counts, widths, the per-strand width scale, the ribbon index buffer (6 indices
   per segment over ``2 x vertex count`` ribbon vertices), and for children the guide ids + weights.
 """
@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
-from baker.gltf.vertex_attributes import padded, unpadded
+from baker.gltf.vertex_attributes import add_vertex_attribute, unpadded
 
 if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
     from baker.techniques.hair.kernel import HairResult, StrandSet
@@ -25,6 +25,7 @@ if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
 NAME = "BAKER_hair"
 TANGENT = "_STRAND_TANGENT"
 PARAM = "_STRAND_PARAM"
+VERTEX_ATTRIBUTES = {TANGENT: 3, PARAM: 1}  # name -> the data's width (baker.registry)
 MODE_LINES = 1
 
 
@@ -56,12 +57,11 @@ def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set:
     param = np.tile(np.linspace(0.0, 1.0, v, dtype=np.float32), s)
     seg = (np.arange(s)[:, None] * v + np.arange(v - 1)[None, :]).reshape(-1)
     lines = np.stack([seg, seg + 1], axis=1).reshape(-1).astype(np.uint32)
+    attributes = {"POSITION": doc.add_accessor(positions, min_max=True)}
+    add_vertex_attribute(doc, None, attributes, TANGENT, tangents)  # a mesh of its own: the strands' widths only
+    add_vertex_attribute(doc, None, attributes, PARAM, param)
     prim = {
-        "attributes": {
-            "POSITION": doc.add_accessor(positions, min_max=True),
-            TANGENT: doc.add_accessor(tangents),
-            PARAM: doc.add_accessor(padded(param)),
-        },
+        "attributes": attributes,
         "indices": doc.add_accessor(lines, target=TARGET_ELEMENT_ARRAY_BUFFER),
         "mode": MODE_LINES,
         "material": material,
@@ -114,7 +114,7 @@ def read_strands(doc: GltfDocument, mesh: int, primitive: int) -> dict:
     s, v = ext["strandCount"], ext["verticesPerStrand"]
     out = {
         "positions": doc.accessor(prim["attributes"]["POSITION"]).reshape(s, v, 3),
-        "tangents": doc.accessor(prim["attributes"][ext.get("tangentAttribute", TANGENT)]).reshape(s, v, 3),
+        "tangents": unpadded(doc.accessor(prim["attributes"][ext.get("tangentAttribute", TANGENT)]), 3).reshape(s, v, 3),
         "param": unpadded(doc.accessor(prim["attributes"][ext.get("paramAttribute", PARAM)]), 1).reshape(s, v),
         "width_scale": doc.accessor(ext["widthScale"]),
         "ribbon": doc.accessor(ext["ribbonIndices"]),
@@ -308,7 +308,8 @@ def read(doc: GltfDocument, mesh: int, primitive: int) -> HairStrands | None:
     guides = ext.get("guides") or {}
     return HairStrands(
         strand_count=int(ext["strandCount"]), vertices_per_strand=int(ext["verticesPerStrand"]),
-        positions=doc.accessor(attrs["POSITION"]), tangents=doc.accessor(attrs[ext.get("tangentAttribute", TANGENT)]),
+        positions=doc.accessor(attrs["POSITION"]),
+        tangents=unpadded(doc.accessor(attrs[ext.get("tangentAttribute", TANGENT)]), 3),
         param=unpadded(doc.accessor(attrs[ext.get("paramAttribute", PARAM)]), 1).reshape(-1),
         ribbon_indices=doc.accessor(ext["ribbonIndices"]).reshape(-1),
         root_width=float(ext["rootWidth"]), tip_width=float(ext["tipWidth"]),

@@ -1,8 +1,8 @@
 """``BAKER_thickness`` and the Khronos fields it rides on: result arrays -> glTF JSON/accessors/images, and USD.
 
 Where the data goes (see ``schemas/BAKER_thickness/README.md``):
-- per vertex: the primitive attribute ``_THICKNESS`` (FLOAT VEC3: mean chord in mesh units in x, y = z = 0, the custom
-  attribute layout of :mod:`baker.gltf.vertex_attributes` that Blender imports);
+- per vertex: the primitive attribute ``_THICKNESS`` (mean chord in mesh units; FLOAT SCALAR in the ``native`` layout,
+  in x of a FLOAT VEC3 in the ``blender`` one: :mod:`baker.gltf.vertex_attributes`);
 - per texel: ``BAKER_thickness.thicknessTexture`` (green channel, 1.0 = ``BAKER_thickness.thicknessFactor`` mesh
   units), mirrored in ``KHR_materials_volume.thicknessTexture``/``thicknessFactor`` on single-sided materials only
   (the Khronos validator warns about KHR_materials_volume on a double-sided one);
@@ -20,18 +20,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from baker.gltf.document import GltfDocument
-from baker.gltf.vertex_attributes import padded
+from baker.gltf.vertex_attributes import add_vertex_attribute
 
 NAME = "BAKER_thickness"
 ATTRIBUTE = "_THICKNESS"
+VERTEX_ATTRIBUTES = {ATTRIBUTE: 1}  # name -> the data's width (USD writes it so; baker.registry)
 KHR_VOLUME = "KHR_materials_volume"
 
 
 def write_vertex_thickness(doc: GltfDocument, mesh: int, primitive: int, thickness: np.ndarray) -> int:
     """Add ``_THICKNESS`` to a primitive; returns the accessor index."""
-    acc = doc.add_accessor(padded(thickness), min_max=True)
-    doc.json["meshes"][mesh]["primitives"][primitive]["attributes"][ATTRIBUTE] = acc
-    return acc
+    attributes = doc.json["meshes"][mesh]["primitives"][primitive]["attributes"]
+    return add_vertex_attribute(doc, mesh, attributes, ATTRIBUTE, thickness, min_max=True,
+                                leave_out="--thickness-per-vertex false")
 
 
 def encode_thickness_texture(thickness: np.ndarray, bits: int) -> tuple[bytes, float]:

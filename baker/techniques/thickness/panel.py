@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from baker.gltf.vertex_attributes import unpadded
 from baker.preview.core import DrawItem, Panel, Scene
 from baker.techniques.thickness.extension import ATTRIBUTE, ThicknessMaterial, read
 
@@ -17,7 +18,9 @@ class ScalarMapPanel(Panel):
 
     def prepare(self, items) -> None:
         items = items.items if isinstance(items, Scene) else items
-        values = np.concatenate([i.attributes[self.attribute].reshape(-1) for i in items if self.attribute in i.attributes])
+        # the scalar only (x): the padding of the blender attribute layout would pull the range down to 0
+        values = np.concatenate([unpadded(i.attributes[self.attribute], 1) for i in items
+                                 if self.attribute in i.attributes])
         self.range = (float(values.min()), float(max(values.max(), values.min() + 1e-12)))
 
     def uniforms(self, item: DrawItem) -> dict:

@@ -21,6 +21,10 @@ bl_info = {
 class glTF2ImportUserExtension:
     """Called by Blender's glTF importer (it looks the class up on every enabled add-on's module)."""
 
+    def gather_import_mesh_before_hook(self, pymesh, gltf):
+        from . import widths
+        widths.one_width(gltf, pymesh)  # baker's native layout mixes widths, which the stock importer cannot
+
     def gather_import_scene_after_nodes_hook(self, gltf_scene, blender_scene, gltf):
         from . import importing
         importing.after_import(gltf)
