@@ -259,7 +259,8 @@ def load_recipe(path) -> Recipe:
 
 
 def referenced_files(root: Path, rel: str) -> list[str]:
-    """Files an input references that change its result: a .gltf's external buffers and images, an .obj's .mtl."""
+    """Files an input references that change its result: a .gltf's external buffers and images, an .obj's .mtl
+    files and their textures."""
     source = root / rel
     refs = []
     if not source.is_file():
@@ -274,9 +275,20 @@ def referenced_files(root: Path, rel: str) -> list[str]:
             if uri and not uri.startswith("data:"):
                 refs.append((Path(rel).parent / urllib.parse.unquote(uri)).as_posix())
     elif source.suffix.lower() == ".obj":
-        for line in source.read_text(errors="replace").splitlines():
-            if line.startswith("mtllib "):
-                refs.append((Path(rel).parent / line[7:].strip()).as_posix())
+        # the .mtl files and the textures they name, as the bake itself resolves them (baker.geometry.mtl)
+        from baker.geometry.mtl import read_obj_materials
+
+        try:
+            materials, libraries = read_obj_materials(source)
+        except BakerError:  # the bake reports it, naming the line; the task keeps its other inputs
+            materials, libraries = {}, []
+        files = libraries + [t.path for m in materials.values() for t in m.textures.values()]
+        base = root.resolve()
+        for path in files:
+            try:
+                refs.append(Path(path).resolve().relative_to(base).as_posix())
+            except ValueError:  # outside the recipe's folder: not a file the recipe can hash and ship
+                continue
     return sorted(r for r in set(refs) if (root / r).is_file())
 
 
