@@ -79,7 +79,8 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
         geoms = [g for g in geoms if len(g.faces)]
         if not geoms:
             continue
-        if _existing_uv_usable(geoms, size or 1024):
+        # the overlap test at 256^2 when the size is not forced: overlapping charts show at any resolution
+        if _existing_uv_usable(geoms, size or 256):
             texcoord, unwrapped = 0, False
         else:
             texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
