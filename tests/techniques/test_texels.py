@@ -100,6 +100,14 @@ def test_seven_spheres_default_sizes_and_cost(spheres, tmp_path):
     assert times["default"] <= 4 * times["vertex"], times
     out = tmp_path / "default.glb"
     assert_khronos_clean(out)
+    # `baker inspect` reports each material's texture size (read from the PNG header)
+    listing = subprocess.run([sys.executable, "-m", "baker.cli", "inspect", str(out), "--format", "json"],
+                             check=True, capture_output=True, text=True, timeout=300).stdout
+    import json
+
+    reported = {m["material"]: m["textures"] for m in json.loads(listing)["materials"]}
+    assert all(t == [{"slot": "KHR_materials_volume.thicknessTexture", "texture": t[0]["texture"],
+                      "size": [128, 128]}] for t in reported.values()) and len(reported) == 7
     doc = GltfDocument.load(out)
     for material in doc.json["materials"]:
         info = material["extensions"]["KHR_materials_volume"]
