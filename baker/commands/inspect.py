@@ -81,8 +81,8 @@ def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
                     row["baked"][key] = {"min": float(values.min()), "mean": float(values.mean()),
                                          "max": float(values.max())} if values.size else {}
             meshes.append(row)
-    materials = [{"material": i, "name": mat.get("name", ""), "extensions": sorted(mat.get("extensions", {}))}
-                 for i, mat in enumerate(doc.json.get("materials", []))]
+    materials = [{"material": i, "name": mat.get("name", ""), "extensions": sorted(mat.get("extensions", {})),
+                  "textures": material_textures(doc, mat)} for i, mat in enumerate(doc.json.get("materials", []))]
     return {
         "file": str(path),
         "generator": doc.json.get("asset", {}).get("generator", ""),
@@ -96,6 +96,46 @@ def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
         "extensionsUsed": doc.json.get("extensionsUsed", []),
         "extensionsRequired": doc.json.get("extensionsRequired", []),
     }
+
+
+def material_textures(doc, material: dict) -> list[dict]:
+    """The textures a material references (``slot``: where, e.g. ``KHR_materials_volume.thicknessTexture``) with
+    their image's width and height when the image is a PNG or JPEG (read from its header), else None."""
+    found = []
+
+    def walk(value, path):
+        if isinstance(value, dict):
+            for key, item in value.items():
+                if key.endswith("Texture") and isinstance(item, dict) and isinstance(item.get("index"), int):
+                    found.append({"slot": ".".join(path + [key]), "texture": item["index"],
+                                  "size": _texture_size(doc, item["index"])})
+                else:
+                    walk(item, path + [key] if key not in ("extensions",) else path)
+
+    walk(material, [])
+    return found
+
+
+def _texture_size(doc, texture: int):
+    try:
+        source = doc.json["textures"][texture]["source"]
+        return image_size(doc.image_bytes(source))
+    except (IndexError, KeyError, TypeError, OSError, ValueError):
+        return None
+
+
+def image_size(data: bytes) -> list | None:
+    """[width, height] from a PNG's IHDR or a JPEG's start-of-frame marker; None for other formats."""
+    if data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) >= 24:
+        return [int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")]
+    if data[:2] == b"\xff\xd8":
+        at = 2
+        while at + 9 <= len(data) and data[at] == 0xFF:
+            marker, length = data[at + 1], int.from_bytes(data[at + 2: at + 4], "big")
+            if 0xC0 <= marker <= 0xCF and marker not in (0xC4, 0xC8, 0xCC):
+                return [int.from_bytes(data[at + 7: at + 9], "big"), int.from_bytes(data[at + 5: at + 7], "big")]
+            at += 2 + length
+    return None
 
 
 def _table(headers: list[str], rows: list[list]) -> str:
@@ -157,4 +197,9 @@ def main(path, fmt: str = "text", allow_outside=None, max_memory: int | None = N
         print()
         print(_table(["material", "name", "extensions"],
                      [[m["material"], m["name"], ", ".join(m["extensions"]) or "-"] for m in info["materials"]]))
+    textures = [[m["material"], t["slot"], t["texture"], "x".join(map(str, t["size"])) if t["size"] else "?"]
+                for m in info["materials"] for t in m["textures"]]
+    if textures:
+        print()
+        print(_table(["material", "texture slot", "texture", "size"], textures))
     return 0

@@ -150,3 +150,64 @@ def interpolate(values: np.ndarray, faces: np.ndarray, triangle: np.ndarray, bar
     """Barycentric interpolation of per-vertex ``values`` at (triangle, bary) samples."""
     corners = values[faces[triangle]]  # (k, 3, ...) corner values
     return np.einsum("kj,kj...->k...", bary, corners)
+
+
+# ---------------------------------------------------------------------------------------------------- texel density
+# Thickness and curvature vary at the scale of the geometry: across one triangle they change no faster than the
+# interpolated normal does, so a few texels per edge show all the shape there is and more texels per edge only add
+# rays. Eight texels along the average edge (64 per triangle's bounding square, ~28 inside it) resolve the
+# barycentric interpolation of a triangle's normal, and the shading between edges, with ample margin for triangles
+# smaller than the average; the 7-sphere scene of issue 27 (960 triangles a sphere) gets 256^2 per material.
+TEXELS_PER_EDGE = 8
+AUTO_SIZE_RANGE = (64, 2048)  # the texture size chosen from the mesh is clamped to this range
+DENSITY_SIZE_RANGE = (16, 8192)  # and when the texel density is given
+
+
+@dataclass(frozen=True)
+class SurfaceStatistics:
+    """What the texture size of a texture set follows: its surface in mesh units (metres in glTF) and UV space."""
+
+    area: float  # surface area of the triangles
+    uv_coverage: float  # fraction of the unit UV square the triangles cover (<= 1 in a usable layout)
+    mean_edge: float  # mean triangle edge length
+
+    @staticmethod
+    def of(meshes: list[tuple[np.ndarray, np.ndarray, np.ndarray]]) -> "SurfaceStatistics":
+        """Statistics of (positions, faces, uv) triangle sets taken together."""
+        area = uv_area = edges = 0.0
+        count = 0
+        for positions, faces, uv in meshes:
+            corners = positions[faces]
+            area += 0.5 * float(np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]),
+                                               axis=1).sum())
+            edges += float(np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2).sum())
+            count += 3 * len(faces)
+            t = uv[faces]
+            uv_area += 0.5 * float(np.abs((t[:, 1, 0] - t[:, 0, 0]) * (t[:, 2, 1] - t[:, 0, 1])
+                                          - (t[:, 2, 0] - t[:, 0, 0]) * (t[:, 1, 1] - t[:, 0, 1])).sum())
+        return SurfaceStatistics(area, min(uv_area, 1.0), edges / count if count else 0.0)
+
+    def auto_density(self) -> float:
+        """Texels per mesh unit that put :data:`TEXELS_PER_EDGE` texels along the mean triangle edge."""
+        return TEXELS_PER_EDGE / self.mean_edge if self.mean_edge > 0 else 0.0
+
+
+def power_of_two(value: float, lo: int, hi: int) -> int:
+    """The power of two nearest ``value`` on a log scale (so within a factor sqrt(2)), clamped to [lo, hi]."""
+    if not np.isfinite(value) or value <= lo:
+        return lo
+    return int(min(hi, max(lo, 1 << int(round(np.log2(value))))))
+
+
+def size_for_density(stats: SurfaceStatistics, density: float | None = None) -> int:
+    """Texture width (= height) giving ``density`` texels per mesh unit on the surface: the layout spends
+    ``uv_coverage * size^2`` texels on ``area`` square units, so size = density * sqrt(area / uv_coverage).
+
+    ``density`` None: :meth:`SurfaceStatistics.auto_density`, the result clamped to :data:`AUTO_SIZE_RANGE`;
+    otherwise clamped to :data:`DENSITY_SIZE_RANGE`. Rounded to a power of two (mipmaps, block compression)."""
+    lo, hi = AUTO_SIZE_RANGE if density is None else DENSITY_SIZE_RANGE
+    if density is None:
+        density = stats.auto_density()
+    if stats.area <= 0 or stats.uv_coverage <= 0 or density <= 0:
+        return lo
+    return power_of_two(density * np.sqrt(stats.area / stats.uv_coverage), lo, hi)

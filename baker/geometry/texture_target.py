@@ -15,7 +15,8 @@ from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.geometry.normals import vertex_normals
 from baker.geometry.welding import weld
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER
-from baker.geometry.texture_space import TexelSamples, rasterize_uv, unwrap, uv_layout_usable
+from baker.geometry.texture_space import (SurfaceStatistics, TexelSamples, rasterize_uv, size_for_density, unwrap,
+                                          uv_layout_usable)
 
 
 @dataclass
@@ -91,26 +92,47 @@ def smooth_normals(geometry: PrimitiveGeometry) -> np.ndarray:
     return vertex_normals(welded, inverse[geometry.faces])[inverse]
 
 
-def material_targets(asset: Asset, size: int, seed: int = 0) -> list[MaterialTarget]:
+def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
+                     density: float | None = None) -> list[MaterialTarget]:
+    """One target per material with triangles. ``size`` forces every texture's width and height; None sizes each
+    from its surface (:func:`baker.geometry.texture_space.size_for_density`, ``density`` texels per mesh unit or,
+    when None, the automatic density)."""
     targets = []
     for material, members in material_groups(asset).items():
         geoms = [asset.primitive(m, p) for m, p in members]
         geoms = [g for g in geoms if len(g.faces)]
         if not geoms:
             continue
-        if _existing_uv_usable(geoms, size):
+        # the overlap test at 256^2 when the size is not forced: overlapping charts show at any resolution
+        if _existing_uv_usable(geoms, size or 256):
             texcoord, unwrapped = 0, False
         else:
             texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
-            layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=size, seed=seed)
+            # xatlas pads charts by texels of `resolution`: a forced size, or the size the surface gets at the
+            # coverage xatlas typically reaches (the final size follows the coverage it really reached)
+            resolution = size or size_for_density(_statistics(geoms, None, UNWRAP_COVERAGE), density)
+            layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
             for (m, p), (vmap, faces, uv) in zip(members, layouts):
                 reindex_primitive(asset, m, p, vmap, faces, uv, texcoord)
             geoms = [asset.primitive(m, p) for m, p in members]
             unwrapped = True
-        prims = [PrimitiveTexels(g, smooth_normals(g), rasterize_uv(g.texcoords[texcoord], g.faces, size, size))
+        chosen = size or size_for_density(_statistics(geoms, texcoord), density)
+        prims = [PrimitiveTexels(g, smooth_normals(g), rasterize_uv(g.texcoords[texcoord], g.faces, chosen, chosen))
                  for g in geoms]
-        targets.append(MaterialTarget(material, texcoord, size, prims, unwrapped))
+        targets.append(MaterialTarget(material, texcoord, chosen, prims, unwrapped))
     return targets
+
+
+UNWRAP_COVERAGE = 0.6  # share of the UV square xatlas charts cover on ordinary meshes, to size the unwrap's padding
+
+
+def _statistics(geoms: list[PrimitiveGeometry], texcoord: int | None, coverage: float = 0.0) -> SurfaceStatistics:
+    """Surface statistics of the primitives' triangles in UV set ``texcoord`` (None: no layout yet, ``coverage``
+    assumed)."""
+    if texcoord is None:
+        stats = SurfaceStatistics.of([(g.positions, g.faces, np.zeros((len(g.positions), 2))) for g in geoms])
+        return SurfaceStatistics(stats.area, coverage, stats.mean_edge)
+    return SurfaceStatistics.of([(g.positions, g.faces, g.texcoords[texcoord]) for g in geoms])
 
 
 def _existing_uv_usable(geoms: list[PrimitiveGeometry], size: int) -> bool:

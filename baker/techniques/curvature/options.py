@@ -19,5 +19,9 @@ class CurvatureOptions:
     per_vertex: bool = opt(True, "write _CURVATURE, _PRINCIPAL_CURVATURES and _PRINCIPAL_DIRECTION")
     directions: bool = opt(True, "also write the principal curvatures and direction attributes")
     per_texel: bool = opt(False, "also bake a mean-curvature texture (BAKER_curvature.curvatureTexture)")
-    texture_size: int = opt(512, "curvature texture width and height in texels", min=4, max=16384)
+    texture_size: int | None = opt(None, "curvature texture width and height in texels (default: from texel "
+                                         "density, per material)", min=4, max=16384)
+    texel_density: float | None = opt(None, "texels per mesh unit (metre) of the curvature texture, sizing each "
+                                            "material's texture to a power of two in [16, 8192] (default: 8 texels "
+                                            "along the mean triangle edge, in [64, 2048])", min=1e-9)
     texture_bits: int = opt(16, "bits per channel of the curvature PNG", choices=(8, 16))

@@ -8,8 +8,7 @@ from baker.techniques.curvature.options import CurvatureOptions
 from baker.techniques.curvature.kernel import principal_curvatures
 from baker.techniques.curvature import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_space import dilate, interpolate
-from baker.geometry.texture_target import material_groups, material_targets
+from baker.geometry.texture_target import material_groups
 
 
 def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progress = QUIET) -> None:
@@ -54,22 +53,16 @@ def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progre
 
     textures = {}
     if options.per_texel:
-        from scipy.spatial import cKDTree
+        from baker.geometry.texels import gather_texels
 
-        trees = {m: cKDTree(w) for m, (w, _) in welded_results.items()}
-        for target in material_targets(asset, options.texture_size, seed):
-            image = np.zeros((target.size, target.size), np.float64)
-            for pt in target.primitives:
-                g, t = pt.geometry, pt.texels
-                if g.mesh not in trees:
-                    continue
-                # the layout may have split vertices (xatlas): find each one's welded source by position
-                _, nearest = trees[g.mesh].query(g.positions)
-                values = welded_results[g.mesh][1][nearest]
-                image[t.rows, t.cols] = interpolate(values, g.faces, t.triangle, t.bary)
-            png, texture_range = ext.encode_curvature_texture(dilate(image, target.mask), options.texture_bits)
-            textures[target.material] = (ext.add_curvature_texture(doc, target.material, png), target.texcoord,
-                                         texture_range)
+        texels = gather_texels(asset, options.texture_size, options.texel_density, seed)
+        with progress.task(f"curvature texels ({texels.describe()})", len(texels)) as advance:
+            values = texels.interpolate_welded(welded_results)
+            advance(len(texels))
+        for texel_set, image, _ in texels.images(values):
+            png, texture_range = ext.encode_curvature_texture(image, options.texture_bits)
+            textures[texel_set.material] = (ext.add_curvature_texture(doc, texel_set.material, png),
+                                            texel_set.texcoord, texture_range)
 
     for material, (lo, hi, total, count) in stats.items():
         if not count:

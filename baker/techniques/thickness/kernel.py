@@ -10,7 +10,9 @@ For a sphere of radius r, a chord leaving at angle theta from the inward normal 
 weighted rays average 4r/3, uniform (solid-angle) rays average r. The tests check exactly that.
 
 Rays are generated, traced by Embree and averaged in one compiled, GIL-free loop per batch of points, run from
-two threads (see :mod:`baker.geometry.embree_trace`); there is no per-ray Python.
+two threads (see :mod:`baker.geometry.embree_trace`); there is no per-ray Python. One call can trace points of
+several meshes (one ray stream over all texture sets), and points with a ``prior`` stop after 16 rays that agree
+with it (``local_thickness``; the texture bake's prior is a finer per-vertex solution interpolated).
 
 Sample patterns (``sampler``), all mapped through the same cosine-weighted (or uniform) warp, so every one estimates
 the same integral and only the error differs:
@@ -168,26 +170,57 @@ def _direction(u0, u1, cosine, sin_max, cos_max):
     return st * np.cos(phi), st * np.sin(phi), ct
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _trace_chords(scene, rayhit, sampler, samples, shifts, seeds, i, k0, k1, ox, oy, oz, nx, ny, nz, tx, ty, tz,
+                  bx, by, bz, cosine, sin_max, cos_max, bias, max_distance):
+    """Sum of the clamped chords of rays k0..k1-1 of point i."""
+    acc = 0.0
+    for k in range(k0, k1):
+        u0, u1 = _sample(sampler, samples, shifts, seeds, i, k)
+        c, s, ct = _direction(u0, u1, cosine, sin_max, cos_max)
+        t = embree_trace.trace_one(scene, rayhit, ox, oy, oz, tx * c + bx * s + nx * ct, ty * c + by * s + ny * ct,
+                                   tz * c + bz * s + nz * ct)
+        acc += min(t + bias * ct, max_distance)
+    return acc
+
+
 @numba.njit(cache=True, nogil=True)  # cacheable: Embree is called by symbol name (baker.geometry.embree_trace)
-def _thickness_direct(scene, points, axes, sampler, samples, shifts, seeds, cosine, sin_max, cos_max, bias,
-                      max_distance, out):
-    """Generate, trace and average each point's rays in one GIL-free loop (Embree called directly)."""
+def _thickness_direct(scenes, scene_of, points, axes, sampler, samples, first_samples, prefix, tolerance, prior,
+                      shifts, seeds, cosine, sin_max, cos_max, biases, max_distances, out, used):
+    """Generate, trace and average each point's rays in one GIL-free loop (Embree called directly).
+
+    Point i traces into ``scenes[scene_of[i]]``. With ``tolerance`` > 0 and a ``prior`` estimate (>= 0) it first
+    traces the rays of ``first_samples`` (the first of ``samples`` when ``prefix``, else a pattern of their own);
+    when their mean is within +-tolerance x prior of the prior it takes the prior, else it traces all of
+    ``samples`` (continuing after the prefix). ``used[i]``: rays traced."""
     rayhit = np.zeros(48, np.uint32)
     offset = (-rayhit.ctypes.data % 16) // 4
     rayhit = rayhit[offset: offset + 32]
     rays = samples.shape[0]
+    first = first_samples.shape[0]
     for i in range(points.shape[0]):
+        s = scene_of[i]
+        scene, bias, max_distance = scenes[s], biases[s], max_distances[s]
         nx, ny, nz = axes[i, 0], axes[i, 1], axes[i, 2]
         tx, ty, tz, bx, by, bz = _frame(nx, ny, nz)
         ox, oy, oz = points[i, 0] + nx * bias, points[i, 1] + ny * bias, points[i, 2] + nz * bias
-        acc = 0.0
-        for k in range(rays):
-            u0, u1 = _sample(sampler, samples, shifts, seeds, i, k)
-            c, s, ct = _direction(u0, u1, cosine, sin_max, cos_max)
-            t = embree_trace.trace_one(scene, rayhit, ox, oy, oz, tx * c + bx * s + nx * ct, ty * c + by * s + ny * ct,
-                                 tz * c + bz * s + nz * ct)
-            acc += min(t + bias * ct, max_distance)
+        acc, start, traced = 0.0, 0, 0
+        if tolerance > 0.0 and prior[i] >= 0.0:
+            acc = _trace_chords(scene, rayhit, sampler, first_samples, shifts, seeds, i, 0, first, ox, oy, oz, nx,
+                                ny, nz, tx, ty, tz, bx, by, bz, cosine, sin_max, cos_max, bias, max_distance)
+            traced = first
+            if abs(acc / first - prior[i]) <= tolerance * prior[i]:
+                out[i] = prior[i]
+                used[i] = traced
+                continue
+            if prefix:
+                start = first
+            else:
+                acc = 0.0
+        acc += _trace_chords(scene, rayhit, sampler, samples, shifts, seeds, i, start, rays, ox, oy, oz, nx, ny, nz,
+                             tx, ty, tz, bx, by, bz, cosine, sin_max, cos_max, bias, max_distance)
         out[i] = acc / rays
+        used[i] = traced + rays - start
 
 
 @numba.njit(cache=True, nogil=True)
@@ -256,27 +289,32 @@ def default_max_distance(vertices: np.ndarray) -> float:
     return diagonal if diagonal > 0 else 1.0
 
 
-def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *, rays: int = 64,
-                    distribution: str = "cosine", spread: float = 180.0, max_distance: float = 1.0,
-                    bias: float = 1e-5, seed: int = 0, sampler: str = "fibonacci", progress=None,
-                    threads: int | None = None) -> np.ndarray:
+FIRST_RAYS = 16  # rays a point traces before it may stop on its prior (a quarter of the default 64)
+
+
+def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int = 64,
+                    distribution: str = "cosine", spread: float = 180.0, max_distance=1.0,
+                    bias=1e-5, seed: int = 0, sampler: str = "fibonacci", progress=None,
+                    threads: int | None = None, scene_of: np.ndarray | None = None, prior: np.ndarray | None = None,
+                    tolerance: float = 0.0, rays_used: np.ndarray | None = None) -> np.ndarray:
     """Mean distance from each point to the first surface hit along rays around ``-normals``.
 
     Parameters
     ----------
-    scene : RayScene
-        The mesh the rays hit (in the same space as ``points``).
+    scene : RayScene or list of RayScene
+        The mesh the rays hit (in the same space as ``points``); a list with ``scene_of``: one ray stream over
+        several meshes, point i tracing into ``scene[scene_of[i]]``.
     points, normals : (n, 3) arrays
         Sample points on the surface and their outward unit normals.
     rays : int
-        Rays per point.
+        Rays per point (the most, with ``tolerance``).
     distribution : {'cosine', 'uniform'}
         Cosine-weighted (AO-style, the default) or uniform over the solid angle.
     spread : float
         Full cone angle in degrees; 180 is the hemisphere.
-    max_distance : float
+    max_distance : float, or one per scene
         Length given to misses and clamp of hits, in mesh units.
-    bias : float
+    bias : float, or one per scene
         Rays start ``bias`` inside the surface (along -n) to skip the surface they leave; the offset's share along
         each ray is added back to its distance.
     seed : int
@@ -285,6 +323,19 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
         The sample pattern (see the module docstring).
     progress : callable(int) or None
         Called with the number of points finished after each batch.
+    scene_of : (n,) int array or None
+        With a list of scenes: the scene of each point.
+    prior : (n,) array or None
+        An estimate of each point's result (e.g. interpolated from a finer per-vertex solution; < 0: none).
+    tolerance : float
+        With ``prior``: a point first traces :data:`FIRST_RAYS` rays (the start of the ``sobol`` and ``random``
+        sequences, a ``FIRST_RAYS``-point set of the ``fibonacci`` or ``hammersley`` pattern with the point's own
+        rotation or shift) and, when their mean chord is within +-tolerance x prior of the prior, takes the prior;
+        otherwise it traces its ``rays`` rays (the first ones reused by ``sobol`` and ``random``) and the result is
+        exactly the estimate without a prior. 0, no prior, the embreex fallback or ``rays`` <= FIRST_RAYS: every
+        point traces ``rays`` rays.
+    rays_used : (n,) int array or None
+        Filled with the rays traced per point.
 
     Returns
     -------
@@ -292,39 +343,63 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
     """
     if distribution not in ("cosine", "uniform"):
         raise ValueError(f"unknown distribution {distribution!r}")
+    scenes = list(scene) if isinstance(scene, (list, tuple)) else [scene]
     n = len(points)
+    scene_of = np.zeros(n, np.int64) if scene_of is None else np.ascontiguousarray(scene_of, np.int64)
+    max_distances = np.broadcast_to(np.asarray(max_distance, np.float64), (len(scenes),)).copy()
+    biases = np.broadcast_to(np.asarray(bias, np.float64), (len(scenes),)).copy()
     code, samples, shifts, seeds = _sampler_inputs(sampler, rays, n, seed)
     out = np.empty(n, np.float64)
+    used = np.full(n, rays, np.int64)
     if n == 0:
         return out
     batch = max(1, (1 << 19) // rays)  # ~0.5 M rays per Embree call: large enough to amortize, small for memory
+    direct = all(s.direct is not None for s in scenes)
+    if prior is None or not direct or rays <= FIRST_RAYS:
+        tolerance = 0.0
+    prior = np.full(n, -1.0) if prior is None else np.ascontiguousarray(prior, np.float64)
+    # sobol and random sequences are extensible: their first rays are a stratified (or plain random) set and the
+    # rest continues them; the fibonacci and hammersley sets of n points are not, so the test uses a set of its own
+    prefix = sampler in ("sobol", "random")
+    first_samples = samples[:FIRST_RAYS] if prefix else _sampler_inputs(sampler, FIRST_RAYS, 0, seed)[1]
+    pointers = np.array([s.direct.pointer if s.direct is not None else 0 for s in scenes], np.int64)
 
     half = math.radians(spread) / 2.0
     sin_max, cos_max = math.sin(min(half, math.pi / 2)), math.cos(half)
-    # trace points in Morton (Z-curve) order: consecutive batches then walk the same BVH nodes, which measured
-    # ~10% faster in Embree than file order and ~25% faster than random order
+    # trace points by scene, then in Morton (Z-curve) order: consecutive batches then walk the same BVH nodes,
+    # which measured ~10% faster in Embree than file order and ~25% faster than random order
     order = morton_order(points)
+    if len(scenes) > 1:
+        order = order[np.argsort(scene_of[order], kind="stable")]
     points, axes, shifts, seeds = _sorted_inputs(order, np.ascontiguousarray(points, np.float64),
                                                  np.ascontiguousarray(normals, np.float64), shifts, seeds)
+    sorted_scene_of = scene_of[order]
+    prior = prior[order]
     result = np.empty(n, np.float64)
 
     def run(start: int) -> int:
         stop = min(n, start + batch)
-        if scene.direct is not None:
-            _thickness_direct(scene.direct.pointer, points[start:stop], axes[start:stop], code, samples,
-                              shifts[start:stop], seeds[start:stop], distribution == "cosine", sin_max, cos_max, bias,
-                              max_distance, out[start:stop])
+        if direct:
+            _thickness_direct(pointers, sorted_scene_of[start:stop], points[start:stop], axes[start:stop], code,
+                              samples, first_samples, prefix, tolerance, prior[start:stop],
+                              shifts[start:stop],
+                              seeds[start:stop], distribution == "cosine", sin_max, cos_max, biases, max_distances,
+                              out[start:stop], used[start:stop])
             return stop - start
-        count = (stop - start) * rays
-        origins = np.empty((count, 3), np.float32)
-        directions = np.empty((count, 3), np.float32)
-        cos_t = np.empty(count, np.float64)
-        # start `bias` inside the solid (along -n), not along the ray: grazing rays from a vertex of a faceted
-        # surface would otherwise leave through the facets' gap below the tangent plane and count as misses
-        _make_rays(points[start:stop], axes[start:stop], code, samples, shifts[start:stop], seeds[start:stop],
-                   distribution == "cosine", sin_max, cos_max, bias, origins, directions, cos_t)
-        dist = scene.distances(origins, directions)
-        _mean_chords(dist, cos_t, bias, max_distance, rays, out[start:stop])
+        for s in np.unique(sorted_scene_of[start:stop]):
+            # one scene at a time (the batch is sorted by scene: each is one run of points)
+            first = start + int(np.searchsorted(sorted_scene_of[start:stop], s, "left"))
+            last = start + int(np.searchsorted(sorted_scene_of[start:stop], s, "right"))
+            count = (last - first) * rays
+            origins = np.empty((count, 3), np.float32)
+            directions = np.empty((count, 3), np.float32)
+            cos_t = np.empty(count, np.float64)
+            # start `bias` inside the solid (along -n), not along the ray: grazing rays from a vertex of a faceted
+            # surface would otherwise leave through the facets' gap below the tangent plane and count as misses
+            _make_rays(points[first:last], axes[first:last], code, samples, shifts[first:last], seeds[first:last],
+                       distribution == "cosine", sin_max, cos_max, biases[s], origins, directions, cos_t)
+            dist = scenes[s].distances(origins, directions)
+            _mean_chords(dist, cos_t, biases[s], max_distances[s], rays, out[first:last])
         return stop - start
 
     # BAKER_THREADS caps the ray threads (``baker build --jobs`` sets 1 per process); results do not depend on it
@@ -334,6 +409,8 @@ def local_thickness(scene: RayScene, points: np.ndarray, normals: np.ndarray, *,
             if progress:
                 progress(done)
     result[order] = out
+    if rays_used is not None:
+        rays_used[order] = used
     return result
 
 

@@ -23,7 +23,14 @@ class ThicknessOptions:
     bias: float | None = opt(None, "ray start offset against self-hits, in mesh units (default: 1e-5 x diagonal)", min=0.0)
     per_vertex: bool = opt(True, "write the per-vertex attribute _THICKNESS")
     per_texel: bool = opt(True, "bake the thickness texture (KHR_materials_volume.thicknessTexture)")
-    texture_size: int = opt(1024, "thickness texture width and height in texels", min=4, max=16384)
+    texture_size: int | None = opt(None, "thickness texture width and height in texels (default: from texel "
+                                         "density, per material)", min=4, max=16384)
+    texel_density: float | None = opt(None, "texels per mesh unit (metre) of the thickness texture, sizing each "
+                                            "material's texture to a power of two in [16, 8192] (default: 8 texels "
+                                            "along the mean triangle edge, in [64, 2048])", min=1e-9)
+    tolerance: float = opt(0.08, "texels whose first 16 rays agree within +-tolerance (relative) with the thickness "
+                                 "interpolated from a 4x-rays per-vertex solution take that value; the others trace "
+                                 "all --thickness-rays (0: every texel traces them all)", min=0.0, max=1.0)
     texture_bits: int = opt(16, "bits per channel of the thickness PNG", choices=(8, 16))
     # eq. 14.30 and the GDC variant: written into BAKER_thickness for the runtime, not used by the bake
     distortion: float = opt(0.2, "translucency: normal distortion of the light vector (GDC 2011)")

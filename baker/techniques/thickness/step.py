@@ -34,35 +34,36 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
             limits[m] = (options.max_distance or diag, options.bias if options.bias is not None else 1e-5 * diag)
 
     from baker.geometry.normals import vertex_normals
-    from baker.geometry.texture_space import dilate, interpolate
-    from baker.geometry.texture_target import material_groups, material_label, material_targets
+    from baker.geometry.texels import gather_texels
+    from baker.geometry.texture_target import material_groups, material_label
     from baker.techniques.thickness.kernel import local_thickness
 
-    def cast(mesh, points, normals, label):
-        max_distance, bias = limits[mesh]
-        scene = scenes[mesh].result()
+    def cast(meshes, points, normals, label, scene_of=None, prior=None, tolerance=0.0, rays=options.rays):
         with progress.task(label, len(points)) as advance:
-            return local_thickness(scene, points, normals, rays=options.rays,
+            return local_thickness([scenes[m].result() for m in meshes], points, normals, rays=rays,
                                    distribution=options.distribution, spread=options.spread,
-                                   max_distance=max_distance, bias=bias, seed=seed, sampler=options.sampler,
-                                   progress=advance)
+                                   max_distance=[limits[m][0] for m in meshes], bias=[limits[m][1] for m in meshes],
+                                   seed=seed, sampler=options.sampler, progress=advance, scene_of=scene_of,
+                                   prior=prior, tolerance=tolerance)
 
     groups = material_groups(asset)  # also gives material-less primitives a default material
     sums = {mat: [0.0, 0] for mat in groups}
     material_of = {mp: mat for mat, members in groups.items() for mp in members}
 
+    welded = {}  # mesh -> (welded mesh, its vertex normals): welded across UV/normal seams and primitives
+    for m in scenes:
+        prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
+        if not prims:
+            continue  # every primitive of the mesh is unlit (material_groups leaves them out)
+        mesh = asset.welded(m, prims)
+        welded[m] = (prims, mesh, vertex_normals(mesh.positions, mesh.faces))
+
     if options.per_vertex:
-        for m in scenes:
-            prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
-            if not prims:
-                continue  # every primitive of the mesh is unlit (material_groups leaves them out)
-            # welded across UV/normal seams and primitives: one sample per position, so split vertices agree
-            mesh = asset.welded(m, prims)
-            geoms, welded, inverse, offsets = mesh.geometries, mesh.positions, mesh.inverse, mesh.offsets
-            normals = vertex_normals(welded, mesh.faces)
-            values = cast(m, welded, normals, f"thickness mesh {m} vertices")[inverse]
-            for i, (p, g) in enumerate(zip(prims, geoms)):
-                per_vertex = values[offsets[i]: offsets[i + 1]]
+        for m, (prims, mesh, normals) in welded.items():
+            # one sample per position, so split vertices agree
+            values = cast([m], mesh.positions, normals, f"thickness mesh {m} vertices")[mesh.inverse]
+            for i, p in enumerate(prims):
+                per_vertex = values[mesh.offsets[i]: mesh.offsets[i + 1]]
                 ext.write_vertex_thickness(doc, m, p, per_vertex)
                 s = sums[material_of[(m, p)]]
                 s[0] += float(per_vertex.sum())
@@ -70,20 +71,20 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
 
     textured = {}
     if options.per_texel:
-        for target in material_targets(asset, options.texture_size, seed):
-            image = np.zeros((target.size, target.size), np.float64)
-            for pt in target.primitives:
-                g, t = pt.geometry, pt.texels
-                points = interpolate(g.positions, g.faces, t.triangle, t.bary)
-                normals = interpolate(pt.normals, g.faces, t.triangle, t.bary)
-                image[t.rows, t.cols] = cast(g.mesh, points, normals, f"thickness material {target.material} texels")
-            mask = target.mask
+        # every material's texels in one ray stream: each texel traces into its own mesh's scene
+        texels = gather_texels(asset, options.texture_size, options.texel_density, seed)
+        meshes = sorted(scenes)
+        scene_of = np.searchsorted(meshes, texels.mesh)
+        prior = texel_prior(welded, texels, cast, options.rays * PRIOR_RAYS_FACTOR) if options.tolerance > 0 else None
+        values = cast(meshes, texels.positions, texels.normals, f"thickness texels ({texels.describe()})",
+                      scene_of=scene_of, prior=prior, tolerance=options.tolerance)
+        for texel_set, image, mask in texels.images(values):
             if not options.per_vertex:
-                sums[target.material][0] += float(image[mask].sum())
-                sums[target.material][1] += int(mask.sum())
-            png, factor = ext.encode_thickness_texture(dilate(image, mask), options.texture_bits)
-            textured[target.material] = ext.write_thickness_texture(doc, target.material, png, factor,
-                                                                    target.texcoord)
+                sums[texel_set.material][0] += float(image[mask].sum())
+                sums[texel_set.material][1] += int(mask.sum())
+            png, factor = ext.encode_thickness_texture(image, options.texture_bits)
+            textured[texel_set.material] = ext.write_thickness_texture(doc, texel_set.material, png, factor,
+                                                                       texel_set.texcoord)
         double_sided = [material_label(doc, m) for m in textured if not ext.volume_allowed(doc, m)]
         if double_sided:
             asset.note("KHR_materials_volume is not valid on double-sided materials: their thickness texture is in "
@@ -97,3 +98,29 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
         ext.write_material_parameters(doc, material, options=options, max_distance=max(l[0] for l in mesh_limits),
                                       bias=max(l[1] for l in mesh_limits), mean_thickness=total / count if count else 0.0,
                                       per_vertex=options.per_vertex, texture=textured.get(material))
+
+
+PRIOR_RAYS_FACTOR = 4  # the per-vertex prior traces this many times the texels' rays (its noise then halves)
+PRIOR_MIN_TEXELS_PER_VERTEX = 16  # below this the prior's vertices would cost more than a quarter of the texels
+
+
+def texel_prior(welded: dict, texels, cast, rays: int) -> np.ndarray | None:
+    """Each texel's thickness interpolated from a per-vertex solution of ``rays`` rays, or None
+    when the mesh has too many vertices for it to pay.
+
+    Most of a texture lies inside triangles where thickness varies almost linearly: there the interpolated vertex
+    values are closer to the truth than a texel's own 64 rays (on spot at 1024^2, 1024-ray vertex values
+    interpolated are within 0.003 mesh units of the 1024-ray texel reference on 65% of the texels; 64 texel rays
+    on 33%). A texel takes the prior only when its first rays agree with it (``--thickness-tolerance``), so
+    creases, thin parts and shadowing features the vertices miss still get every ray."""
+    vertices = sum(len(mesh.positions) for _, mesh, _ in welded.values())
+    if not vertices or len(texels) < PRIOR_MIN_TEXELS_PER_VERTEX * vertices:
+        return None
+    meshes = sorted(welded)
+    positions = np.concatenate([welded[m][1].positions for m in meshes])
+    normals = np.concatenate([welded[m][2] for m in meshes])
+    scene_of = np.repeat(np.arange(len(meshes)), [len(welded[m][1].positions) for m in meshes])
+    values = cast(meshes, positions, normals, "thickness texel prior (vertices)", scene_of=scene_of, rays=rays)
+    bounds = np.cumsum([0] + [len(welded[m][1].positions) for m in meshes])
+    return texels.interpolate_welded({m: (welded[m][1].positions, values[bounds[i]: bounds[i + 1]])
+                                      for i, m in enumerate(meshes)})

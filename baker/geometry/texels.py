@@ -1,0 +1,133 @@
+"""The texel engine every texture bake shares: all texture sets' texels as one stream of surface samples.
+
+A texture bake (thickness, curvature, and whatever writes per-texel surface data next) asks :func:`gather_texels`
+for the texels of every material at once: per texel its surface position, interpolated normal, tangent frame,
+mesh, material and image cell, stacked over all texture sets so that one ray stream (one call, one thread pool)
+covers them all. The technique computes one value per texel, and :meth:`TexelSets.images` puts the values back
+into one dilated image per material.
+
+Texture sizes follow the mesh unless forced (:func:`baker.geometry.texture_space.size_for_density`): about
+:data:`~baker.geometry.texture_space.TEXELS_PER_EDGE` texels along the average triangle edge, or a given density.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Iterator
+
+import numpy as np
+
+from baker.geometry.asset import Asset, PrimitiveGeometry
+from baker.geometry.texture_space import dilate, interpolate
+from baker.geometry.texture_target import MaterialTarget, material_targets
+
+
+@dataclass
+class TexelSet:
+    """The texels of one material's texture: ``target`` (UV set, size, primitives) and its slice of the stream."""
+
+    target: MaterialTarget
+    start: int
+    stop: int
+
+    @property
+    def material(self) -> int:
+        return self.target.material
+
+    @property
+    def size(self) -> int:
+        return self.target.size
+
+    @property
+    def texcoord(self) -> int:
+        return self.target.texcoord
+
+
+@dataclass
+class TexelSets:
+    """Texels of every texture set, stacked: index i is one covered texel of material ``material[i]``."""
+
+    sets: list  # of TexelSet, by material index
+    positions: np.ndarray  # (n, 3) surface point at the texel centre, mesh space
+    normals: np.ndarray  # (n, 3) interpolated unit normal (smooth: welded across seams when the mesh has none)
+    mesh: np.ndarray  # (n,) mesh index
+    material: np.ndarray  # (n,) material index
+    rows: np.ndarray  # (n,) image row
+    cols: np.ndarray  # (n,) image column
+
+    def __len__(self) -> int:
+        return len(self.positions)
+
+    def tangent_frames(self) -> tuple[np.ndarray, np.ndarray]:
+        """Two unit tangents per texel completing its normal to a right-handed frame."""
+        from baker.geometry.frames import orthonormal_basis
+
+        return orthonormal_basis(self.normals)
+
+    def interpolate(self, per_vertex: Callable[[PrimitiveGeometry], np.ndarray]) -> np.ndarray:
+        """Per-texel values interpolated from per-vertex ones: ``per_vertex(geometry)`` gives (vertices, ...)
+        values of a primitive (as laid out for the texture: after an unwrap, vertices split along its seams)."""
+        parts = []
+        for texel_set in self.sets:
+            for pt in texel_set.target.primitives:
+                parts.append(interpolate(per_vertex(pt.geometry), pt.geometry.faces, pt.texels.triangle,
+                                         pt.texels.bary))
+        return np.concatenate(parts) if parts else np.zeros(0)
+
+    def interpolate_welded(self, welded: dict) -> np.ndarray:
+        """Per-texel values interpolated from per-welded-vertex ones: ``welded`` maps a mesh index to (welded
+        positions, values). Each primitive vertex takes the value of the welded vertex at its position (a layout
+        may have split vertices along its seams: found by position, not by index); meshes missing give 0."""
+        from scipy.spatial import cKDTree  # imported here: scipy is a large share of start-up
+
+        trees = {m: cKDTree(positions) for m, (positions, _) in welded.items()}
+
+        def per_vertex(geometry: PrimitiveGeometry) -> np.ndarray:
+            if geometry.mesh not in trees:
+                return np.zeros(len(geometry.positions))
+            _, nearest = trees[geometry.mesh].query(geometry.positions)
+            return welded[geometry.mesh][1][nearest]
+
+        return self.interpolate(per_vertex)
+
+    def images(self, values: np.ndarray) -> Iterator[tuple[TexelSet, np.ndarray, np.ndarray]]:
+        """(texel set, image dilated past its charts, coverage mask) per material from per-texel ``values``."""
+        for texel_set in self.sets:
+            image = np.zeros((texel_set.size, texel_set.size) + values.shape[1:], np.float64)
+            rows, cols = self.rows[texel_set.start: texel_set.stop], self.cols[texel_set.start: texel_set.stop]
+            image[rows, cols] = values[texel_set.start: texel_set.stop]
+            mask = np.zeros((texel_set.size, texel_set.size), bool)
+            mask[rows, cols] = True
+            yield texel_set, dilate(image, mask), mask
+
+    def describe(self) -> str:
+        """The chosen sizes, for progress lines: ``material 0 256², material 3 1024²``."""
+        return ", ".join(f"material {s.material} {s.size}²" for s in self.sets)
+
+
+def gather_texels(asset: Asset, size: int | None = None, density: float | None = None, seed: int = 0) -> TexelSets:
+    """Texels of every material's texture (layouts chosen or unwrapped by
+    :func:`baker.geometry.texture_target.material_targets`): ``size`` forces the width and height, else ``density``
+    texels per mesh unit, else the automatic density."""
+    sets, positions, normals, mesh, material, rows, cols = [], [], [], [], [], [], []
+    start = 0
+    for target in material_targets(asset, size, seed, density=density):
+        for pt in target.primitives:
+            g, t = pt.geometry, pt.texels
+            positions.append(interpolate(g.positions, g.faces, t.triangle, t.bary))
+            normals.append(interpolate(pt.normals, g.faces, t.triangle, t.bary))
+            mesh.append(np.full(len(t.rows), g.mesh, np.int64))
+            material.append(np.full(len(t.rows), target.material, np.int64))
+            rows.append(t.rows)
+            cols.append(t.cols)
+        stop = start + sum(len(pt.texels.rows) for pt in target.primitives)
+        sets.append(TexelSet(target, start, stop))
+        start = stop
+
+    def stack(parts, shape):
+        return np.concatenate(parts) if parts else np.zeros(shape)
+
+    normals_all = stack(normals, (0, 3))
+    normals_all = normals_all / np.maximum(np.linalg.norm(normals_all, axis=1, keepdims=True), 1e-30)
+    return TexelSets(sets, stack(positions, (0, 3)), normals_all, stack(mesh, 0).astype(np.int64),
+                     stack(material, 0).astype(np.int64), stack(rows, 0).astype(np.int64),
+                     stack(cols, 0).astype(np.int64))
