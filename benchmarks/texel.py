@@ -13,8 +13,8 @@ Rows:
   Cycles computes occlusion, baker the mean chord; the rays per texel, the work, are the same.
 - Error: relative RMS over the texels the UV layout covers, at ``--error-size``, each bake against its own converged
   reference of 1024 rays per texel (baker: ``--thickness-rays 1024 --thickness-tolerance 0``, every ray traced;
-  baker's default uses its per-vertex prior; the error of every texel tracing all its rays is printed beside it; Cycles: 128 AO samples x 8 render samples, the
-  node's maximum). The error is measured at one size: a texel's estimate does not depend on the texture's size.
+  Cycles: 128 AO samples x 8 render samples, the node's maximum). baker's default takes its per-vertex prior where
+  a texel's first rays agree with it; the error with every texel tracing all its rays is printed beside it. The error is measured at one size: a texel's estimate does not depend on the texture's size.
 - Many materials: 7 UV spheres of radius 1 (960 triangles each, 7 materials) in one GLB; the default
   ``--bakes thickness`` (texture sizes chosen by baker) against ``--thickness-per-texel false`` (per vertex only);
   the texels the default wrote, in total.
