@@ -5,11 +5,12 @@ import re
 
 import pytest
 
-from . import (twins_edges, twins_fur, twins_hair, twins_hatching, twins_skin, twins_text, twins_toon,
-               twins_translucency)
+from . import (twins_caustics, twins_edges, twins_fur, twins_hair, twins_hatching, twins_skin, twins_text,
+               twins_toon, twins_translucency)
 from .glsl import REPO, read_module
 
 TWINS = {  # one twin module per runtime module: baker_<name>.glsl -> twins_<name>.py
+    "baker_caustics.glsl": twins_caustics,
     "baker_edges.glsl": twins_edges,
     "baker_fur.glsl": twins_fur,
     "baker_hair.glsl": twins_hair,
