@@ -129,16 +129,21 @@ def rasterise_jacobian(floor_xy: np.ndarray, weight: np.ndarray, tile_size: floa
             for ox in range(int(count[:, 0].max(initial=0))):
                 live = (count[:, 0] > ox) & (count[:, 1] > oy)
                 centre = first[live] + np.array([ox, oy]) + 0.5
-                ea = _edge(a[live], b[live], centre) * orient[live]
-                eb = _edge(b[live], c[live], centre) * orient[live]
-                ec = _edge(c[live], a[live], centre) * orient[live]
-                inside = (ea >= 0) & (eb >= 0) & (ec >= 0)
+                o = orient[live]
+                inside = (covers(a[live], b[live], centre, o) & covers(b[live], c[live], centre, o)
+                          & covers(c[live], a[live], centre, o))
                 texel = (centre[inside] - 0.5).astype(np.int64) % size
                 out += np.bincount(texel[:, 1] * size + texel[:, 0], weights=density[live][inside],
                                    minlength=size * size)
     return out.reshape(size, size)
 
 
-def _edge(a: np.ndarray, b: np.ndarray, point: np.ndarray) -> np.ndarray:
-    """Twice the signed area of (a, b, point): >= 0 when point is left of a -> b."""
-    return (b[:, 0] - a[:, 0]) * (point[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (point[:, 0] - a[:, 0])
+def covers(a: np.ndarray, b: np.ndarray, point: np.ndarray, orient: np.ndarray) -> np.ndarray:
+    """Whether ``point`` is on the inner side of edge a -> b of a triangle of orientation ``orient`` (+1 counter-
+    clockwise, -1 clockwise), points on the edge counted by the top-left rule: two triangles sharing an edge never
+    both count a texel centre on it."""
+    dx, dy = (b[:, 0] - a[:, 0]) * orient, (b[:, 1] - a[:, 1]) * orient  # the edge as the CCW triangle runs it
+    side = (b[:, 0] - a[:, 0]) * (point[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (point[:, 0] - a[:, 0])
+    side = side * orient
+    top_left = (dy < 0) | ((dy == 0) & (dx < 0))
+    return (side > 0) | ((side == 0) & top_left)

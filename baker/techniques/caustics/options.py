@@ -30,7 +30,7 @@ class CausticsOptions:
                                           "at --ior", min=0.0, max=3.0)
     frames: int = opt(32, "frames per loop", min=1, max=1024)
     size: int = opt(256, "frame width and height in texels (a power of two)", min=8, max=4096)
-    waves: int = opt(64, "wave lattice per side: wave vectors 2 pi n / tile for |n_x|, |n_y| < waves / 2",
+    waves: int = opt(32, "wave lattice per side: wave vectors 2 pi n / tile for |n_x|, |n_y| < waves / 2",
                      min=4, max=1024)
     method: str = opt("photons", "irradiance estimator: photon splatting (bilinear) or the Jacobian of the "
                                  "surface-to-floor map (Wallace's WebGL Water)", choices=("photons", "jacobian"))
