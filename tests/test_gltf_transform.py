@@ -41,6 +41,7 @@ REFS = {
     "BAKER_skin_lut": {"lutTexture": "texture", "penumbraTexture": "texture", "curvatureTexture": "texture"},
     "BAKER_tonal_art_map": {"levels/*/textures/*": "texture", "levels/*/texture": "texture"},
     "BAKER_toon_ramp": {"rampTexture": "texture"},
+    "BAKER_caustics": {"frameTextures/*": "texture"},
     "BAKER_edges": {"edges": "accessor", "oppositeVertices": "accessor", "flags": "accessor",
                     "dihedralAngles": "accessor", "wireframeMask": "accessor", "fins": "primitive",
                     "finsOf": "primitive"},
@@ -57,7 +58,7 @@ REFS = {
                           "fonts/*/glyphs/face": "accessor", "fonts/*/kerning/pairs": "accessor",
                           "fonts/*/kerning/advance": "accessor"},
     "BAKER_text": {"glyphs/glyph": "accessor", "glyphs/position": "accessor"},
-    "BAKER_thickness": {},
+    "BAKER_thickness": {"thicknessTexture": "texture"},
 }
 SAMPLER_DEFAULTS = {"wrapS": 10497, "wrapT": 10497}
 
@@ -119,8 +120,9 @@ def assets(tmp_path_factory):
         "toon": {"width": 16},
     }), spot)
     fins = folder / "spot_fins.glb"
-    save(baker.bake(SPOT, bakes=["edges", "fur"], options={
+    save(baker.bake(SPOT, bakes=["edges", "fur", "caustics"], options={
         "edges": {"fins": True},
+        "caustics": {"size": 16, "frames": 2, "waves": 8},
         "fur": {"shells": 3, "texture_size": 16, "hairs": 50},
     }), fins)
     out = {"spot": spot, "spot_fins": fins}
@@ -268,7 +270,7 @@ def test_every_extension_survives_the_pipeline(assets, tmp_path):
             assert _texture(after, vol_after["thicknessTexture"]["index"]) == \
                 _texture(before, vol_before["thicknessTexture"]["index"])
     expected = {"BAKER_thickness", "BAKER_curvature", "BAKER_skin_lut", "BAKER_edges", EDGE_VISIBILITY,
-                "BAKER_tonal_art_map", "BAKER_toon_ramp", "BAKER_fur", "BAKER_hair"}
+                "BAKER_tonal_art_map", "BAKER_toon_ramp", "BAKER_fur", "BAKER_hair", "BAKER_caustics"}
     if "text" in assets:
         expected |= {"BAKER_glyph_atlas", "BAKER_text"}
     assert expected <= seen, f"not covered: {expected - seen}"

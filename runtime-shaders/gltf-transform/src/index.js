@@ -37,6 +37,7 @@ import { BakerHair } from './hair.js';
 import { BakerFur } from './fur.js';
 import { BakerGlyphAtlas } from './glyph_atlas.js';
 import { BakerText } from './text.js';
+import { BakerCaustics } from './caustics.js';
 export { Thickness, BakerThickness } from './thickness.js';
 export { Curvature, BakerCurvature } from './curvature.js';
 export { SkinLut, BakerSkinLut } from './skin_lut.js';
@@ -48,6 +49,7 @@ export { Hair, BakerHair } from './hair.js';
 export { Fur, FurFins, BakerFur } from './fur.js';
 export { GlyphAtlas, BakerGlyphAtlas } from './glyph_atlas.js';
 export { Text, BakerText } from './text.js';
+export { Caustics, BakerCaustics } from './caustics.js';
 
 /** Every class, for `io.registerExtensions([...KHRONOS_EXTENSIONS, ...BAKER_EXTENSIONS])`. */
 export const BAKER_EXTENSIONS = [
@@ -62,4 +64,5 @@ export const BAKER_EXTENSIONS = [
 	BakerFur,
 	BakerGlyphAtlas,
 	BakerText,
+	BakerCaustics,
 ];

@@ -6,6 +6,11 @@
 // texCoordFrom: the UV set is that property of the extension); texture-index (a bare texture index); primitive
 // (in the same mesh); mesh-primitive (a {mesh, primitive} pair); material.
 export const REFERENCES = {
+	"BAKER_caustics": {
+		"material": [
+			["frameTextures/*", "texture"],
+		],
+	},
 	"BAKER_curvature": {
 		"material": [
 			["curvatureTexture", "texture"],
