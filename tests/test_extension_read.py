@@ -15,14 +15,15 @@ from baker.pipeline import save
 
 SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
 FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
-BAKES = ["thickness", "curvature", "skin", "edges", "tam", "toon", "fur"]
+BAKES = ["thickness", "curvature", "skin", "edges", "tam", "toon", "fur", "caustics"]
 OPTIONS = {"thickness": {"rays": 8, "per_texel": True, "texture_size": 32},
            "curvature": {"per_texel": True, "texture_size": 32},
            "skin": {"width": 32, "height": 32, "samples": 16, "penumbra": True},
            "edges": {"fins": True, "edge_list": True},
            "tam": {"size": 32, "levels": 2, "candidates": 2},
            "toon": {"bands": 3, "xtoon": "depth", "depth_range": (2.0, 20.0)},
-           "fur": {"shells": 4, "texture_size": 32, "hairs": 50}}
+           "fur": {"shells": 4, "texture_size": 32, "hairs": 50},
+           "caustics": {"size": 16, "frames": 3, "waves": 8, "tile_size": 3.0, "water_level": 2.0}}
 
 
 @pytest.fixture(scope="module")
@@ -128,7 +129,17 @@ def test_edges(baked):
     assert read(plain.doc, 0, 0) is None
 
 
+def test_caustics(baked):
+    from baker.techniques.caustics.extension import NAME, read
+
+    got, ext = read(baked, 0), _ext(baked, NAME)
+    assert len(got.frame_textures) == 3 and got.frame_textures == tuple(i["index"] for i in ext["frameTextures"])
+    assert (got.tile_size, got.water_level, got.period) == (3.0, 2.0, 4.0)
+    assert got.intensity_scale == ext["intensityScale"] and got.projection_direction[1] < 0
+
+
 def test_no_extension_reads_none(baked):
+    from baker.techniques.caustics import extension as caustics
     from baker.techniques.curvature import extension as curvature
     from baker.techniques.fur import extension as fur
     from baker.techniques.skin import extension as skin
@@ -137,7 +148,7 @@ def test_no_extension_reads_none(baked):
     from baker.techniques.toon import extension as toon
 
     plain = baker.bake(SPOT, bakes=["curvature"], options={}).doc
-    for module in (fur, skin, tam, thickness, toon):
+    for module in (caustics, fur, skin, tam, thickness, toon):
         assert module.read(plain, 0) is None
     assert curvature.read(plain, 0) is not None
 
