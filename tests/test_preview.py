@@ -70,12 +70,13 @@ def test_cli_writes_png_and_rejects_bad_output(baked_spot, tmp_path):
 
 
 # ---------------------------------------------------------------------------------------------------- every technique
-BAKES = ["thickness", "curvature", "skin", "edges", "tam", "toon", "fur"]
+BAKES = ["thickness", "curvature", "skin", "edges", "tam", "toon", "fur", "caustics"]
 OPTIONS = {"thickness": {"rays": 16, "per_texel": False},
            "skin": {"width": 64, "height": 64, "samples": 32, "unit_scale": 2.0},  # spot as a 2 mm miniature: wide scattering
            "tam": {"size": 64, "levels": 3, "candidates": 4, "scale": 256.0},
            "toon": {"bands": 3},
-           "fur": {"shells": 6, "texture_size": 64, "hairs": 200}}
+           "fur": {"shells": 6, "texture_size": 64, "hairs": 200},
+           "caustics": {"size": 64, "frames": 2, "waves": 16, "tile_size": 0.5}}
 SIZE = 192
 
 
@@ -92,8 +93,8 @@ def _lum(image):
 
 
 def test_every_baked_technique_gets_its_panel(sheet):
-    assert [n for n, _, _ in sheet.panels] == ["lambert", "thickness", "translucency", "skin", "toon", "hatching",
-                                               "outline", "wireframe", "fur"]
+    assert [n for n, _, _ in sheet.panels] == ["lambert", "thickness", "translucency", "skin", "toon", "caustics",
+                                               "hatching", "outline", "wireframe", "fur"]
 
 
 def test_hatching_darkens_from_lit_to_shadowed_side(sheet):
@@ -119,6 +120,17 @@ def test_toon_has_at_most_bands_levels(sheet):
     print("toon levels", major, counts[counts > 0.01 * inside.sum()] / inside.sum())
     assert 2 <= len(major) <= 3
     assert counts[counts > 0.01 * inside.sum()].sum() > 0.97 * inside.sum()  # only band edges in between
+
+
+def test_caustics_pattern_shows(sheet):
+    lambert, caustics = _lum(_panel(sheet, "lambert")), _lum(_panel(sheet, "caustics"))
+    inside = ndimage.binary_erosion(_covered(_panel(sheet, "lambert")), iterations=3)
+
+    def detail(image):  # pixel-scale variation: what a smooth shade lacks and a caustic network has
+        return np.abs(image - ndimage.uniform_filter(image, 5))[inside].mean()
+
+    print("detail lambert", detail(lambert), "caustics", detail(caustics))
+    assert inside.sum() > 500 and detail(caustics) > 4 * detail(lambert)
 
 
 def test_skin_is_redder_than_lambert_at_the_terminator(sheet):
