@@ -19,6 +19,7 @@ FAST = {
     "edges": {"fins": True},
     "tam": {"size": 64, "levels": 2},
     "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
+    "caustics": {"size": 32, "frames": 4, "waves": 16},
 }
 
 
