@@ -16,7 +16,9 @@ from pathlib import Path
 
 import pytest
 
+import baker
 from baker.cli import main as baker_main
+from baker.pipeline import save
 
 ROOT = Path(__file__).parents[1]
 VIEWER = ROOT / "examples" / "viewer"
@@ -83,6 +85,44 @@ def write_label_and_groom(root):
                        "--segments", "6", "-q"]) == 0
 
 
+# a 4 m square floor 1.5 m under the water (the baked depth), seen by the viewer's default camera; the frames small
+CAUSTIC_FLOOR_OBJ = "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nvn 0 1 0\nf 1//1 4//1 3//1 2//1\n"
+CAUSTIC_OPTIONS = {"size": 64, "frames": 4, "waves": 16, "tile_size": 1.0, "water_level": 1.5}
+
+
+def write_caustic_floor(root):
+    """A floor baked with ``--bakes caustics`` (root/floor.glb): the frames' period is 4 s, one frame a second."""
+    obj = root / "floor.obj"
+    obj.write_text(CAUSTIC_FLOOR_OBJ)
+    save(baker.bake(obj, bakes=("caustics",), options={"caustics": CAUSTIC_OPTIONS}), root / "floor.glb")
+    return "floor.glb"
+
+
+def assert_caustics_move(early, late, off):
+    """Frames (H, W, 3 in 0-1) of the caustic floor at two times of the loop and with the technique off: the caustic
+    network shows (pixel-scale detail the smooth floor shade lacks; bright lines above and dark cells below the
+    floor's shade) and it moves (the two times differ on much of the floor)."""
+    import numpy as np
+    from scipy import ndimage
+
+    floor = np.abs(off - np.array(BACKGROUND_RGB) / 255.0).max(axis=2) > 0.03
+    floor = ndimage.binary_erosion(floor, iterations=3)  # away from the floor's edges
+    assert floor.mean() > 0.05, floor.mean()  # the floor is on screen
+    luma = lambda image: image @ np.array([0.2126, 0.7152, 0.0722])  # noqa: E731
+
+    def detail(image):  # local variation: a caustic network has it, a smooth Lambert shade does not
+        gray = luma(image)
+        return float(np.abs(gray - ndimage.uniform_filter(gray, 5))[floor].mean())
+
+    print("detail off", detail(off), "early", detail(early), "late", detail(late))
+    for frame in (early, late):
+        change = luma(frame) - luma(off)
+        assert detail(frame) > 4 * detail(off) + 1 / 255
+        assert (change[floor] > 8 / 255).mean() > 0.05 and (change[floor] < -8 / 255).mean() > 0.05
+    moved = np.abs(luma(early) - luma(late))[floor] > 8 / 255
+    assert moved.mean() > 0.2, moved.mean()
+
+
 def gltf_json(path):
     """The JSON chunk of a GLB file."""
     data = Path(path).read_bytes()
@@ -95,7 +135,8 @@ def techniques_in(doc):
     """The switches a glTF document's extensions imply, read from the document (not from either plugin)."""
     found = set()
     per_material = {"BAKER_thickness": "translucency", "BAKER_skin_lut": "skin", "BAKER_toon_ramp": "toon",
-                    "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature"}
+                    "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature",
+                    "BAKER_caustics": "caustics"}
     for material in doc.get("materials", []):
         found |= {per_material[name] for name in material.get("extensions", {}) if name in per_material}
     for mesh in doc.get("meshes", []):

@@ -16,8 +16,8 @@ import baker
 from baker.preview import core as pv
 from baker.gltf.images import read_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, DEFAULT_OFF, SPOT, VIEWER, build_viewer, gltf_json, require_tools, serve, shoot,
-                     techniques_in, write_label_and_groom)
+from browser import (BACKGROUND_RGB, DEFAULT_OFF, SPOT, VIEWER, assert_caustics_move, build_viewer, gltf_json,
+                     require_tools, serve, shoot, techniques_in, write_caustic_floor, write_label_and_groom)
 from conftest import assert_khronos_clean
 
 SIZE = 256
@@ -160,3 +160,21 @@ def test_viewer_without_baked_data_reports_none(site, tmp_path):
                              "width": W, "height": H}], tmp_path)
     assert infos[0]["ready"] and not infos[0]["errors"], infos[0]
     assert infos[0]["techniques"] == [] and "no baked data found" in infos[0]["status"]
+
+
+def test_viewer_draws_moving_caustics_on_a_floor(site, tmp_path):
+    """A floor baked with ``--bakes caustics``: the caustic network shows (the frame differs from the floor with the
+    technique off, with the fine detail a smooth Lambert shade lacks), and it moves: two times of the loop differ
+    where the caustics are."""
+    name = write_caustic_floor(site["root"])
+    assert techniques_in(gltf_json(site["root"] / name)) == {"caustics"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+    shots = {"early": "&time=0.5", "late": "&time=2.5", "off": "&time=0.5&off=caustics"}
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in shots.items()]
+    infos, images = _shoot(jobs, tmp_path)
+    for info in infos:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["caustics"] and "caustics" in info["status"], info
+    early, late, off = (dict(zip(shots, images))[key] for key in shots)
+    assert_caustics_move(early, late, off)

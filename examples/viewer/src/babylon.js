@@ -14,7 +14,7 @@ import '@babylonjs/loaders/glTF/2.0/index.js';
 import { TECHNIQUES, bakerControls, registerBakerExtensions, unregisterBakerExtensions } from '../../../runtime-shaders/babylon/src/index.js';
 import {
 	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
-	bakerOn, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
+	bakerOn, caustics, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
 } from './ui.js';
 import { shaders } from './shaders.js';
 
@@ -51,7 +51,7 @@ export async function babylonViewer() {
 	fill.intensity = FILL_INTENSITY;
 
 	// ?disable=BAKER_fur,...: extensions left to Babylon's loader (which ignores them)
-	if (bakerOn) registerBakerExtensions({ shaders, disabled: [...listParam('disable')] });
+	if (bakerOn) registerBakerExtensions({ shaders, caustics, disabled: [...listParam('disable')] });
 	else unregisterBakerExtensions();
 
 	const given = params.get('view') ? JSON.parse(params.get('view')) : null;

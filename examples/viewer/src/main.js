@@ -1,6 +1,7 @@
 // baker viewer: drag and drop a baked .glb; one toggle per baked technique found in it.
 // ?src=URL loads an asset; ?off=tam,fins switches techniques off and ?on=curvature on (names: TECHNIQUES of
-// @baker/three), so a test can render the same view with and without one technique.
+// @baker/three), so a test can render the same view with and without one technique; ?time=SECONDS holds the
+// caustic animation at that time.
 // Test mode (?panel=FRAGMENT_URL&setup=JSON_URL&src=GLB_URL): renders the asset with one of `baker preview`'s
 // panel shaders and the camera/uniforms the test passes, so the page can be compared with `baker preview`.
 import * as THREE from 'three';
@@ -10,7 +11,7 @@ import { registerBakerPlugins, TECHNIQUES } from '../../../runtime-shaders/three
 import { shaders } from './shaders.js';
 import {
 	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
-	bakerOn, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
+	bakerOn, caustics, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
 } from './ui.js';
 
 const view = document.getElementById('view');
@@ -23,7 +24,7 @@ function createRenderer() {
 }
 
 async function loadGLB(url) {
-	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders }) : new GLTFLoader();
+	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders, caustics }) : new GLTFLoader();
 	return loader.loadAsync(url);
 }
 

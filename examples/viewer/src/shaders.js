@@ -7,5 +7,6 @@ import edges from '../../../runtime-shaders/baker_edges.glsl';
 import fur from '../../../runtime-shaders/baker_fur.glsl';
 import hair from '../../../runtime-shaders/baker_hair.glsl';
 import text from '../../../runtime-shaders/baker_text.glsl';
+import caustics from '../../../runtime-shaders/baker_caustics.glsl';
 
-export const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text };
+export const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text, caustics };

@@ -70,6 +70,9 @@ export const FRAME_DIRECTION = (() => {
 	return v.map((x) => x / n);
 })();
 
+/** ?time=SECONDS: the caustic animation held at that time of its loop (a still a test can compare); else it runs. */
+export const caustics = params.has('time') ? { time: Number(params.get('time')) } : {};
+
 /** ?baker=0: no baker plugins/extensions, the asset as glTF's standard PBR. */
 export const bakerOn = params.get('baker') !== '0';
 

@@ -10,15 +10,15 @@
 //
 // The GLSL comes from runtime-shaders/ as text: the extensions inject the very modules the reference renders and
 // @baker/three use, they do not carry a copy. One extension per module (BAKER_<name> -> <name>.js). Surface
-// techniques (translucency, pre-integrated skin, toon ramp, hatching, curvature view) add a MaterialPluginBase to
+// techniques (translucency, pre-integrated skin, toon ramp, hatching, curvature view, caustics) add a MaterialPluginBase to
 // the PBRMaterial the loader made, so Babylon's PBR, lights and image processing stay; geometry techniques (fins,
 // shell outline, wireframe, fur shells and fins, hair ribbons, MSDF text) add or replace meshes with ShaderMaterials
 // that include the matching module, lit by the scene's directional lights. Every extension does its work in
 // onReady, when the loader has built the whole scene, and reads custom attributes from their accessors.
 import { registerGLTFExtension, unregisterGLTFExtension } from '@babylonjs/loaders/glTF/2.0/glTFLoaderExtensionRegistry.js';
 import {
-	BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_SKIN_LUT, BAKER_TEXT, BAKER_THICKNESS,
-	BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, controls,
+	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_SKIN_LUT, BAKER_TEXT,
+	BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, controls,
 } from './common.js';
 import { BakerThicknessExtension } from './thickness.js';
 import { BakerCurvatureExtension } from './curvature.js';
@@ -30,10 +30,11 @@ import { BakerFurExtension } from './fur.js';
 import { BakerHairExtension } from './hair.js';
 import { BakerGlyphAtlasExtension } from './glyph_atlas.js';
 import { BakerTextExtension } from './text.js';
+import { BakerCausticsExtension } from './caustics.js';
 
 export {
-	BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_SKIN_LUT, BAKER_TEXT, BAKER_THICKNESS,
-	BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, TECHNIQUES, BakerControls, readAccessor,
+	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_SKIN_LUT, BAKER_TEXT,
+	BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, TECHNIQUES, BakerControls, readAccessor,
 } from './common.js';
 export { BakerSurfacePlugin } from './surface.js';
 export { thicknessParameters } from './thickness.js';
@@ -44,7 +45,7 @@ export { textStyle } from './text.js';
 export {
 	BakerThicknessExtension, BakerCurvatureExtension, BakerSkinLutExtension, BakerToonRampExtension,
 	BakerTonalArtMapExtension, BakerEdgesExtension, EdgeVisibilityExtension, BakerFurExtension, BakerHairExtension,
-	BakerGlyphAtlasExtension, BakerTextExtension,
+	BakerGlyphAtlasExtension, BakerTextExtension, BakerCausticsExtension,
 };
 
 /** extension name -> loader extension class (each a glTF extension: used only by files that list it). */
@@ -54,6 +55,7 @@ export const EXTENSIONS = {
 	[BAKER_TONAL_ART_MAP]: BakerTonalArtMapExtension, [BAKER_EDGES]: BakerEdgesExtension,
 	[EXT_EDGE_VISIBILITY]: EdgeVisibilityExtension, [BAKER_FUR]: BakerFurExtension, [BAKER_HAIR]: BakerHairExtension,
 	[BAKER_GLYPH_ATLAS]: BakerGlyphAtlasExtension, [BAKER_TEXT]: BakerTextExtension,
+	[BAKER_CAUSTICS]: BakerCausticsExtension,
 };
 
 const CONTROLS = 'BAKER_controls';
@@ -90,10 +92,11 @@ function named(extension) {
 
 /**
  * Register every baker loader extension with Babylon's glTF loader (global registry). `options.shaders` holds the
- * runtime-shaders/ modules as text: { translucency, skin, toon, hatching, edges, fur, hair, text }. Per technique:
+ * runtime-shaders/ modules as text: { translucency, skin, toon, hatching, edges, fur, hair, text, caustics }. Per technique:
  * options.thickness ({ power, scale, distortion, ambient, attenuationDistance, subsurfaceColor } overrides),
  * options.edges ({ color, finWidth, outlineWidth, wireframeWidth, wireframeColor, classes }), options.fur
- * ({ finThreshold }), options.hair ({ specular, exponent }). `options.disabled`: extension names not to register
+ * ({ finThreshold }), options.hair ({ specular, exponent }), options.caustics ({ time }: seconds, or a function
+ * returning seconds, for the caustic animation's clock). `options.disabled`: extension names not to register
  * (the asset then renders as glTF's standard PBR for them).
  */
 export function registerBakerExtensions(options = {}) {

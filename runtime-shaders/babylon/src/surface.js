@@ -1,14 +1,16 @@
-// The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature):
+// The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature,
+// BAKER_caustics):
 // each extension builds one part (GLSL module, uniforms, samplers, attributes); one MaterialPluginBase per PBR
 // material composes the parts of that material. Per punctual light, after Babylon's own diffuse
 // (computeDiffuseLighting), the clamped N.L of Lambert's term becomes f (vec3): the skin LUT (Penner) and/or the
-// toon ramp of it, and the translucency is added, both on the base colour as @baker/three does; hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
+// toon ramp of it, and the translucency is added, both on the base colour as @baker/three does; caustics
+// redistribute the directional lights' Lambert light (on the base colour too); hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
 // curvature view replaces it. Each part is gated by a uniform, so a switch costs no recompile.
 import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase.js';
 import { controls, glslType, loadedPrimitives } from './common.js';
 
 const PLUGIN_NAME = 'BakerSurface';
-const PART_DEFINES = ['translucency', 'skin', 'toon', 'tam', 'curvature'];
+const PART_DEFINES = ['translucency', 'skin', 'toon', 'tam', 'curvature', 'caustics'];
 const define = (name) => `BAKER_${name.toUpperCase()}`;
 // regular expressions (Babylon's "!" points) matched in the PBR fragment shader after its includes are expanded
 const LIGHT_POINT = '!info\\.diffuse=computeDiffuseLighting\\(preInfo,diffuse(\\d+)\\.rgb\\);';
@@ -34,6 +36,23 @@ vec3 baker_key_light(vec3 fallback) {
 	return fallback;
 #endif
 }`;
+
+// caustics: the directional lights' Lambert light scaled by the irradiance of the two current frames
+// (baker_caustics.glsl); browsers decode a gray PNG to equal RGB channels, so the frames are read as RGB
+const CAUSTICS = `
+if (u_baker_caustics_on > 0.5) {
+	vec2 bakerCausticsUv = baker_caustics_uv(vPositionW, u_bakerCausticsProjection, u_bakerCausticsWaterLevel,
+		u_bakerCausticsDepth, u_bakerCausticsTileSize);
+	float bakerCausticsFade = baker_caustics_fade(baker_caustics_depth(vPositionW, u_bakerCausticsWaterLevel),
+		u_bakerCausticsDepth, u_bakerCausticsFadeDistance);
+	vec3 bakerCausticsE = baker_caustics_irradiance(u_bakerCausticsFirst, u_bakerCausticsNext, bakerCausticsUv,
+		u_bakerCausticsBlend, u_bakerCausticsScale, 1.0);
+	finalDiffuse = baker_caustics_apply(finalDiffuse, bakerSun * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x,
+		bakerCausticsE, u_bakerCausticsStrength, bakerCausticsFade);
+}`;
+
+// every texture a part holds (all its frames when it swaps them), not only those bound now
+const partTextures = (p) => p.textures || Object.values(p.samplers || {});
 
 export class BakerSurfacePlugin extends MaterialPluginBase {
 	constructor(material) {
@@ -97,6 +116,7 @@ export class BakerSurfacePlugin extends MaterialPluginBase {
 
 	bindForSubMesh(uniformBuffer) {
 		for (const [name, p] of Object.entries(this.parts || {})) {
+			if (p.update) p.update(); // e.g. the caustic frames of the current time
 			uniformBuffer.updateFloat(`u_baker_${name}_on`, p.on);
 			for (const [u, { type, value }] of Object.entries(p.uniforms || {})) {
 				if (type === 'float') uniformBuffer.updateFloat(u, value);
@@ -110,11 +130,11 @@ export class BakerSurfacePlugin extends MaterialPluginBase {
 	}
 
 	getActiveTextures(activeTextures) {
-		for (const p of Object.values(this.parts || {})) activeTextures.push(...Object.values(p.samplers || {}));
+		for (const p of Object.values(this.parts || {})) activeTextures.push(...partTextures(p));
 	}
 
 	hasTexture(texture) {
-		return Object.values(this.parts || {}).some((p) => Object.values(p.samplers || {}).includes(texture));
+		return Object.values(this.parts || {}).some((p) => partTextures(p).includes(texture));
 	}
 
 	// Babylon collects the injection points once, when the plugin is added (before any part): every point is
@@ -163,7 +183,7 @@ v_bakerUv = vec2(0.0);
 		const code = {
 			CUSTOM_FRAGMENT_DEFINITIONS: `${modules}\n${structs}\n${samplers}\n${varyings}\n${KEY_LIGHT}`,
 		};
-		if (diffuse.length || p.translucency) {
+		if (diffuse.length || p.translucency || p.caustics) {
 			// after Babylon's own diffuse of light $1 (directional, point or spot): f replaces the clamped N.L
 			code[LIGHT_POINT] = `info.diffuse=computeDiffuseLighting(preInfo,diffuse$1.rgb);
 {
@@ -176,10 +196,14 @@ v_bakerUv = vec2(0.0);
 	if (bakerReplaced) bakerDirect += (f - vec3(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb;
 	${p.translucency ? `bakerDirect += u_baker_translucency_on * preInfo.attenuation * diffuse$1.rgb *
 		baker_translucency(${p.translucency.struct}, normalW, viewDirectionW, bakerL, ${p.translucency.thickness});` : ''}
+#ifdef DIRLIGHT$1
+	bakerSun += clamp(dotNL, 0.0, 1.0) * (preInfo.attenuation / PI) * diffuse$1.rgb;
+#endif
 }`;
 		}
-		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);';
-		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;';
+		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);\nvec3 bakerSun = vec3(0.0);';
+		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;' +
+			(p.caustics ? CAUSTICS : '');
 		let outgoing = '';
 		if (p.tam) outgoing += `
 if (u_baker_tam_on > 0.5) {

@@ -12,6 +12,7 @@ export const BAKER_GLYPH_ATLAS = 'BAKER_glyph_atlas';
 export const BAKER_TEXT = 'BAKER_text';
 export const BAKER_HAIR = 'BAKER_hair';
 export const BAKER_FUR = 'BAKER_fur';
+export const BAKER_CAUSTICS = 'BAKER_caustics';
 
 /** Techniques (switch names) and the extension each comes from. Techniques off by default are debug views. */
 export const TECHNIQUES = {
@@ -25,13 +26,14 @@ export const TECHNIQUES = {
 	fur: { extension: BAKER_FUR, label: 'fur shells + fins' },
 	hair: { extension: BAKER_HAIR, label: 'hair ribbons' },
 	text: { extension: BAKER_TEXT, label: 'MSDF text' },
+	caustics: { extension: BAKER_CAUSTICS, label: 'caustics' },
 	curvature: { extension: BAKER_CURVATURE, label: 'curvature view', defaultOff: true },
 };
 
 const GLSL_NAMES = {
 	translucency: 'baker_translucency.glsl', skin: 'baker_skin.glsl', toon: 'baker_toon.glsl',
 	hatching: 'baker_hatching.glsl', edges: 'baker_edges.glsl', fur: 'baker_fur.glsl', hair: 'baker_hair.glsl',
-	text: 'baker_text.glsl',
+	text: 'baker_text.glsl', caustics: 'baker_caustics.glsl',
 };
 
 /** The runtime-shaders module `key` of options.shaders, as given; throws a message naming the file when missing. */
@@ -85,3 +87,4 @@ export function controls(owner) {
 export { thicknessParameters } from './thickness.js';
 export { textFieldType, textShadowOffset, textStyle } from './text.js';
 export { wireframeCorners } from './edges.js';
+export { causticsClock, causticsFrame, causticsParameters } from './caustics.js';

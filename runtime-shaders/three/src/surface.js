@@ -1,12 +1,14 @@
-// The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature):
+// The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature,
+// BAKER_caustics):
 // the plugins of those extensions each build one part (GLSL module, uniforms, attributes); BakerSurface composes
 // the parts of one material in a single onBeforeCompile.
 import { DIRECTIONAL_DIFFUSE, TECHNIQUES, controls, sceneMaterials } from './common.js';
 
 // ------------------------------------------------------------------------------------------------ surface
 // The surface techniques of one material, composed in one onBeforeCompile: per directional light the Lambert term
-// max(N.L, 0) is replaced by f (vec3): skin LUT (Penner) and/or toon ramp of it; translucency is added; hatching
-// multiplies the outgoing light by the TAM brightness; the curvature view replaces it.
+// max(N.L, 0) is replaced by f (vec3): skin LUT (Penner) and/or toon ramp of it; translucency is added; caustics
+// redistribute the directional lights' Lambert light; hatching multiplies the outgoing light by the TAM brightness;
+// the curvature view replaces it.
 export class BakerSurface {
 	constructor(material, shaders) {
 		this.material = material;
@@ -53,12 +55,15 @@ export class BakerSurface {
 			const part = Object.values(p).find((x) => x.types && x.types[name]);
 			return `uniform ${part ? part.types[name] : 'float'} ${name};`;
 		}).join('\n');
-		const varyings = attributes.map(([name, type]) => `varying ${type} vBaker${name};`).join('\n');
+		const world = Object.values(p).some((x) => x.worldPosition);
+		const varyings = attributes.map(([name, type]) => `varying ${type} vBaker${name};`).join('\n') +
+			(world ? '\nvarying vec3 vBakerWorldPosition;' : '');
 		shader.vertexShader = shader.vertexShader
 			.replace('#include <common>', `#include <common>\n${attributes.map(([n, t]) => `attribute ${t} ${n};`).join('\n')}
 ${varyings}\nvarying vec2 vBakerUv;`)
 			.replace('#include <begin_vertex>', `#include <begin_vertex>\n${attributes.map(([n]) => `vBaker${n} = ${n};`).join('\n')}
-vBakerUv = uv;`);
+vBakerUv = uv;`)
+			.replace('#include <worldpos_vertex>', `#include <worldpos_vertex>\n${world ? WORLD_POSITION : ''}`);
 
 		const diffuse = [];
 		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
@@ -73,8 +78,9 @@ vBakerUv = uv;`);
 					: baker_xtoon_detail_orientation(normal, normalize(vViewPosition) * -1.0, u_bakerToonOrientationPower)));
 		}`);
 		let lights = '';
-		if (diffuse.length || p.translucency) {
+		if (diffuse.length || p.translucency || p.caustics) {
 			lights = `
+vec3 bakerSun = vec3(0.0);  // Lambert light of the directional lights (the sun) on the base colour
 #if NUM_DIR_LIGHTS > 0
 	for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
 		vec3 L = directionalLights[i].direction;  // view space, towards the light
@@ -84,8 +90,10 @@ vBakerUv = uv;`);
 		reflectedLight.directDiffuse += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * (f - vec3(saturate(dotNL)));
 		${p.translucency ? `reflectedLight.directDiffuse += u_baker_translucency_on * diffuseColor.rgb * directionalLights[i].color *
 			baker_translucency(u_bakerThickness, normal, normalize(vViewPosition), L, vBaker${p.translucency.attribute});` : ''}
+		bakerSun += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * saturate(dotNL);
 	}
-#endif`;
+#endif
+${p.caustics ? CAUSTICS : ''}`;
 		}
 		let outgoing = '';
 		if (p.tam) outgoing += `
@@ -109,6 +117,30 @@ vBakerUv = uv;`);
 			.replace('#include <opaque_fragment>', `${outgoing}\n#include <opaque_fragment>`);
 	}
 }
+
+// the world position of the vertex (after skinning and morphs), for techniques projected in world space
+const WORLD_POSITION = `vec4 bakerWorld = vec4(transformed, 1.0);
+#ifdef USE_BATCHING
+bakerWorld = batchingMatrix * bakerWorld;
+#endif
+#ifdef USE_INSTANCING
+bakerWorld = instanceMatrix * bakerWorld;
+#endif
+vBakerWorldPosition = (modelMatrix * bakerWorld).xyz;`;
+
+// caustics: the sun's Lambert light scaled by the irradiance of the two current frames (baker_caustics.glsl);
+// browsers decode a gray PNG to equal RGB channels, so the frames are read as RGB whatever their colour type
+const CAUSTICS = `
+if (u_baker_caustics_on > 0.5) {
+	vec2 bakerCausticsUv = baker_caustics_uv(vBakerWorldPosition, u_bakerCausticsProjection, u_bakerCausticsWaterLevel,
+		u_bakerCausticsDepth, u_bakerCausticsTileSize);
+	float bakerCausticsFade = baker_caustics_fade(baker_caustics_depth(vBakerWorldPosition, u_bakerCausticsWaterLevel),
+		u_bakerCausticsDepth, u_bakerCausticsFadeDistance);
+	vec3 bakerCausticsE = baker_caustics_irradiance(u_bakerCausticsFirst, u_bakerCausticsNext, bakerCausticsUv,
+		u_bakerCausticsBlend, u_bakerCausticsScale, 1.0);
+	reflectedLight.directDiffuse = baker_caustics_apply(reflectedLight.directDiffuse, bakerSun, bakerCausticsE,
+		u_bakerCausticsStrength, bakerCausticsFade);
+}`;
 
 export function surfacePlugin(name, build) {
 	return class {

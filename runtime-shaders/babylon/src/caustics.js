@@ -1,0 +1,40 @@
+// BAKER_caustics: the baked, looping caustic frames projected in world space along the refracted sun direction and
+// added to the directional (sun) light of the material (RTR4 14.5.3; runtime-shaders/baker_caustics.glsl).
+import { causticsClock, causticsFrame, causticsParameters } from '@baker/shared';
+import { BAKER_CAUSTICS, dataTexture, requireShader } from './common.js';
+import { surfaceExtension } from './surface.js';
+
+/**
+ * Loader extension for BAKER_caustics. At every bind the two frames of the current time go to the two samplers and
+ * their blend weight to a uniform (options.caustics.time: seconds, or a function of none; default the page clock).
+ */
+export const BakerCausticsExtension = surfaceExtension('caustics', BAKER_CAUSTICS, async function (ext) {
+	const params = causticsParameters(ext);
+	if (!params.frameCount) return null;
+	const frames = await Promise.all(ext.frameTextures.map((info) => dataTexture(this.loader, info, { repeat: true, mipmaps: true })));
+	if (frames.some((t) => !t)) return null;
+	const clock = causticsClock(this.options.caustics);
+	const samplers = { u_bakerCausticsFirst: frames[0], u_bakerCausticsNext: frames[Math.min(1, frames.length - 1)] };
+	const uniforms = {
+		u_bakerCausticsBlend: { type: 'float', value: 0 },
+		u_bakerCausticsProjection: { type: 'vec3', value: params.projectionDirection },
+		u_bakerCausticsWaterLevel: { type: 'float', value: params.waterLevel },
+		u_bakerCausticsDepth: { type: 'float', value: params.depth },
+		u_bakerCausticsTileSize: { type: 'float', value: params.tileSize },
+		u_bakerCausticsScale: { type: 'float', value: params.intensityScale },
+		u_bakerCausticsStrength: { type: 'float', value: params.strength },
+		u_bakerCausticsFadeDistance: { type: 'float', value: params.fadeDistance },
+	};
+	return {
+		glsl: requireShader(this.shaders, 'caustics'),
+		samplers,
+		uniforms,
+		textures: frames,
+		update() {
+			const { first, blend, next } = causticsFrame(clock(), params.period, params.frameCount);
+			samplers.u_bakerCausticsFirst = frames[first];
+			samplers.u_bakerCausticsNext = frames[next];
+			uniforms.u_bakerCausticsBlend.value = blend;
+		},
+	};
+});

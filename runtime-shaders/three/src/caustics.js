@@ -1,0 +1,45 @@
+// BAKER_caustics: the baked, looping caustic frames projected in world space along the refracted sun direction and
+// added to the directional (sun) light of the material (RTR4 14.5.3; runtime-shaders/baker_caustics.glsl).
+import * as THREE from 'three';
+import { causticsClock, causticsFrame, causticsParameters } from '@baker/shared';
+import { requireShader, textureOf } from './common.js';
+import { surfacePlugin } from './surface.js';
+
+/**
+ * GLTFLoader plugin for BAKER_caustics. The frames are the loader's textures (REPEAT, mipmapped, as the file's
+ * sampler says); before each draw of the material the two frames of the current time go to the two samplers and
+ * their blend weight to a uniform (options.caustics.time: seconds, or a function of none; default the page clock).
+ */
+export const BakerCausticsPlugin = surfacePlugin('caustics', async function (ext, object, material) {
+	const params = causticsParameters(ext);
+	if (!params.frameCount) return null;
+	const frames = await Promise.all(ext.frameTextures.map((info) => textureOf(this.parser, info)));
+	if (frames.some((t) => !t)) return null;
+	const clock = causticsClock(this.options.caustics);
+	const uniforms = {
+		u_bakerCausticsFirst: { value: frames[0] },
+		u_bakerCausticsNext: { value: frames[Math.min(1, frames.length - 1)] },
+		u_bakerCausticsBlend: { value: 0 },
+		u_bakerCausticsProjection: { value: new THREE.Vector3(...params.projectionDirection) },
+		u_bakerCausticsWaterLevel: { value: params.waterLevel },
+		u_bakerCausticsDepth: { value: params.depth },
+		u_bakerCausticsTileSize: { value: params.tileSize },
+		u_bakerCausticsScale: { value: params.intensityScale },
+		u_bakerCausticsStrength: { value: params.strength },
+		u_bakerCausticsFadeDistance: { value: params.fadeDistance },
+	};
+	const previous = material.onBeforeRender;
+	material.onBeforeRender = function (...args) {
+		const { first, blend, next } = causticsFrame(clock(), params.period, params.frameCount);
+		uniforms.u_bakerCausticsFirst.value = frames[first];
+		uniforms.u_bakerCausticsNext.value = frames[next];
+		uniforms.u_bakerCausticsBlend.value = blend;
+		previous.apply(this, args);
+	};
+	return {
+		glsl: requireShader(this.shaders, 'caustics'),
+		worldPosition: true,
+		uniforms,
+		types: { u_bakerCausticsFirst: 'sampler2D', u_bakerCausticsNext: 'sampler2D', u_bakerCausticsProjection: 'vec3' },
+	};
+});
