@@ -34,8 +34,8 @@ import baker
 from baker import registry
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, ROOT, SPOT, build_viewer, gltf_json, require_tools, serve, shoot,
-                     techniques_in, write_label_and_groom)
+from browser import (BACKGROUND_RGB, ROOT, SPOT, assert_caustics_move, build_viewer, gltf_json, require_tools, serve,
+                     shoot, techniques_in, write_caustic_floor, write_label_and_groom)
 
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_babylon"
 W, H = 400, 300
@@ -54,7 +54,12 @@ OPTIONS = {
     "edges": {"fins": True},
     "tam": {"size": 64, "levels": 3},
     "fur": {"shells": 4, "texture_size": 64},
+    # the spot (y -0.74 to 0.95) under 2.5 m of water, within the fade: the caustics show on all of it
+    "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
+                 "fade_distance": 2.0},
 }
+# both pages hold the caustic animation at this time of its loop (?time=), so their frames compare
+TIME = "&time=1.3"
 
 
 @pytest.fixture(scope="module")
@@ -130,7 +135,7 @@ def frames(site, tmp_path_factory):
     loads, baselines = [], {}
     for name, techniques in site["assets"].items():
         for query, baseline, shots in _loads(name, techniques):
-            loads.append((name, f"{site['url']}/index.html?hud=0&src={name}{query}", shots))
+            loads.append((name, f"{site['url']}/index.html?hud=0&src={name}{query}{TIME}", shots))
             baselines.update({(name, key): baseline for key, _, _ in shots})
         loads.append((name, f"{site['url']}/index.html?hud=0&src={name}&baker=0", [("plain", [], [])]))
 
@@ -151,9 +156,10 @@ def frames(site, tmp_path_factory):
 
 
 def test_babylon_loads_every_asset_without_errors(site, frames):
-    assert set(site["bakes"]) >= {"thickness", "curvature", "skin", "edges", "tam", "toon", "fur"}
+    assert set(site["bakes"]) >= {"thickness", "curvature", "skin", "edges", "tam", "toon", "fur", "caustics"}
     assert site["assets"] == {
-        "spot_all.glb": {"translucency", "skin", "toon", "tam", "fins", "outline", "wireframe", "fur", "curvature"},
+        "spot_all.glb": {"translucency", "skin", "toon", "tam", "fins", "outline", "wireframe", "fur", "curvature",
+                         "caustics"},
         "label.glb": {"text"}, "hair.glb": {"hair"}}  # the bakes wrote what the test is about
     for engine in ("three", "babylon"):
         for (name, url, _), info in zip(frames["loads"], frames[engine]):
@@ -229,7 +235,7 @@ def test_native_attribute_layout_draws_like_the_blender_layout(site, tmp_path):
     def jobs(engine, views=None):
         out = []
         for i, (name, query, shots) in enumerate(loads):
-            url = f"{site['url']}/index.html?hud=0&src={name}{query}"
+            url = f"{site['url']}/index.html?hud=0&src={name}{query}{TIME}"
             if views is not None:
                 url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
             out.append({"url": url, "width": W, "height": H, "shots": [
@@ -252,3 +258,39 @@ def test_native_attribute_layout_draws_like_the_blender_layout(site, tmp_path):
                     failures.append(f"{engine} {key}: MAD {mad * 255:.2f}/255 "
                                     f"(artifacts: {_keep(f'native-{engine}-{key}', padded, compact)})")
     assert not failures, "\n".join(failures)
+
+
+def test_babylon_draws_moving_caustics_like_three(site, tmp_path):
+    """The caustic floor (tests/browser.py) on the Babylon.js page with the three.js page's view: the caustic network
+    shows and moves between two times of the loop (assert_caustics_move), and its change from the floor without it
+    is the three.js plugin's within DELTA_RATIO."""
+    name = write_caustic_floor(site["root"])
+    shots = {"early": "&time=0.5", "late": "&time=2.5", "off": "&time=0.5&off=caustics"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+
+    def jobs(engine, views=None):
+        out = []
+        for i, (key, query) in enumerate(shots.items()):
+            url = base + query
+            if views is not None:
+                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
+        return out
+
+    three = shoot(jobs("three"), tmp_path / "three.json")
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    for info in three + babylon:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["caustics"], info
+    images = {(engine, key): _image(tmp_path / f"{engine}-{key}.png") for engine in ("three", "babylon") for key in shots}
+    assert_caustics_move(images[("babylon", "early")], images[("babylon", "late")], images[("babylon", "off")])
+    for key in ("early", "late"):
+        change_three = _blur(images[("three", key)]) - _blur(images[("three", "off")])
+        change_babylon = _blur(images[("babylon", key)]) - _blur(images[("babylon", "off")])
+        changed = np.abs(change_three).max(axis=2) > 2 / 255
+        ratio = float(np.abs(change_babylon - change_three).max(axis=2)[changed].mean()
+                      / np.abs(change_three).max(axis=2)[changed].mean())
+        print("caustics change error", key, round(ratio, 3))
+        if ratio > DELTA_RATIO:
+            raise AssertionError(f"{key}: change error {ratio:.2f} (artifacts: "
+                                 f"{_keep(f'caustics-{key}', images[('three', key)], images[('babylon', key)])})")

@@ -7,14 +7,17 @@ import { surfacePlugin } from './surface.js';
 
 /**
  * GLTFLoader plugin for BAKER_caustics. The frames are the loader's textures (REPEAT, mipmapped, as the file's
- * sampler says); before each draw of the material the two frames of the current time go to the two samplers and
- * their blend weight to a uniform (options.caustics.time: seconds, or a function of none; default the page clock).
+ * sampler says; 4x anisotropic); before each draw of the material the two frames of the current time go to the two
+ * samplers and their blend weight to a uniform (options.caustics.time: seconds, or a function of none; default the
+ * page clock).
  */
 export const BakerCausticsPlugin = surfacePlugin('caustics', async function (ext, object, material) {
 	const params = causticsParameters(ext);
 	if (!params.frameCount) return null;
 	const frames = await Promise.all(ext.frameTextures.map((info) => textureOf(this.parser, info)));
 	if (frames.some((t) => !t)) return null;
+	// the floor is mostly seen at a grazing angle: filtered anisotropically, as Babylon.js does by default (4)
+	for (const frame of frames) frame.anisotropy = Math.max(frame.anisotropy, 4);
 	const clock = causticsClock(this.options.caustics);
 	const uniforms = {
 		u_bakerCausticsFirst: { value: frames[0] },
