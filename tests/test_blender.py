@@ -472,3 +472,46 @@ def test_native_layout_needs_the_addon(width_cases, width_reports):
         # the add-on keeps the fin primitive's attributes in its payload, not on the Blender mesh
         assert_imported_values(f"native + add-on (PYTHONHASHSEED={seed})", entry, width_cases["native"], width=3,
                                skip=FIN_ATTRIBUTES)
+
+
+def test_addon_shows_caustics_on_a_floor(blender_python, tmp_path):
+    """A floor 1.8 m under the water, baked for 1.5 m (the projection along the refracted sun and the depth fade both
+    act), imported with the add-on and rendered from above in Cycles: the BAKER Caustics group's irradiance equals
+    the GLSL module's numpy twin on the first frame (tests/gl/twins_caustics.py, bilinear on the file's 16-bit
+    texels) per pixel, and it is added to the surface as imported: lit minus the control without it follows
+    (E - 1) x fade, brighter on the caustic lines and darker in the cells."""
+    from browser import CAUSTIC_FLOOR_OBJ
+    from gl.twins_caustics import baker_caustics_depth, baker_caustics_fade, baker_caustics_uv
+    from gl.twins_hatching import sample_linear
+
+    from baker.gltf.images import decode_image
+
+    obj, glb, out = tmp_path / "floor.obj", tmp_path / "floor.glb", tmp_path / "render.npz"
+    obj.write_text(CAUSTIC_FLOOR_OBJ)
+    bake("bake", obj, "--bakes", "caustics", "--caustics-size", "64", "--caustics-frames", "2", "--caustics-waves", "16",
+         "--caustics-tile-size", "1.0", "--caustics-water-level", "1.8", "-o", glb)
+    doc = GltfDocument.load(glb)
+    ext = doc.json["materials"][0]["extensions"]["BAKER_caustics"]
+    source = doc.json["textures"][ext["frameTextures"][0]["index"]]["source"]
+    frame = decode_image(doc.image_bytes(source)).astype(np.float32) / 65535.0
+    run_blender(blender_python, "render_caustics.py", ADDON, glb, out)
+    data = np.load(out)
+    assert bool(data["surface_is_add"])
+    # pixel centres, rows bottom-up as Blender stores them; Blender (x, y, 0) is glTF (x, 0, -y)
+    n = data["irradiance"].shape[0]
+    centres = -2.0 + (np.arange(n) + 0.5) * 4.0 / n
+    by, bx = np.meshgrid(centres, centres, indexing="ij")
+    world = np.stack([bx, np.zeros_like(bx), -by], -1)
+    uv = baker_caustics_uv(world, ext["projectionDirection"], ext["waterLevel"], ext["depth"], ext["tileSize"])
+    texels = frame if frame.ndim == 3 else frame[..., None]
+    expected = sample_linear(texels, uv)[..., 0] * ext["intensityScale"]
+    fade = baker_caustics_fade(baker_caustics_depth(world, ext["waterLevel"]), ext["depth"], ext["fadeDistance"])
+    assert np.allclose(fade, 0.7, atol=1e-5)  # 0.3 m from the baked depth, fade distance 1 m
+    irradiance = data["irradiance"][..., 0]
+    assert expected.std() > 0.3  # a caustic network, not a flat field
+    error = np.abs(irradiance - expected)
+    print("irradiance error: median", np.median(error), "99%", np.percentile(error, 99), "E std", expected.std())
+    assert np.median(error) < 1e-3 and np.percentile(error, 99) < 1e-2, (np.median(error), error.max())
+    added = data["lit"][..., :3].mean(-1) - data["control"][..., :3].mean(-1)
+    assert (added > 0.02).mean() > 0.05 and (added < -0.02).mean() > 0.05
+    assert np.corrcoef(added.ravel(), ((expected - 1) * fade).ravel())[0, 1] > 0.95

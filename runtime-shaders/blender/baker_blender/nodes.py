@@ -12,6 +12,11 @@ so the untouched material renders exactly as before; raise the factor to see the
   first texture as emission (the tones are in the material's ``baker_tam_tones``).
 - ``BAKER Fur Shell`` (baker_fur.glsl, Lengyel et al. 2001): the innermost shell texture tiled over TEXCOORD_0,
   its coverage as alpha over a transparent BSDF.
+- ``BAKER Caustics Coordinates`` + ``BAKER Caustics`` (baker_caustics.glsl, RTR4 14.5.3): the first caustic frame
+  projected from the world position along the refracted sun direction onto the baked depth (baker_caustics_uv in
+  Blender's Z-up axes) and the depth fade; its irradiance E = texel x intensityScale and an emission of
+  Sunlit x (E - 1) x strength x fade (negative in the dark cells: the caustic moves light, it does not add it). Unlike the groups above it is added to the surface
+  (Add Shader), so the caustics show as imported; the node ``BAKER caustics add`` is the one to mute.
 """
 from __future__ import annotations
 
@@ -164,6 +169,124 @@ def image_node(tree, textures: dict, info, location):
     return node
 
 
+CAUSTICS_ADD = "BAKER caustics add"
+
+
+def caustics_coordinates_group():
+    """World position -> (Vector: the frame's image coordinates, Fade), as baker_caustics_uv and baker_caustics_fade.
+    Blender's (x, y, z) is glTF's (x, -z, y)."""
+    group, io = new_group("BAKER Caustics Coordinates", [
+        ("Projection Direction", "NodeSocketVector", (0.0, -1.0, 0.0)), ("Water Level", "NodeSocketFloat", 0.0),
+        ("Depth", "NodeSocketFloat", 1.0), ("Tile Size", "NodeSocketFloat", 1.0),
+        ("Fade Distance", "NodeSocketFloat", 1.0)],
+        [("Vector", "NodeSocketVector"), ("Fade", "NodeSocketFloat")])
+    if io is None:
+        return group
+    tree, (gin, gout) = group, io
+    position = tree.nodes.new("ShaderNodeNewGeometry").outputs["Position"]
+    world = tree.nodes.new("ShaderNodeSeparateXYZ")
+    tree.links.new(position, world.inputs[0])
+    direction = tree.nodes.new("ShaderNodeSeparateXYZ")  # glTF axes, as the extension writes it
+    tree.links.new(gin.outputs["Projection Direction"], direction.inputs[0])
+    # point depth d = waterLevel - y (glTF y = Blender z); moved along the direction by k = (depth - d) / dir.y
+    point_depth = math_node(tree, "SUBTRACT", gin.outputs["Water Level"], world.outputs["Z"])
+    k = math_node(tree, "DIVIDE", math_node(tree, "SUBTRACT", gin.outputs["Depth"], point_depth),
+                  direction.outputs["Y"])
+    # glTF uv = (Q.x, -Q.z) / tile with Q = P - dir k; Blender's image rows start at the bottom (v -> -v, the same
+    # texel of a repeating frame), so the Blender vector is (Q.x, Q.z) / tile = (x - dx k, -y_b - dz k) / tile
+    u = math_node(tree, "SUBTRACT", world.outputs["X"], math_node(tree, "MULTIPLY", direction.outputs["X"], k))
+    v = math_node(tree, "SUBTRACT", math_node(tree, "MULTIPLY", world.outputs["Y"], -1.0),
+                  math_node(tree, "MULTIPLY", direction.outputs["Z"], k))
+    combine = tree.nodes.new("ShaderNodeCombineXYZ")
+    tree.links.new(math_node(tree, "DIVIDE", u, gin.outputs["Tile Size"]), combine.inputs[0])
+    tree.links.new(math_node(tree, "DIVIDE", v, gin.outputs["Tile Size"]), combine.inputs[1])
+    tree.links.new(combine.outputs[0], gout.inputs["Vector"])
+    # baker_caustics_fade: 1 - |d - depth| / fadeDistance clamped to 0..1, and 0 above the water
+    off = math_node(tree, "ABSOLUTE", math_node(tree, "SUBTRACT", point_depth, gin.outputs["Depth"]))
+    ramp = math_node(tree, "SUBTRACT", 1.0, math_node(tree, "DIVIDE", off, math_node(
+        tree, "MAXIMUM", gin.outputs["Fade Distance"], 1e-6)))
+    clamp = tree.nodes.new("ShaderNodeClamp")
+    tree.links.new(ramp, clamp.inputs["Value"])
+    fade = math_node(tree, "MULTIPLY", clamp.outputs[0], math_node(tree, "GREATER_THAN", point_depth, 0.0))
+    tree.links.new(fade, gout.inputs["Fade"])
+    return group
+
+
+def caustics_group():
+    """The frame's colour -> (Irradiance E = colour x Intensity Scale, Shader: emission Sunlit x (E - 1) x Strength x
+    Fade), as baker_caustics_irradiance and baker_caustics_apply."""
+    group, io = new_group("BAKER Caustics", [
+        ("Color", "NodeSocketColor", (1.0, 1.0, 1.0, 1.0)), ("Fade", "NodeSocketFloat", 1.0),
+        ("Sunlit", "NodeSocketColor", (1.0, 1.0, 1.0, 1.0)), ("Intensity Scale", "NodeSocketFloat", 1.0),
+        ("Strength", "NodeSocketFloat", 1.0)],
+        [("Irradiance", "NodeSocketColor"), ("Shader", "NodeSocketShader")])
+    if io is None:
+        return group
+    tree, (gin, gout) = group, io
+    irradiance = vector_scale(tree, gin.outputs["Color"], gin.outputs["Intensity Scale"])
+    tree.links.new(irradiance, gout.inputs["Irradiance"])
+    excess = tree.nodes.new("ShaderNodeVectorMath")
+    excess.operation = "SUBTRACT"
+    tree.links.new(irradiance, excess.inputs[0])
+    excess.inputs[1].default_value = (1.0, 1.0, 1.0)
+    weighted = vector_scale(tree, excess.outputs[0], math_node(tree, "MULTIPLY", gin.outputs["Strength"],
+                                                               gin.outputs["Fade"]))
+    sunlit = tree.nodes.new("ShaderNodeVectorMath")
+    sunlit.operation = "MULTIPLY"
+    tree.links.new(weighted, sunlit.inputs[0])
+    tree.links.new(gin.outputs["Sunlit"], sunlit.inputs[1])
+    emission = tree.nodes.new("ShaderNodeEmission")
+    tree.links.new(sunlit.outputs[0], emission.inputs["Color"])
+    tree.links.new(emission.outputs[0], gout.inputs["Shader"])
+    return group
+
+
+def add_caustics(mat, caustics: dict, textures: dict, location) -> None:
+    """The first frame through ``BAKER Caustics Coordinates`` (world position -> image coordinates, fade) and
+    ``BAKER Caustics`` (irradiance, emission), added to the material's surface (Add Shader). Sunlit is the base
+    colour (the Principled BSDF's, linked or set): the sun's Lambert light on it, for a sun of strength 1."""
+    tree = mat.node_tree
+    x, y = location
+    coordinates = tree.nodes.new("ShaderNodeGroup")
+    coordinates.node_tree = caustics_coordinates_group()
+    coordinates.name = coordinates.label = "BAKER Caustics Coordinates"
+    coordinates.location = (x - 600, y)
+    group = tree.nodes.new("ShaderNodeGroup")
+    group.node_tree = caustics_group()
+    group.name = group.label = "BAKER Caustics"
+    group.location = (x, y)
+    for node, key, socket in ((coordinates, "waterLevel", "Water Level"), (coordinates, "depth", "Depth"),
+                              (coordinates, "tileSize", "Tile Size"), (coordinates, "fadeDistance", "Fade Distance"),
+                              (group, "intensityScale", "Intensity Scale"), (group, "strength", "Strength")):
+        if key in caustics:
+            node.inputs[socket].default_value = float(caustics[key])
+    coordinates.inputs["Projection Direction"].default_value = [
+        float(c) for c in caustics.get("projectionDirection", (0.0, -1.0, 0.0))][:3]
+    tree.links.new(coordinates.outputs["Fade"], group.inputs["Fade"])
+    frames = caustics.get("frameTextures") or []
+    image = image_node(tree, textures, frames[0] if frames else None, (x - 300, y))
+    if image is not None:
+        image.extension = "REPEAT"  # the frames tile
+        tree.links.new(coordinates.outputs["Vector"], image.inputs["Vector"])
+        tree.links.new(image.outputs["Color"], group.inputs["Color"])
+    principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    if principled is not None:
+        base = principled.inputs["Base Color"]
+        if base.links:
+            tree.links.new(base.links[0].from_socket, group.inputs["Sunlit"])
+        else:
+            group.inputs["Sunlit"].default_value = tuple(base.default_value)
+    output, surface = output_and_surface(mat)
+    add = tree.nodes.new("ShaderNodeAddShader")
+    add.name = add.label = CAUSTICS_ADD
+    add.location = (x + 250, y)
+    if surface is not None:
+        tree.links.new(surface, add.inputs[0])
+    tree.links.new(group.outputs["Shader"], add.inputs[1])
+    tree.links.new(add.outputs[0], output.inputs["Surface"])
+    output.location = (x + 500, y)
+
+
 def add_material_groups(mat, exts: dict, textures: dict) -> None:
     if not mat.use_nodes:
         mat.use_nodes = True
@@ -253,3 +376,7 @@ def add_material_groups(mat, exts: dict, textures: dict) -> None:
             tree.links.new(first.outputs["Color"], emission.inputs["Color"])
         mix_in(mat, "hatching", emission.outputs[0], (x + 500, y))
         mat["baker_tam_tones"] = tones
+        y -= 400
+    caustics = exts.get("BAKER_caustics")
+    if isinstance(caustics, dict):
+        add_caustics(mat, caustics, textures, (x, y))
