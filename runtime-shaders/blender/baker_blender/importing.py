@@ -4,7 +4,8 @@ What appears where (see ../README.md): the stock importer already makes every ``
 point attribute (baker writes them all as FLOAT VEC3, scalars in x); this module adds
 - on each material with BAKER_* extensions: the payload (custom property ``baker_gltf``), the extension textures as
   packed images, and node groups (translucency, skin LUT, toon ramp, tonal art map) mixed in after the Principled BSDF
-  with factor 0, so the material looks as before until an artist raises the factor;
+  with factor 0, so the material looks as before until an artist raises the factor; the caustics (a light map, the
+  first frame) are added to the surface, so they show as imported;
 - on each mesh with BAKER_* / EXT_mesh_primitive_edge_visibility primitives: the payload (property ``baker_gltf``,
   accessor data included), hard and crease edges of BAKER_edges as Freestyle edge marks, the hard ones also sharp; fin
   primitives (edges, fur) are kept in the payload and hidden in Blender;
