@@ -246,9 +246,10 @@ def _read_direct(path: Path, allow_outside=None) -> GltfDocument | None:
 def _read_obj(path: Path, allow_outside=None) -> GltfDocument | None:
     """An OBJ the direct reader takes, as the document :func:`_doc_from_trimesh_scene` makes of trimesh's reading:
     one mesh and node per usemtl group, accessors laid out as trimesh's glTF exporter lays them out (identical
-    arrays share a bufferView or an accessor), vertex normals unit as :func:`unit_normals` makes them."""
+    arrays share a bufferView or an accessor), vertex normals made unit by :func:`unit_normals`, then as trimesh's
+    exporter does."""
     from baker.geometry.mtl import read_obj_materials
-    from baker.geometry.obj_files import check_finite, read_obj_groups, vertex_normals
+    from baker.geometry.obj_files import check_finite, read_obj_groups, unitize, vertex_normals
 
     materials, _ = read_obj_materials(path, allow_outside)
     groups = read_obj_groups(path, materials)
@@ -295,7 +296,8 @@ def _read_obj(path: Path, allow_outside=None) -> GltfDocument | None:
             uv = group.texcoords.copy()
             uv[:, 1] = 1.0 - uv[:, 1]  # OBJ's v runs up, glTF's down
             primitive["attributes"]["TEXCOORD_0"] = add(uv.astype(np.float32), "uv")
-        primitive["attributes"]["NORMAL"] = add(unit_normals(normals).astype(np.float32), "normal")
+        # trimesh's exporter unitizes the normals once more (a last-bit change on some)
+        primitive["attributes"]["NORMAL"] = add(unitize(unit_normals(normals)).astype(np.float32), "normal")
         by_mesh[len(meshes)] = mtl
         meshes.append({"name": group.name, "extras": {}, "primitives": [primitive]})
     doc.json["meshes"] = meshes

@@ -22,7 +22,10 @@ is not UTF-8 in a name.
 **Where it is stricter than trimesh**: a face index (v, vt or vn) of 0 or out of range is refused naming the line
 (trimesh raises for positions but silently drops out-of-range UVs or normals); negative indices count back from the
 line's position as the OBJ specification says (trimesh counts them from the end of the file, the same thing only
-when every vertex is written before the first face; the vertex order then differs from trimesh's).
+when every vertex is written before the first face; the vertex order then differs from trimesh's). Mesh names
+use the file's name where trimesh writes the path as given (an unnamed usemtl group of a multi-mesh file), so the
+output does not depend on the folder; a group without an MTL material gets the dielectric even when the MTL
+defines trimesh's placeholder name ``material_0``.
 """
 from __future__ import annotations
 
@@ -33,7 +36,7 @@ import numpy as np
 
 from baker.errors import BakerError
 
-# line kinds; DATA kinds hold numbers converted in bulk, NAMED kinds are few and read one by one
+# line kinds: v/vt/vn/f numbers are converted in bulk; usemtl and o names (few) are read one by one
 BLANK, COMMENT, V, VT, VN, F, USEMTL, MTLLIB, OBJECT, GROUP, SMOOTH = range(11)
 KEYWORDS = ((b"v ", V), (b"vt ", VT), (b"vn ", VN), (b"f ", F), (b"usemtl ", USEMTL), (b"mtllib ", MTLLIB),
             (b"o ", OBJECT), (b"g ", GROUP), (b"s ", SMOOTH), (b"#", COMMENT))
@@ -247,9 +250,11 @@ def _groups(path: Path, lines: _Lines, v, vt, vn, corners: dict, names: dict, ma
         faces, picked = _split_vertices([columns[k][group_corners] for k in keys],
                                         _triangulate(local_start, group_sizes))
         picked = dict(zip(keys, picked))
-        if len(materials) > 1 and material is not None:
+        if len(order) == 1:
+            name = path.name  # trimesh.load names a single mesh after the file
+        elif len(materials) > 1 and material is not None:
             name = material
-        else:
+        else:  # trimesh would write the path as given (a folder name in the output): the file name only
             name = object_name if object_name is not None else path.name
         name = _unique_name(name, taken)
         taken.add(name)
@@ -299,10 +304,10 @@ def _split_vertices(columns: list, triangles: np.ndarray) -> tuple[np.ndarray, l
 
 
 def _unique_name(name: str, taken: set) -> str:
-    """``name``, or ``name_0``, ``name_1``... when taken (trimesh's rule for geometry names)."""
+    """``name``, or ``name_1``, ``name_2``... when taken (trimesh's rule for geometry names)."""
     if name and name not in taken:
         return name
-    i = 0
+    i = 1
     while f"{name}_{i}" in taken:
         i += 1
     return f"{name}_{i}"
@@ -314,7 +319,7 @@ def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
     no usable face touches contribute zero. The operations follow trimesh's so the float32 result is the same."""
     triangles = positions[faces]
     cross = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 1])
-    face_normals, valid = _unitize(cross, with_valid=True)
+    face_normals, valid = unitize(cross, with_valid=True)
     face_normals[~valid] = 0.0
     angles = _corner_angles(triangles)
     ok = (face_normals ** 2).sum(axis=1) > 0.5
@@ -324,10 +329,12 @@ def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
     normals_ok = face_normals[ok]
     for axis in range(3):
         summed[:, axis] = np.bincount(corner, weights * np.repeat(normals_ok[:, axis], 3), minlength=len(positions))
-    return _unitize(summed)
+    return unitize(summed)
 
 
-def _unitize(vectors: np.ndarray, with_valid: bool = False):
+def unitize(vectors: np.ndarray, with_valid: bool = False):
+    """Rows scaled to unit length by their reciprocal norm (trimesh's arithmetic, so the bits match); rows shorter
+    than 1e-13 stay as they are (``with_valid`` also returns which rows were scaled)."""
     norm = np.sqrt(np.dot(vectors * vectors, [1.0] * vectors.shape[1]))
     valid = norm > np.finfo(np.float64).resolution * 100
     norm[valid] **= -1
@@ -336,9 +343,9 @@ def _unitize(vectors: np.ndarray, with_valid: bool = False):
 
 
 def _corner_angles(triangles: np.ndarray) -> np.ndarray:
-    u = _unitize(triangles[:, 1] - triangles[:, 0])
-    v = _unitize(triangles[:, 2] - triangles[:, 0])
-    w = _unitize(triangles[:, 2] - triangles[:, 1])
+    u = unitize(triangles[:, 1] - triangles[:, 0])
+    v = unitize(triangles[:, 2] - triangles[:, 0])
+    w = unitize(triangles[:, 2] - triangles[:, 1])
     angles = np.zeros((len(triangles), 3))
     angles[:, 0] = np.arccos(np.clip(np.dot(u * v, [1.0] * 3), -1, 1))
     angles[:, 1] = np.arccos(np.clip(np.dot(-u * w, [1.0] * 3), -1, 1))
