@@ -302,6 +302,10 @@ def _read_obj(path: Path, allow_outside=None) -> GltfDocument | None:
         meshes.append({"name": group.name, "extras": {}, "primitives": [primitive]})
     doc.json["meshes"] = meshes
     doc.json["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(meshes)]
+    # the converted GLB's key order, so the output's bytes are the trimesh path's
+    layout = ("scene", "scenes", "asset", "accessors", "meshes", "nodes", "buffers", "bufferViews")
+    ordered = {key: doc.json.pop(key) for key in layout}
+    doc.json.update(ordered)
     assign_materials(doc, by_mesh)
     return doc
 
