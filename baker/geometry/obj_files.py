@@ -110,8 +110,11 @@ class _Lines:
             for j, byte in enumerate(keyword):
                 match &= head[:, j] == byte
             kind[match & (kind < 0)] = code
-        printing = np.cumsum(np.concatenate([[0], (buf != SPACE) & (buf != TAB) & (buf != NEWLINE)]))
-        kind[(printing[ends] == printing[starts]) & (kind < 0)] = BLANK  # nothing but spaces and tabs
+        kind[(starts == ends) & (kind < 0)] = BLANK
+        for row in np.flatnonzero(kind < 0):  # spaces and tabs only are blank too; anything else: not ours
+            if data[starts[row]:ends[row]].strip(b" \t"):
+                break
+            kind[row] = BLANK
         self.kind = None if (kind < 0).any() else kind
         # the bytes with each data line's keyword blanked, so the numbers of a kind are one selection away
         self.work = buf.copy()
