@@ -1,7 +1,8 @@
 """Load any supported input into an :class:`Asset`: a lossless glTF document plus geometry accessors.
 
 glTF/GLB are read as they are (see :mod:`baker.gltf.document`). OBJ, PLY and STL are read with trimesh and USD with
-usd-core, then converted to a glTF document, so every bake and writer deals with one representation.
+usd-core, then converted to a glTF document, so every bake and writer deals with one representation. Plain OBJs
+(:mod:`baker.geometry.obj_files`) and binary triangle PLYs are read directly with numpy, without importing trimesh.
 """
 from __future__ import annotations
 
