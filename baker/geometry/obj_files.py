@@ -25,7 +25,8 @@ line's position as the OBJ specification says (trimesh counts them from the end 
 when every vertex is written before the first face; the vertex order then differs from trimesh's). Mesh names
 use the file's name where trimesh writes the path as given (an unnamed usemtl group of a multi-mesh file), so the
 output does not depend on the folder; a group without an MTL material gets the dielectric even when the MTL
-defines trimesh's placeholder name ``material_0``.
+defines trimesh's placeholder name ``material_0``. Past 2^20 distinct indices (v/vt/vn faces) trimesh orders the
+split vertices by their bytes; this reader keeps the numeric order, so such a mesh matches it up to vertex order.
 """
 from __future__ import annotations
 
