@@ -1,7 +1,8 @@
 """Load any supported input into an :class:`Asset`: a lossless glTF document plus geometry accessors.
 
 glTF/GLB are read as they are (see :mod:`baker.gltf.document`). OBJ, PLY and STL are read with trimesh and USD with
-usd-core, then converted to a glTF document, so every bake and writer deals with one representation.
+usd-core, then converted to a glTF document, so every bake and writer deals with one representation. Plain OBJs
+(:mod:`baker.geometry.obj_files`) and binary triangle PLYs are read directly with numpy, without importing trimesh.
 """
 from __future__ import annotations
 
@@ -85,7 +86,7 @@ class Asset:
 
             doc = _doc_from_trimesh_scene(path, read_usd(path))
         else:
-            doc = _read_direct(path) or _doc_from_trimesh_scene(path, *_load_trimesh(path, allow_outside))
+            doc = _read_direct(path, allow_outside) or _doc_from_trimesh_scene(path, *_load_trimesh(path, allow_outside))
         asset = cls(doc=doc, source=path)
         if require_triangles:
             asset.check_has_triangles()
@@ -218,12 +219,15 @@ def _read_only(array: np.ndarray) -> np.ndarray:
     return array
 
 
-def _read_direct(path: Path) -> GltfDocument | None:
-    """A binary PLY of triangles read straight into a document (:func:`baker.geometry.mesh_files.read_ply_triangles`);
-    None for every other file (trimesh reads it). Positions, normals and UVs the file has are kept as float32; no
-    normals are computed."""
+def _read_direct(path: Path, allow_outside=None) -> GltfDocument | None:
+    """A binary PLY of triangles (:func:`baker.geometry.mesh_files.read_ply_triangles`) or a plain OBJ
+    (:func:`baker.geometry.obj_files.read_obj_groups`) read straight into a document without trimesh; None for
+    every other file (trimesh reads it). A PLY keeps the positions, normals and UVs it has as float32, no normals
+    are computed; an OBJ gives the document the trimesh path gives."""
     from baker.geometry.mesh_files import check_mesh_file, non_finite_location, read_ply_triangles
 
+    if path.suffix.lower() == ".obj":
+        return _read_obj(path, allow_outside)
     if path.suffix.lower() != ".ply":
         return None
     check_mesh_file(path)  # header counts against the file size, before anything is allocated
@@ -237,6 +241,73 @@ def _read_direct(path: Path) -> GltfDocument | None:
             raise BakerError(path, f"{where} (NaN and infinite coordinates, normals and UVs are refused)")
     doc = GltfDocument.from_triangles(path, path.name, arrays, indices, "baker (converted from ply)")
     assign_materials(doc, {})
+    return doc
+
+
+def _read_obj(path: Path, allow_outside=None) -> GltfDocument | None:
+    """An OBJ the direct reader takes, as the document :func:`_doc_from_trimesh_scene` makes of trimesh's reading:
+    one mesh and node per usemtl group, accessors laid out as trimesh's glTF exporter lays them out (identical
+    arrays share a bufferView or an accessor), vertex normals made unit by :func:`unit_normals`, then as trimesh's
+    exporter does."""
+    from baker.geometry.mtl import read_obj_materials
+    from baker.geometry.obj_files import check_finite, read_obj_groups, unitize, vertex_normals
+
+    materials, _ = read_obj_materials(path, allow_outside)
+    groups = read_obj_groups(path, materials)
+    if groups is None:
+        return None
+    doc = GltfDocument(json={"scene": 0, "scenes": [{"nodes": list(range(len(groups)))}],
+                             "asset": {"version": "2.0", "generator": "baker (converted from obj)"}}, path=path)
+    views: dict = {}
+    accessors: dict = {}
+
+    def add(array, role: str) -> int:
+        data = array.tobytes()
+        target = 34963 if role == "indices" else 34962
+        if (data, target) not in views:
+            views[data, target] = doc.add_buffer_view(data, target=target)
+        if (data, role) not in accessors:
+            blob = {"componentType": 5125 if role == "indices" else 5126}
+            if role == "normal":
+                blob["count"] = len(array)
+            blob["type"] = {"indices": "SCALAR", "uv": "VEC2"}.get(role, "VEC3")
+            if role != "indices":
+                blob["byteOffset"] = 0
+            blob["bufferView"] = views[data, target]
+            blob["count"] = len(array)
+            flat = array.reshape(len(array), -1)
+            blob["max"] = flat.max(axis=0).tolist()
+            blob["min"] = flat.min(axis=0).tolist()
+            doc.json.setdefault("accessors", []).append(blob)
+            accessors[data, role] = len(doc.json["accessors"]) - 1
+        return accessors[data, role]
+
+    meshes, by_mesh = [], {}
+    for group in groups:
+        check_finite(path, group)
+        normals = group.normals
+        if normals is None:
+            with np.errstate(all="ignore"):
+                normals = vertex_normals(group.positions, group.faces)
+        primitive = {"attributes": {}, "indices": add(group.faces.astype(np.uint32).reshape(-1), "indices"),
+                     "mode": MODE_TRIANGLES}
+        primitive["attributes"]["POSITION"] = add(group.positions.astype(np.float32), "position")
+        mtl = materials.get(group.material)
+        if group.texcoords is not None:
+            uv = group.texcoords.copy()
+            uv[:, 1] = 1.0 - uv[:, 1]  # OBJ's v runs up, glTF's down
+            primitive["attributes"]["TEXCOORD_0"] = add(uv.astype(np.float32), "uv")
+        # trimesh's exporter unitizes the normals once more (a last-bit change on some)
+        primitive["attributes"]["NORMAL"] = add(unitize(unit_normals(normals)).astype(np.float32), "normal")
+        by_mesh[len(meshes)] = mtl
+        meshes.append({"name": group.name, "extras": {}, "primitives": [primitive]})
+    doc.json["meshes"] = meshes
+    doc.json["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(meshes)]
+    # the converted GLB's key order, so the output's bytes are the trimesh path's
+    layout = ("scene", "scenes", "asset", "accessors", "meshes", "nodes", "buffers", "bufferViews")
+    ordered = {key: doc.json.pop(key) for key in layout}
+    doc.json.update(ordered)
+    assign_materials(doc, by_mesh)
     return doc
 
 

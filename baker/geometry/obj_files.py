@@ -1,0 +1,372 @@
+"""A direct, vectorized reader for the common Wavefront OBJ (what DCC tools and scanners write): ``v``/``vt``/``vn``
+lines and polygon ``f`` lines, grouped by ``usemtl``. The file is read once; its lines are classified by their first
+bytes and every number is converted in one ``numpy.fromstring`` per kind, so no Python work is done per line and no
+trimesh (nor scipy) is imported.
+
+The result is what trimesh's OBJ reader (``process=False``) gives for the same file, so the document built from it
+is the one the trimesh path builds: one mesh per ``usemtl`` material in trimesh's order (the reverse of first use)
+and with its names, vertices split where the (v, vt, vn) index triples differ and ordered as trimesh orders them
+(the unique triples sorted by vn, vt, v, then by v), quads split as trimesh splits them, UVs and the file's normals
+as they are, and vertex normals computed as trimesh computes them (angle-weighted face normals) when the faces
+reference none.
+
+**What falls back to trimesh** (:func:`read_obj_groups` returns None; decided by the same scan, before any number
+is converted): a line whose first word is anything but ``v vt vn f usemtl mtllib o g s`` or a comment (``l``, ``p``,
+``vp``, free-form ``curv``/``surf``/``cstype``..., indented lines, tab after the keyword); ``v`` lines that are not
+exactly 3 numbers (vertex colours, ``w``); ``vt`` lines not all 2 or all 3 numbers; ``vn`` lines not 3 numbers; face
+corners written in more than one form (``v``, ``v/vt``, ``v//vn``, ``v/vt/vn``) or a face of fewer than 3 corners;
+a number that does not parse (a trailing comment, ``1.5`` as an index); line continuations (``\\``), a lone
+``\\r``; ``usemtl`` anywhere but at the start of a line; no faces at all (points only: trimesh's error); text that
+is not UTF-8 in a name.
+
+**Where it is stricter than trimesh**: a face index (v, vt or vn) of 0 or out of range is refused naming the line
+(trimesh raises for positions but silently drops out-of-range UVs or normals); negative indices count back from the
+line's position as the OBJ specification says (trimesh counts them from the end of the file, the same thing only
+when every vertex is written before the first face; the vertex order then differs from trimesh's). Mesh names
+use the file's name where trimesh writes the path as given (an unnamed usemtl group of a multi-mesh file), so the
+output does not depend on the folder; a group without an MTL material gets the dielectric even when the MTL
+defines trimesh's placeholder name ``material_0``. Past 2^20 distinct indices (v/vt/vn faces) trimesh orders the
+split vertices by their bytes; this reader keeps the numeric order, so such a mesh matches it up to vertex order.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from baker.errors import BakerError
+
+# line kinds: v/vt/vn/f numbers are converted in bulk; usemtl and o names (few) are read one by one
+BLANK, COMMENT, V, VT, VN, F, USEMTL, MTLLIB, OBJECT, GROUP, SMOOTH = range(11)
+KEYWORDS = ((b"v ", V), (b"vt ", VT), (b"vn ", VN), (b"f ", F), (b"usemtl ", USEMTL), (b"mtllib ", MTLLIB),
+            (b"o ", OBJECT), (b"g ", GROUP), (b"s ", SMOOTH), (b"#", COMMENT))
+PREFIX = max(len(k) for k, _ in KEYWORDS)
+SPACE, TAB, NEWLINE, SLASH = 32, 9, 10, 47
+FLOAT32_MAX = 3.4028234663852886e38
+
+
+@dataclass
+class ObjGroup:
+    """The faces of one ``usemtl`` material as one triangle mesh (trimesh's per-material mesh)."""
+
+    name: str  # the mesh and node name trimesh gives it
+    material: str | None  # the ``usemtl`` name, None before any
+    positions: np.ndarray  # (n, 3) float64
+    faces: np.ndarray  # (m, 3) int64
+    texcoords: np.ndarray | None  # (n, 2) float64, OBJ's v (up)
+    normals: np.ndarray | None  # (n, 3) float64: the file's (as written), or None when the faces reference none
+
+
+def read_obj_groups(path, material_names) -> list[ObjGroup] | None:
+    """The OBJ at ``path`` as :class:`ObjGroup` s in trimesh's order, or None when the file needs trimesh (module
+    docstring). ``material_names`` are the materials its ``mtllib`` files define (they decide the mesh names, as
+    in trimesh). Bad face indices raise :class:`BakerError` naming the line."""
+    path = Path(path)
+    data = path.read_bytes()
+    if b"\r" in data:
+        data = data.replace(b"\r\n", b"\n")
+        if b"\r" in data:
+            return None
+    if b"\\\n" in data or data.rstrip().endswith(b"\\"):
+        return None
+    lines = _Lines(data)
+    if lines.kind is None or not (lines.kind == F).any():
+        return None
+    if data.count(b"usemtl") != int((lines.kind == USEMTL).sum()):
+        return None  # trimesh splits at 'usemtl ' anywhere (a comment, a name): leave those files to it
+    try:
+        v = lines.numbers(V, np.float64, (3,))
+        vt = lines.numbers(VT, np.float64, (2, 3))
+        vn = lines.numbers(VN, np.float64, (3,))
+        corners = lines.face_corners()
+    except ValueError:
+        return None
+    if v is None or corners is None:
+        return None
+    names = lines.names()
+    if names is None:
+        return None
+    return _groups(path, lines, v, vt, vn, corners, names, set(material_names))
+
+
+class _Lines:
+    """The file's lines as offsets into one byte array, each classified by its first word."""
+
+    def __init__(self, data: bytes):
+        self.data = data
+        buf = np.frombuffer(data + b"\n", np.uint8)
+        ends = np.flatnonzero(buf == NEWLINE)
+        starts = np.concatenate([[0], ends[:-1] + 1])
+        if data.endswith(b"\n"):  # the appended newline made an empty last line
+            ends, starts = ends[:-1], starts[:-1]
+        self.starts, self.ends = starts, ends
+        head = np.zeros((len(starts), PREFIX), np.uint8)
+        for j in range(PREFIX):
+            inside = starts + j < ends
+            head[inside, j] = buf[starts[inside] + j]
+        kind = np.full(len(starts), -1, np.int8)
+        for keyword, code in KEYWORDS:
+            match = np.ones(len(starts), bool)
+            for j, byte in enumerate(keyword):
+                match &= head[:, j] == byte
+            kind[match & (kind < 0)] = code
+        kind[(starts == ends) & (kind < 0)] = BLANK
+        for row in np.flatnonzero(kind < 0):  # spaces and tabs only are blank too; anything else: not ours
+            if data[starts[row]:ends[row]].strip(b" \t"):
+                break
+            kind[row] = BLANK
+        self.kind = None if (kind < 0).any() else kind
+        # the bytes with each data line's keyword blanked, so the numbers of a kind are one selection away
+        self.work = buf.copy()
+        for keyword, code in KEYWORDS[:4]:
+            first = starts[kind == code]
+            for j in range(len(keyword)):
+                self.work[first + j] = SPACE
+        self.span = ends - starts + 1  # with the newline
+
+    def rows(self, code: int) -> np.ndarray:
+        return np.flatnonzero(self.kind == code)
+
+    def _bytes(self, code: int) -> np.ndarray:
+        """The bytes of every line of ``code`` (keyword blanked), each ending in its newline."""
+        mask = np.zeros(len(self.work), bool)
+        mask[:int(self.span.sum())] = np.repeat(self.kind == code, self.span)
+        return self.work[mask]
+
+    def numbers(self, code: int, dtype, widths: tuple) -> np.ndarray | None:
+        """The numbers of every ``code`` line as an (n, width) array, width one of ``widths`` for every line; None
+        without such lines. ValueError when a line holds another count or something else."""
+        count = int((self.kind == code).sum())
+        if not count:
+            return None
+        picked = self._bytes(code)
+        counts = _tokens_per_line(picked, count)
+        width = int(counts[0])
+        if width not in widths or (counts != width).any():
+            raise ValueError("ragged")
+        values = np.fromstring(picked.tobytes(), dtype=dtype, sep=" ")
+        if len(values) != width * count:
+            raise ValueError("unparsed")
+        return values.reshape(count, width)
+
+    def face_corners(self) -> dict | None:
+        """Every face corner's indices as written and the faces' sizes: ``{"v"/"vt"/"vn": (c,) int64, "sizes":
+        corners per face line, "rows": the face lines}``; None when the corner forms are mixed or a face has fewer
+        than 3 corners. ValueError when an index does not parse."""
+        rows = self.rows(F)
+        picked = self._bytes(F)
+        sizes = _tokens_per_line(picked, len(rows))
+        if (sizes < 3).any():
+            return None
+        newlines = np.flatnonzero(picked == NEWLINE)
+        slash = picked == SLASH
+        slashes = np.bincount(np.searchsorted(newlines, np.flatnonzero(slash)), minlength=len(rows))
+        doubled = np.flatnonzero(slash[:-1] & slash[1:])
+        double = np.bincount(np.searchsorted(newlines, doubled), minlength=len(rows))
+        per = slashes // sizes
+        if (slashes != per * sizes).any() or (per != per[0]).any() or per[0] > 2:
+            return None
+        form = int(per[0])  # 0: v, 1: v/vt, 2: v/vt/vn; -2: v//vn
+        if form == 2 and (double == sizes).all():
+            form = -2
+        elif double.any():
+            return None
+        picked[slash] = SPACE
+        named = {0: ("v",), 1: ("v", "vt"), 2: ("v", "vt", "vn"), -2: ("v", "vn")}[form]
+        values = np.fromstring(picked.tobytes(), dtype=np.int64, sep=" ")
+        if len(values) != len(named) * int(sizes.sum()):
+            raise ValueError("unparsed")
+        values = values.reshape(-1, len(named))
+        out = {name: values[:, i] for i, name in enumerate(named)}
+        out.update(sizes=sizes, rows=rows)
+        return out
+
+    def names(self) -> dict | None:
+        """The text after the keyword of every usemtl and o line, by line index (None: not UTF-8)."""
+        found = {}
+        for code, strip in ((USEMTL, 6), (OBJECT, 1)):
+            for row in self.rows(code):
+                try:
+                    found[int(row)] = self.data[self.starts[row] + strip:self.ends[row]].decode("utf-8").strip()
+                except UnicodeDecodeError:
+                    return None
+        return found
+
+
+def _tokens_per_line(picked: np.ndarray, count: int) -> np.ndarray:
+    """Whitespace-separated words in each of the ``count`` newline-terminated lines of ``picked``."""
+    space = (picked == SPACE) | (picked == TAB) | (picked == NEWLINE)
+    starts = np.flatnonzero(~space & np.concatenate([[True], space[:-1]]))
+    return np.bincount(np.searchsorted(np.flatnonzero(picked == NEWLINE), starts), minlength=count)
+
+
+def _resolve(path: Path, raw: np.ndarray, defined_before: np.ndarray, total: int, line: np.ndarray,
+             what: str) -> np.ndarray:
+    """OBJ indices (1-based; negative counts back from the ``what`` lines above the face) as 0-based, checked
+    against the ``total`` the file defines."""
+    index = np.where(raw < 0, defined_before + raw, raw - 1)
+    bad = (raw == 0) | (index < 0) | (index >= total)
+    if bad.any():
+        at = int(np.argmax(bad))
+        count, where = (int(defined_before[at]), " above it") if raw[at] < 0 else (total, "")
+        raise BakerError(path, f"line {int(line[at]) + 1}: face index {int(raw[at])} is out of range ({count} "
+                               f"'{what}' lines{where}; indices start at 1)")
+    return index
+
+
+def _groups(path: Path, lines: _Lines, v, vt, vn, corners: dict, names: dict, materials: set) -> list[ObjGroup]:
+    sizes, rows = corners["sizes"], corners["rows"]
+    corner_line = np.repeat(rows, sizes)  # the file line of each corner, for errors and relative indices
+    columns = {}
+    for key, values, code in (("v", v, V), ("vt", vt, VT), ("vn", vn, VN)):
+        if key in corners:
+            before = np.searchsorted(lines.rows(code), corner_line)  # lines of that kind above each corner
+            columns[key] = _resolve(path, corners[key], before, 0 if values is None else len(values), corner_line,
+                                    key)
+
+    # a face belongs to the last usemtl above it; trimesh groups the faces by material in order of first use and
+    # makes its meshes in the reverse order
+    usemtl_rows = lines.rows(USEMTL)
+    section = np.searchsorted(usemtl_rows, rows, side="right") - 1  # -1: before any usemtl
+    material_of_section = [None] + [names[int(r)] for r in usemtl_rows]
+    order, group_of_face, seen = [], np.empty(len(rows), np.int64), {}
+    for s in np.unique(section):  # a few sections; their faces are assigned in bulk
+        material = material_of_section[s + 1]
+        if material not in seen:
+            seen[material] = len(order)
+            order.append(material)
+        group_of_face[section == s] = seen[material]
+    # trimesh names its meshes after the object only when the first of these statements is an 'o'
+    directives = np.flatnonzero(np.isin(lines.kind, (F, USEMTL, OBJECT, GROUP, SMOOTH)))
+    object_name = names.get(int(directives[0])) if lines.kind[directives[0]] == OBJECT else None
+
+    corner_start = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    groups, taken = [], set()
+    for g in reversed(range(len(order))):
+        material = order[g]
+        faces_here = np.flatnonzero(group_of_face == g)
+        group_sizes = sizes[faces_here]
+        local_start = np.concatenate([[0], np.cumsum(group_sizes)[:-1]])
+        within = np.arange(int(group_sizes.sum())) - np.repeat(local_start, group_sizes)
+        group_corners = np.repeat(corner_start[faces_here], group_sizes) + within
+        keys = [k for k in ("v", "vt", "vn") if k in columns]
+        faces, picked = _split_vertices([columns[k][group_corners] for k in keys],
+                                        _triangulate(local_start, group_sizes))
+        picked = dict(zip(keys, picked))
+        if len(order) == 1:
+            name = path.name  # trimesh.load names a single mesh after the file
+        elif len(materials) > 1 and material is not None:
+            name = material
+        else:  # trimesh would write the path as given (a folder name in the output): the file name only
+            name = object_name if object_name is not None else path.name
+        name = _unique_name(name, taken)
+        taken.add(name)
+        groups.append(ObjGroup(name, material, v[picked["v"]], faces,
+                               vt[picked["vt"], :2] if "vt" in picked else None,
+                               vn[picked["vn"]] if "vn" in picked else None))
+    return groups
+
+
+def _triangulate(first: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """(m, 3) corner indices of the faces starting at corners ``first`` with ``sizes`` corners, split as trimesh
+    splits them: a section of quads only as every (0, 1, 2) then every (2, 3, 0); otherwise face by face, quads as
+    (0, 1, 2), (2, 3, 0) and larger polygons as fans (0, i, i + 1)."""
+    if (sizes == 4).all():
+        quads = first[:, None] + np.arange(4)
+        return np.concatenate([quads[:, [0, 1, 2]], quads[:, [2, 3, 0]]])
+    count = sizes - 2
+    face = np.repeat(np.arange(len(sizes)), count)
+    step = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
+    base = first[face]
+    triangles = np.column_stack([base, base + step + 1, base + step + 2])
+    second_of_quad = (sizes[face] == 4) & (step == 1)
+    triangles[second_of_quad] = triangles[second_of_quad][:, [1, 2, 0]]
+    return triangles
+
+
+def _split_vertices(columns: list, triangles: np.ndarray) -> tuple[np.ndarray, list]:
+    """One vertex per distinct (v[, vt][, vn]) tuple of the corners ``columns`` hold, in trimesh's order: the tuples
+    sorted with the last index most significant, then (numpy's default sort, as trimesh's) by position index.
+    Returns ``triangles`` (corner numbers) on the new vertices and, per column, the index each new vertex takes."""
+    stack = np.column_stack(columns)
+    bits = [max(int(c.max()), 1).bit_length() for c in columns]
+    if sum(bits) <= 62:  # one integer per tuple, the last index in the highest bits
+        key = np.zeros(len(stack), np.int64)
+        shift = 0
+        for column, width in zip(columns, bits):
+            key |= column << shift
+            shift += width
+        _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    else:
+        _, first, inverse = np.unique(stack[:, ::-1], axis=0, return_index=True, return_inverse=True)
+    tuples = stack[first]
+    order = tuples[:, 0].argsort()
+    remap = np.empty(len(order), np.int64)
+    remap[order] = np.arange(len(order))
+    return remap[inverse.reshape(-1)][triangles], list(tuples[order].T)
+
+
+def _unique_name(name: str, taken: set) -> str:
+    """``name``, or ``name_1``, ``name_2``... when taken (trimesh's rule for geometry names)."""
+    if name and name not in taken:
+        return name
+    i = 1
+    while f"{name}_{i}" in taken:
+        i += 1
+    return f"{name}_{i}"
+
+
+def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Unit vertex normals as trimesh computes them for a mesh without any: each face's unit normal weighted by the
+    corner angle (Thuermer & Wuethrich 1998), summed in face order; faces whose normal is degenerate and vertices
+    no usable face touches contribute zero. The operations follow trimesh's so the float32 result is the same."""
+    triangles = positions[faces]
+    cross = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 1])
+    face_normals, valid = unitize(cross, with_valid=True)
+    face_normals[~valid] = 0.0
+    angles = _corner_angles(triangles)
+    ok = (face_normals ** 2).sum(axis=1) > 0.5
+    weights = angles[ok].reshape(-1)
+    corner = faces[ok].reshape(-1)
+    summed = np.zeros((len(positions), 3))
+    normals_ok = face_normals[ok]
+    for axis in range(3):
+        summed[:, axis] = np.bincount(corner, weights * np.repeat(normals_ok[:, axis], 3), minlength=len(positions))
+    return unitize(summed)
+
+
+def unitize(vectors: np.ndarray, with_valid: bool = False):
+    """Rows scaled to unit length by their reciprocal norm (trimesh's arithmetic, so the bits match); rows shorter
+    than 1e-13 stay as they are (``with_valid`` also returns which rows were scaled)."""
+    norm = np.sqrt(np.dot(vectors * vectors, [1.0] * vectors.shape[1]))
+    valid = norm > np.finfo(np.float64).resolution * 100
+    norm[valid] **= -1
+    unit = vectors * norm.reshape((-1, 1))
+    return (unit, valid) if with_valid else unit
+
+
+def _corner_angles(triangles: np.ndarray) -> np.ndarray:
+    u = unitize(triangles[:, 1] - triangles[:, 0])
+    v = unitize(triangles[:, 2] - triangles[:, 0])
+    w = unitize(triangles[:, 2] - triangles[:, 1])
+    angles = np.zeros((len(triangles), 3))
+    angles[:, 0] = np.arccos(np.clip(np.dot(u * v, [1.0] * 3), -1, 1))
+    angles[:, 1] = np.arccos(np.clip(np.dot(-u * w, [1.0] * 3), -1, 1))
+    angles[:, 2] = np.pi - angles[:, 0] - angles[:, 1]
+    angles[(angles < 1e-8).any(axis=1), :] = 0.0
+    return angles
+
+
+def check_finite(path: Path, group: ObjGroup) -> None:
+    """Refuse NaN, infinite or beyond-float32 positions, UVs or normals, naming the line."""
+    from baker.geometry.mesh_files import non_finite_location
+
+    for name, values in (("POSITION", group.positions), ("TEXCOORD_0", group.texcoords), ("NORMAL", group.normals)):
+        if values is None:
+            continue
+        with np.errstate(invalid="ignore"):
+            bad = not np.isfinite(values).all() or bool((np.abs(values) > FLOAT32_MAX).any())
+        if bad:
+            where = non_finite_location(path) or f"{name}: NaN, infinite or beyond float32"
+            raise BakerError(path, f"{where} (NaN and infinite coordinates, normals and UVs are refused)")
