@@ -57,13 +57,18 @@ def test_assigning_the_default_material_keeps_the_decoded_primitive(tmp_path):
 
     from baker.geometry.texture_target import material_groups
 
-    path = tmp_path / "sphere.ply"
-    trimesh.creation.icosphere(1).export(path)
+    from baker.gltf.document import GltfDocument
+
+    sphere = trimesh.creation.icosphere(1)
+    path = tmp_path / "sphere.glb"
+    # a glTF primitive without a material (mesh files now get baker's explicit dielectric when read)
+    GltfDocument.from_triangles(path, "sphere", {"POSITION": sphere.vertices.astype(np.float32)},
+                                sphere.faces.reshape(-1), "test").save(path)
     asset = Asset.load(path)
     before = asset.primitive(0, 0)
     asset.welded(0, [0])
     assert before.material is None
-    groups = material_groups(asset)  # the PLY has no material: a default one is added
+    groups = material_groups(asset)  # the primitive has no material: a default one is added
     (material,) = groups
     after = asset.primitive(0, 0)
     assert after.material == material and after.positions is before.positions  # moved, not decoded again
