@@ -37,6 +37,11 @@ FIXED = {"thickness": 110 * MIB, "curvature": 16 * MIB, "edges": 8 * MIB, "skin"
 # bytes per texel of the bake's texture (option ``texture_size`` squared) beyond the texels counted in FIXED
 PER_TEXEL = {"thickness": 100, "curvature": 100}
 DEFAULT_TEXELS = {"thickness": 1024 * 1024, "curvature": 0}  # curvature measured without its texture (off by default)
+# automatic texture sizes (texel density, baker/geometry/texture_space.py): 8 texels along the mean edge puts about
+# 28 texels on a triangle's area, over the UV coverage (about half) and rounded to a power of two per side (up to 2x
+# the texels): 128 per triangle bounds it; each material's texture stays within [64^2, 2048^2]
+AUTO_TEXELS_PER_TRIANGLE = 128
+AUTO_SIZE_RANGE = (64, 2048)
 PER_TRIANGLE_OTHER = 2000  # a bake not listed above (a plug-in technique): a generous per-triangle figure
 FIXED_OTHER = 64 * MIB
 PROCESS = 280 * MIB  # the interpreter with numpy, trimesh, numba kernels and Embree loaded (270 MiB measured)
@@ -143,18 +148,29 @@ def check_file(path, limit: int | None) -> None:
         _refuse(path, f"reading this {Path(path).suffix.lower().lstrip('.').upper()} file", need, limit)
 
 
-def bake_estimate(triangles: int, bakes, options: dict | None = None) -> int:
-    """Peak bytes of running ``bakes`` (names) on an asset of ``triangles`` triangles; ``options`` maps a bake name
-    to its options instance (for texture sizes)."""
+def texture_texels(triangles: int, materials: int, size: int | None) -> int:
+    """Texels of a texture bake over ``materials`` texture sets: ``size`` squared each when forced, else the bound of
+    the automatic sizes for ``triangles`` triangles (:data:`AUTO_TEXELS_PER_TRIANGLE`)."""
+    if size:
+        return materials * size * size
+    low, high = (materials * s * s for s in AUTO_SIZE_RANGE)
+    return min(high, max(low, AUTO_TEXELS_PER_TRIANGLE * triangles))
+
+
+def bake_estimate(triangles: int, bakes, options: dict | None = None, materials: int = 1) -> int:
+    """Peak bytes of running ``bakes`` (names) on an asset of ``triangles`` triangles and ``materials`` materials
+    (texture sets); ``options`` maps a bake name to its options instance (for texture sizes)."""
     options = options or {}
     need = PROCESS + LOAD_PER_TRIANGLE * triangles
     for name in bakes:
         need += PER_TRIANGLE.get(name, PER_TRIANGLE_OTHER) * triangles + FIXED.get(name, FIXED_OTHER)
-        if name in PER_TEXEL:
-            size = getattr(options.get(name), "texture_size", None)
-            enabled = getattr(options.get(name), "per_texel", getattr(options.get(name), "texture", True))
-            if size and enabled is not False:
-                need += PER_TEXEL[name] * max(0, size * size - DEFAULT_TEXELS[name])
+        chosen = options.get(name)
+        if name in PER_TEXEL and chosen is not None:
+            size = getattr(chosen, "texture_size", None)
+            enabled = getattr(chosen, "per_texel", getattr(chosen, "texture", True))
+            if enabled is not False:
+                texels = texture_texels(triangles, max(1, materials), size)
+                need += PER_TEXEL[name] * max(0, texels - DEFAULT_TEXELS[name])
     return need
 
 
@@ -180,7 +196,8 @@ def _index_count(asset, prim) -> int:
 def check_bake(asset, bakes, options: dict | None, limit: int | None, what: str | None = None) -> int:
     """Refuse running ``bakes`` on ``asset`` when the estimate exceeds ``limit`` bytes (None: no limit); returns the
     estimate. ``what`` names the job in the refusal (default: the bakes)."""
-    need = bake_estimate(asset_triangles(asset), bakes, options)
+    materials = len(asset.doc.json.get("materials") or ()) or 1
+    need = bake_estimate(asset_triangles(asset), bakes, options, materials)
     if limit is not None and need > limit:
         triangles = asset_triangles(asset)
         doing = f"{what} ({triangles} triangles)" if what else f"baking {', '.join(bakes)} on {triangles} triangles"

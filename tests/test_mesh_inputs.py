@@ -328,6 +328,15 @@ def test_memory_estimate_and_limits():
 
     big = {"thickness": resolve_options("thickness", {"texture_size": 8192})}
     assert memory.bake_estimate(1000, ["thickness"], big) > memory.bake_estimate(1000, ["thickness"]) + (5 << 30)
+    # automatic sizes (texel density): counted from the triangles, within [64^2, 2048^2] per material
+    auto = {"thickness": resolve_options("thickness", {})}
+    assert auto["thickness"].texture_size is None
+    forced_2048 = {"thickness": resolve_options("thickness", {"texture_size": 2048})}
+    huge = memory.bake_estimate(50_000_000, ["thickness"], auto, materials=3)
+    assert huge == memory.bake_estimate(50_000_000, ["thickness"], forced_2048, materials=3)  # every set at 2048^2
+    few = [memory.bake_estimate(6720, ["thickness"], auto, materials=m) for m in (1, 7)]
+    assert few[0] == few[1]  # 128 texels per triangle lies between 7 x 64^2 and 2048^2: the materials do not matter
+    assert memory.texture_texels(6720, 7, None) == 6720 * memory.AUTO_TEXELS_PER_TRIANGLE <= 7 * 512 ** 2
 
 
 # ------------------------------------------------------------------------------------------------ fonts
