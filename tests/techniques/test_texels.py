@@ -185,3 +185,15 @@ def test_curvature_texture_from_the_engine_matches_the_sphere(tmp_path):
     values = lo + image[..., 0].astype(np.float64) / 65535.0 * (hi - lo)
     covered = values[texels.rows, texels.cols]
     assert np.abs(covered - 2.0).max() < 0.05
+
+
+def test_texel_tolerance_is_recorded_in_the_extension(spheres):
+    """BAKER_thickness says when texels may have stopped on the per-vertex prior, and with what tolerance; a bake
+    that traced every ray of every texel (tolerance 0) carries no texelTolerance."""
+    options = {"rays": 8, "texture_size": 64}
+    default = baker.bake(spheres, bakes=("thickness",), options={"thickness": options})
+    fixed = baker.bake(spheres, bakes=("thickness",), options={"thickness": {**options, "tolerance": 0.0}})
+    for material in default.doc.json["materials"]:
+        assert material["extensions"]["BAKER_thickness"]["texelTolerance"] == pytest.approx(0.08)
+    for material in fixed.doc.json["materials"]:
+        assert "texelTolerance" not in material["extensions"]["BAKER_thickness"]

@@ -95,6 +95,9 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, max_
     if texture is not None:
         ext["thicknessTexture"] = dict(texture["texture"])
         ext["thicknessFactor"] = float(texture["factor"])
+        tolerance = float(getattr(options, "tolerance", 0.0) or 0.0)
+        if tolerance > 0:  # texels may have stopped early on the per-vertex prior: say how (the kernel's rule)
+            ext["texelTolerance"] = tolerance
     if per_vertex:
         ext["attribute"] = ATTRIBUTE
     doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
