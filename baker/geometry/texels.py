@@ -18,7 +18,7 @@ import numpy as np
 
 from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.geometry.texture_space import dilate, interpolate
-from baker.geometry.texture_target import MaterialTarget, material_targets
+from baker.geometry.texture_target import MaterialTarget, PrimitiveTexels, material_targets
 
 
 @dataclass
@@ -74,20 +74,31 @@ class TexelSets:
         return np.concatenate(parts) if parts else np.zeros(0)
 
     def interpolate_welded(self, welded: dict) -> np.ndarray:
-        """Per-texel values interpolated from per-welded-vertex ones: ``welded`` maps a mesh index to (welded
-        positions, values). Each primitive vertex takes the value of the welded vertex at its position (a layout
-        may have split vertices along its seams: found by position, not by index); meshes missing give 0."""
-        from scipy.spatial import cKDTree  # imported here: scipy is a large share of start-up
+        """Per-texel values interpolated from per-welded-vertex ones: ``welded`` maps a mesh index to (its
+        :class:`~baker.geometry.asset.WeldedMesh`, one value per welded vertex). Each primitive vertex takes the value
+        of the welded vertex it was merged into: by index when the welded mesh holds the primitive as the texels
+        see it, or as it was before the unwrap split its vertices (through the unwrap's vertex map); otherwise by
+        position. Primitives of meshes missing give 0."""
 
-        trees = {m: cKDTree(positions) for m, (positions, _) in welded.items()}
+        def per_vertex(pt: PrimitiveTexels) -> np.ndarray:
+            g = pt.geometry
+            if g.mesh not in welded:
+                return np.zeros(len(g.positions))
+            mesh, values = welded[g.mesh]
+            slot = next((i for i, w in enumerate(mesh.geometries) if w.primitive == g.primitive), None)
+            if slot is not None and mesh.geometries[slot] is g:
+                return values[mesh.inverse[mesh.offsets[slot]: mesh.offsets[slot + 1]]]
+            if slot is not None and pt.source_vertex is not None \
+                    and mesh.geometries[slot].positions.shape == pt.source_positions_shape:
+                return values[mesh.inverse[mesh.offsets[slot] + pt.source_vertex]]
+            from scipy.spatial import cKDTree  # imported here: scipy is a large share of start-up
 
-        def per_vertex(geometry: PrimitiveGeometry) -> np.ndarray:
-            if geometry.mesh not in trees:
-                return np.zeros(len(geometry.positions))
-            _, nearest = trees[geometry.mesh].query(geometry.positions)
-            return welded[geometry.mesh][1][nearest]
+            _, nearest = cKDTree(mesh.positions).query(g.positions)
+            return values[nearest]
 
-        return self.interpolate(per_vertex)
+        parts = [interpolate(per_vertex(pt), pt.geometry.faces, pt.texels.triangle, pt.texels.bary)
+                 for texel_set in self.sets for pt in texel_set.target.primitives]
+        return np.concatenate(parts) if parts else np.zeros(0)
 
     def images(self, values: np.ndarray) -> Iterator[tuple[TexelSet, np.ndarray, np.ndarray]]:
         """(texel set, image dilated past its charts, coverage mask) per material from per-texel ``values``."""

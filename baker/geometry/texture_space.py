@@ -2,7 +2,7 @@
 
 - :func:`rasterize_uv` maps each texel centre to (triangle, barycentrics) with a numba scanline-free bounding-box
   rasterizer (one loop per triangle in compiled code; no Python loop over triangles or texels).
-- :func:`uv_layout_usable` decides whether an existing UV set can hold a bake: no overlap once wrapped to [0, 1).
+- :func:`usable_layout_texels` decides whether an existing UV set can hold a bake: no overlap once wrapped to [0, 1).
 - :func:`unwrap` makes a new layout with xatlas when it cannot.
 - :func:`dilate` pads results across chart borders so bilinear filtering and mipmapping show no seams.
 
@@ -80,6 +80,13 @@ class TexelSamples:
         m[self.rows, self.cols] = True
         return m
 
+    def triangles(self, start: int, stop: int) -> "TexelSamples":
+        """The texels of triangles ``start``..``stop - 1``, renumbered from 0: one primitive's share of a
+        rasterization of several primitives' triangles concatenated."""
+        keep = (self.triangle >= start) & (self.triangle < stop)
+        return TexelSamples(self.width, self.height, self.rows[keep], self.cols[keep], self.triangle[keep] - start,
+                            self.bary[keep], self.overlap_fraction)
+
 
 def rasterize_uv(uv: np.ndarray, faces: np.ndarray, width: int, height: int) -> TexelSamples:
     """Rasterize triangles ``faces`` with per-vertex ``uv`` (n, 2) into a width x height texel grid."""
@@ -94,19 +101,20 @@ def rasterize_uv(uv: np.ndarray, faces: np.ndarray, width: int, height: int) -> 
     return TexelSamples(width, height, rows, cols, tri[rows, cols], bary[rows, cols], overlap)
 
 
-def uv_layout_usable(uv: np.ndarray, faces: np.ndarray, size: int = 512, max_overlap: float = 0.002) -> bool:
-    """True when the UV set, wrapped into [0, 1)^2 as a repeating sampler sees it, has no overlapping triangles
-    (mirrored or stacked charts, tiling).
-
-    ``max_overlap`` tolerates the few texels that land on edges shared by two triangles of one chart.
-    """
+def usable_layout_texels(uv: np.ndarray, faces: np.ndarray, size: int = 512,
+                         max_overlap: float = 0.002) -> TexelSamples | None:
+    """The size x size texels of the UV set when it can hold a bake, else None: when the UV set, wrapped into
+    [0, 1)^2 as a repeating sampler sees it, has overlapping triangles (mirrored or stacked charts, tiling).
+    ``max_overlap`` tolerates the few texels that land on edges shared by two triangles of one chart. A bake at
+    ``size`` keeps the rasterization the test made."""
     if len(faces) == 0:
-        return False
+        return None
     corners = uv[faces]
     # a triangle wider than the texture covers some texel twice by itself
     if not np.isfinite(corners).all() or np.ptp(corners, axis=1).max() > 1.0:
-        return False
-    return rasterize_uv(uv, faces, size, size).overlap_fraction <= max_overlap
+        return None
+    texels = rasterize_uv(uv, faces, size, size)
+    return texels if texels.overlap_fraction <= max_overlap else None
 
 
 def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding: int = 4, seed: int = 0):
@@ -147,9 +155,22 @@ def dilate(image: np.ndarray, mask: np.ndarray) -> np.ndarray:
 
 
 def interpolate(values: np.ndarray, faces: np.ndarray, triangle: np.ndarray, bary: np.ndarray) -> np.ndarray:
-    """Barycentric interpolation of per-vertex ``values`` at (triangle, bary) samples."""
-    corners = values[faces[triangle]]  # (k, 3, ...) corner values
-    return np.einsum("kj,kj...->k...", bary, corners)
+    """Barycentric interpolation of per-vertex ``values`` at (triangle, bary) samples: (k, ...) float64."""
+    flat = np.ascontiguousarray(values, np.float64).reshape(len(values), -1)
+    out = np.empty((len(triangle), flat.shape[1]), np.float64)
+    _interpolate_rows(flat, np.ascontiguousarray(faces, np.int64), np.ascontiguousarray(triangle, np.int64),
+                      np.ascontiguousarray(bary, np.float64), out)
+    return out.reshape((len(triangle),) + np.shape(values)[1:])
+
+
+@numba.njit(cache=True, nogil=True)
+def _interpolate_rows(values, faces, triangle, bary, out):
+    # one pass, no (k, 3, ...) corner copy: a 1024^2 texture's 0.6M texels gather from the vertices in ~10 ms
+    for k in range(triangle.shape[0]):
+        a, b, c = faces[triangle[k], 0], faces[triangle[k], 1], faces[triangle[k], 2]
+        w0, w1, w2 = bary[k, 0], bary[k, 1], bary[k, 2]
+        for j in range(values.shape[1]):
+            out[k, j] = w0 * values[a, j] + w1 * values[b, j] + w2 * values[c, j]
 
 
 # ---------------------------------------------------------------------------------------------------- texel density

@@ -16,7 +16,7 @@ from baker.geometry.normals import vertex_normals
 from baker.geometry.welding import weld
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER
 from baker.geometry.texture_space import (SurfaceStatistics, TexelSamples, rasterize_uv, size_for_density, unwrap,
-                                          uv_layout_usable)
+                                          usable_layout_texels)
 
 
 @dataclass
@@ -24,6 +24,9 @@ class PrimitiveTexels:
     geometry: PrimitiveGeometry
     normals: np.ndarray  # (n, 3) per-vertex normals used for sampling (the primitive's, or welded smooth ones)
     texels: TexelSamples
+    # vertex k copies vertex source_vertex[k] of the primitive before the unwrap split it (None: not unwrapped)
+    source_vertex: np.ndarray | None = None
+    source_positions_shape: tuple | None = None  # the shape of the primitive's positions before the unwrap
 
 
 @dataclass
@@ -104,7 +107,8 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
         if not geoms:
             continue
         # the overlap test at 256^2 when the size is not forced: overlapping charts show at any resolution
-        if _existing_uv_usable(geoms, size or 256):
+        tested = _existing_uv_texels(geoms, size or 256)
+        if tested is not None:
             texcoord, unwrapped = 0, False
         else:
             texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
@@ -112,13 +116,21 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
             # coverage xatlas typically reaches (the final size follows the coverage it really reached)
             resolution = size or size_for_density(_statistics(geoms, None, UNWRAP_COVERAGE), density)
             layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
-            for (m, p), (vmap, faces, uv) in zip(members, layouts):
-                reindex_primitive(asset, m, p, vmap, faces, uv, texcoord)
-            geoms = [asset.primitive(m, p) for m, p in members]
+            vmaps = {}
+            for g, (vmap, faces, uv) in zip(geoms, layouts):
+                reindex_primitive(asset, g.mesh, g.primitive, vmap, faces, uv, texcoord)
+                vmaps[(g.mesh, g.primitive)] = (vmap, g.positions.shape)
+            geoms = [asset.primitive(m, p) for m, p in vmaps]
             unwrapped = True
         chosen = size or size_for_density(_statistics(geoms, texcoord), density)
-        prims = [PrimitiveTexels(g, smooth_normals(g), rasterize_uv(g.texcoords[texcoord], g.faces, chosen, chosen))
-                 for g in geoms]
+        if not unwrapped and tested.width == chosen:
+            # the test rasterized every primitive's triangles at this size already: each takes its share
+            starts = np.cumsum([0] + [len(g.faces) for g in geoms])
+            rasters = [tested.triangles(starts[i], starts[i + 1]) for i in range(len(geoms))]
+        else:
+            rasters = [rasterize_uv(g.texcoords[texcoord], g.faces, chosen, chosen) for g in geoms]
+        prims = [PrimitiveTexels(g, smooth_normals(g), raster, *(vmaps[(g.mesh, g.primitive)] if unwrapped else ()))
+                 for g, raster in zip(geoms, rasters)]
         targets.append(MaterialTarget(material, texcoord, chosen, prims, unwrapped))
     return targets
 
@@ -135,15 +147,17 @@ def _statistics(geoms: list[PrimitiveGeometry], texcoord: int | None, coverage: 
     return SurfaceStatistics.of([(g.positions, g.faces, g.texcoords[texcoord]) for g in geoms])
 
 
-def _existing_uv_usable(geoms: list[PrimitiveGeometry], size: int) -> bool:
+def _existing_uv_texels(geoms: list[PrimitiveGeometry], size: int):
+    """The texels of TEXCOORD_0 at ``size`` (at most 1024) of the primitives' triangles concatenated, when that
+    layout is usable for a bake; else None."""
     if not all(0 in g.texcoords for g in geoms):
-        return False
+        return None
     uvs, faces, base = [], [], 0
     for g in geoms:
         uvs.append(g.texcoords[0])
         faces.append(g.faces + base)
         base += len(g.texcoords[0])
-    return uv_layout_usable(np.concatenate(uvs), np.concatenate(faces), size=min(size, 1024))
+    return usable_layout_texels(np.concatenate(uvs), np.concatenate(faces), size=min(size, 1024))
 
 
 def reindex_primitive(asset: Asset, mesh: int, primitive: int, vmap: np.ndarray, faces: np.ndarray,

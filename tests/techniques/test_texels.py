@@ -150,7 +150,7 @@ def test_prior_test_error_no_worse_than_fixed_rays(tmp_path):
     fixed = local_thickness(scene, texels.positions, texels.normals, rays=64, **common)
     welded = asset.welded(0, [0])
     normals = vertex_normals(welded.positions, welded.faces)
-    prior = texels.interpolate_welded({0: (welded.positions, local_thickness(
+    prior = texels.interpolate_welded({0: (welded, local_thickness(
         scene, welded.positions, normals, rays=64 * PRIOR_RAYS_FACTOR, **common))})
     used = np.zeros(len(texels), np.int64)
     adaptive = local_thickness(scene, texels.positions, texels.normals, rays=64, prior=prior, tolerance=0.08,

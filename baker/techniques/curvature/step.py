@@ -16,7 +16,7 @@ def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progre
     groups = material_groups(asset)
     material_of = {mp: mat for mat, members in groups.items() for mp in members}
     stats = {mat: [np.inf, -np.inf, 0.0, 0] for mat in groups}  # min, max, sum, count of H
-    welded_results = {}  # mesh -> (welded positions, H per welded vertex)
+    welded_results = {}  # mesh -> (its WeldedMesh, H per welded vertex)
 
     for m in range(len(asset.meshes())):
         prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
@@ -37,7 +37,7 @@ def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progre
             advance(1)
         del faces
         if options.per_texel:
-            welded_results[m] = (welded, result.mean)
+            welded_results[m] = (mesh, result.mean)
         principal = np.stack([result.k1, result.k2], axis=1) if options.directions and options.per_vertex else None
         for i, (p, g) in enumerate(zip(prims, geoms)):
             idx = inverse[offsets[i]: offsets[i + 1]]

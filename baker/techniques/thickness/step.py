@@ -122,5 +122,5 @@ def texel_prior(welded: dict, texels, cast, rays: int) -> np.ndarray | None:
     scene_of = np.repeat(np.arange(len(meshes)), [len(welded[m][1].positions) for m in meshes])
     values = cast(meshes, positions, normals, "thickness texel prior (vertices)", scene_of=scene_of, rays=rays)
     bounds = np.cumsum([0] + [len(welded[m][1].positions) for m in meshes])
-    return texels.interpolate_welded({m: (welded[m][1].positions, values[bounds[i]: bounds[i + 1]])
+    return texels.interpolate_welded({m: (welded[m][1], values[bounds[i]: bounds[i + 1]])
                                       for i, m in enumerate(meshes)})
