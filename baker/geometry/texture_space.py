@@ -148,10 +148,67 @@ def dilate(image: np.ndarray, mask: np.ndarray) -> np.ndarray:
     """
     if mask.all() or not mask.any():
         return image
-    from scipy import ndimage  # imported here: scipy is a large share of start-up and only texture bakes dilate
+    rows, cols = nearest_inside(mask)
+    return image[rows, cols]
 
-    _, (iy, ix) = ndimage.distance_transform_edt(~mask, return_indices=True)
-    return image[iy, ix]
+
+def nearest_inside(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(rows, cols): for every texel the nearest texel where ``mask`` is True, by Euclidean distance (exact; ties
+    go to the lower row, then the lower column). ``mask`` must hold a True texel."""
+    height, width = mask.shape
+    rows = np.empty((height, width), np.int64)
+    cols = np.empty((height, width), np.int64)
+    _nearest_inside(np.ascontiguousarray(mask), rows, cols)
+    return rows, cols
+
+
+@numba.njit(cache=True, nogil=True)
+def _nearest_inside(mask, rows, cols):
+    # The exact distance transform of Felzenszwalb & Huttenlocher, "Distance Transforms of Sampled Functions"
+    # (ToC 2012), keeping the arg-min: per column the nearest inside row, then per row the lower envelope of the
+    # parabolas (x - x')^2 + dy(x')^2. Linear in the texels; scipy's distance_transform_edt does the same work but
+    # its import alone cost a 1024^2 bake 0.3-0.5 s.
+    height, width = mask.shape
+    far = height + width + 1
+    column_row = np.empty((height, width), np.int64)  # nearest inside row in the same column (far: none)
+    for x in range(width):
+        last = -far
+        for y in range(height):
+            if mask[y, x]:
+                last = y
+            column_row[y, x] = last
+        nxt = far + height
+        for y in range(height - 1, -1, -1):
+            if mask[y, x]:
+                nxt = y
+            if nxt - y < y - column_row[y, x]:
+                column_row[y, x] = nxt
+    sites = np.empty(width, np.int64)
+    bounds = np.empty(width + 1, np.float64)
+    cost = np.empty(width, np.float64)
+    for y in range(height):
+        count = 0
+        for x in range(width):
+            dy = column_row[y, x] - y
+            if abs(dy) >= far:
+                continue  # no inside texel in this column
+            cost[x] = float(dy * dy + x * x)
+            while count > 0:
+                q = sites[count - 1]
+                cross = (cost[x] - cost[q]) / (2.0 * (x - q))
+                if cross <= bounds[count - 1]:
+                    count -= 1
+                else:
+                    break
+            bounds[count] = -np.inf if count == 0 else (cost[x] - cost[sites[count - 1]]) / (2.0 * (x - sites[count - 1]))
+            sites[count] = x
+            count += 1
+        k = 0
+        for x in range(width):
+            while k + 1 < count and bounds[k + 1] < x:
+                k += 1
+            rows[y, x] = column_row[y, sites[k]]
+            cols[y, x] = sites[k]
 
 
 def interpolate(values: np.ndarray, faces: np.ndarray, triangle: np.ndarray, bary: np.ndarray) -> np.ndarray:
