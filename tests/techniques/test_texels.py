@@ -197,3 +197,21 @@ def test_texel_tolerance_is_recorded_in_the_extension(spheres):
         assert material["extensions"]["BAKER_thickness"]["texelTolerance"] == pytest.approx(0.08)
     for material in fixed.doc.json["materials"]:
         assert "texelTolerance" not in material["extensions"]["BAKER_thickness"]
+
+
+def test_dilation_takes_the_nearest_covered_texel():
+    """Every texel's fill comes from a covered texel at the smallest Euclidean distance (brute force over all
+    covered texels), on random masks from sparse to dense."""
+    from baker.geometry.texture_space import nearest_inside
+
+    rng = np.random.default_rng(5)
+    for density in (0.005, 0.05, 0.3, 0.9):
+        mask = rng.random((37, 53)) < density
+        mask[rng.integers(37), rng.integers(53)] = True
+        rows, cols = nearest_inside(mask)
+        assert mask[rows, cols].all()
+        ys, xs = np.nonzero(mask)
+        grid_y, grid_x = np.mgrid[0:37, 0:53]
+        brute = np.sqrt(((grid_y[..., None] - ys) ** 2 + (grid_x[..., None] - xs) ** 2).min(-1))
+        chosen = np.sqrt((rows - grid_y) ** 2 + (cols - grid_x) ** 2)
+        assert np.allclose(chosen, brute)
