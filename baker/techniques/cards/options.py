@@ -18,7 +18,7 @@ class CardsOptions:
                                   "fraction of the card's length (smaller: more segments where it bends)",
                            min=1e-5, max=0.5)
     max_segments: int = opt(24, "most quads along one card", min=1, max=255)
-    coverage: float = opt(0.95, "share of a clump's strand points the card's width covers (per station, across "
+    coverage: float = opt(1.0, "share of a clump's strand points the card's width covers (per station, across "
                                 "the card)", min=0.5, max=1.0)
     locality: float = opt(1.0, "clustering: weight of root distance against shape distance", min=0.0)
     alpha_cutoff: float = opt(0.5, "material alphaCutoff: texels with coverage below it are cut", min=0.01,

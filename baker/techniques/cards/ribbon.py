@@ -128,6 +128,13 @@ def build_card(curve: np.ndarray, members: np.ndarray, scalp_normal: np.ndarray,
                min_half_width: float, tolerance: float, max_segments: int) -> Card:
     """The ribbon of one clump: ``curve`` (V, 3) its representative, ``members`` (n, V, 3) its strands."""
     tangents = curve_tangents(curve)
+    # strands longer than the representative run past its tip: one more station carries the card as far along
+    # the tip's tangent as the farthest member tip reaches
+    reach = float(np.max((members[:, -1] - curve[-1]) @ tangents[-1]))
+    if reach > 1e-3 * np.linalg.norm(np.diff(curve, axis=0), axis=1).sum():
+        curve = np.concatenate([curve, curve[-1:] + reach * tangents[-1:]])
+        members = np.concatenate([members, members[:, -1:]], axis=1)
+        tangents = np.concatenate([tangents, tangents[-1:]])
     offsets = members - curve[None]
     w_axis, normal = width_directions(tangents, offsets, scalp_normal)
     across = np.einsum("nvi,vi->nv", offsets, w_axis)
