@@ -25,6 +25,21 @@ vec3 baker_hair_cards_flow(vec3 flowTexel, vec3 normal, vec4 tangent) {
     return len > 1e-6 ? w / len : b;
 }
 
+// The card's tangent frame where a host has no TANGENT attribute: from screen-space derivatives of the position
+// and the texture coordinates (the cotangent frame of Schueler, "Followup: Normal Mapping Without Precomputed
+// Tangents", 2013): xyz across the card (+u), w = +-1 so that cross(N, xyz) x w runs along +v (root to tip).
+vec4 baker_hair_cards_frame(vec3 N, vec3 dpdx, vec3 dpdy, vec2 duvdx, vec2 duvdy) {
+    vec3 dp2perp = cross(dpdy, N);
+    vec3 dp1perp = cross(N, dpdx);
+    // the solve carries the sign of the screen's orientation against N (N facing away on a back face)
+    float facing = dot(cross(dpdx, dpdy), N) < 0.0 ? -1.0 : 1.0;
+    vec3 across = (dp2perp * duvdx.x + dp1perp * duvdy.x) * facing;
+    vec3 along = (dp2perp * duvdx.y + dp1perp * duvdy.y) * facing;
+    float len = length(across);
+    vec3 t = len > 0.0 ? across / len : vec3(1.0, 0.0, 0.0);
+    return vec4(t, dot(cross(N, across), along) < 0.0 ? -1.0 : 1.0);
+}
+
 // The strands' offset from the card plane along its normal (mesh units) from the data texture's red channel.
 float baker_hair_cards_depth(float depthTexel, float depthRange) {
     return (depthTexel * 2.0 - 1.0) * depthRange;

@@ -24,7 +24,9 @@ uniform float u_span;
 out vec3 v_normal;
 out vec4 v_tangent;
 out vec2 v_uv;
+out vec3 v_world;
 void main() {
+    v_world = a_position;
     vec2 p = (vec2(dot(a_position, u_right), dot(a_position, u_up)) - u_low) / u_span;
     gl_Position = vec4(p * 2.0 - 1.0, 0.5 - 0.1 * dot(a_position, u_forward), 1.0);
     v_normal = a_normal;
@@ -37,6 +39,7 @@ CARDS_FS = """
 in vec3 v_normal;
 in vec4 v_tangent;
 in vec2 v_uv;
+in vec3 v_world;
 uniform sampler2D u_color;
 uniform sampler2D u_data;
 uniform sampler2D u_flow;
@@ -50,6 +53,7 @@ layout(location = 2) out vec4 o_normal;    // interpolated normal, data r
 layout(location = 3) out vec4 o_tangent;   // interpolated tangent
 layout(location = 4) out vec4 o_texels;    // flow texel rgb, data g
 layout(location = 5) out vec4 o_more;      // base rgb, data b
+layout(location = 6) out vec4 o_frame;     // the derivative frame
 void main() {
     vec4 base = texture(u_color, v_uv);
     if (baker_hair_cards_cut(base.a, u_cutoff)) discard;
@@ -63,6 +67,7 @@ void main() {
     o_tangent = v_tangent;
     o_texels = vec4(flowTexel, data.g);
     o_more = vec4(base.rgb, data.b);
+    o_frame = baker_hair_cards_frame(normalize(v_normal), dFdx(v_world), dFdy(v_world), dFdx(v_uv), dFdy(v_uv));
 }
 """
 
@@ -120,7 +125,7 @@ def test_cards_render_alpha_tested_and_shaded_as_the_twins(gl_context, cards):
     ibo = ctx.buffer(cards.indices.astype("u4").tobytes())
     vao = ctx.vertex_array(prog, [(vbo, "3f 3f 4f 2f", "a_position", "a_normal", "a_tangent", "a_uv")], ibo,
                            index_element_size=4)
-    targets = [ctx.texture((size, size), 4, dtype="f4") for _ in range(6)]
+    targets = [ctx.texture((size, size), 4, dtype="f4") for _ in range(7)]
     depth = ctx.depth_texture((size, size))
     fbo = ctx.framebuffer(targets, depth)
     fbo.use()
@@ -129,7 +134,7 @@ def test_cards_render_alpha_tested_and_shaded_as_the_twins(gl_context, cards):
     ctx.disable(moderngl.CULL_FACE)
     vao.render(moderngl.TRIANGLES)
     ctx.finish()
-    color, flow, normal, tangent, texels, more = (np.frombuffer(t.read(), np.float32).reshape(size, size, 4)
+    color, flow, normal, tangent, texels, more, frame = (np.frombuffer(t.read(), np.float32).reshape(size, size, 4)
                                                   for t in targets)
     covered = color[..., 3] > 0.5
 
@@ -168,6 +173,10 @@ def test_cards_render_alpha_tested_and_shaded_as_the_twins(gl_context, cards):
     shade = twins.baker_hair_cards_shade(more[covered][:, :3], T, n, light, view, np.ones(3, np.float32),
                                          texels[covered][:, 3], more[covered][:, 3], 40.0, 0.1, 0.4)
     np.testing.assert_allclose(color[covered][:, :3], shade, atol=2e-3)
+    # the derivative frame is the card's TANGENT (direction and handedness) where the card is not seen edge-on
+    facing = np.abs(normal[covered][:, 2]) > 0.5
+    dots = (frame[covered][:, :3] * t[:, :3]).sum(1) / np.linalg.norm(t[:, :3], axis=1)
+    assert np.median(dots[facing]) > 0.95 and (frame[covered][:, 3] == t[:, 3])[facing].mean() > 0.95
     # the flow points along the cards (root -> tip) far more than across: |f.B| dominates on average
     b = np.cross(n, t[:, :3]) * t[:, 3:4]
     along = np.abs((T * b).sum(1)) / np.linalg.norm(b, axis=1)

@@ -39,6 +39,19 @@ def baker_hair_cards_flow(flow_texel, normal, tangent):
     return np.where(length > 1e-6, w / np.maximum(length, F32(1e-30)), b).astype(F32)
 
 
+def baker_hair_cards_frame(N, dpdx, dpdy, duvdx, duvdy):
+    N, dpdx, dpdy, duvdx, duvdy = (_f(x) for x in (N, dpdx, dpdy, duvdx, duvdy))
+    dp2perp = np.cross(dpdy, N)
+    dp1perp = np.cross(N, dpdx)
+    facing = np.where(_dot(np.cross(dpdx, dpdy), N) < 0, F32(-1), F32(1))[..., None]
+    across = (dp2perp * duvdx[..., :1] + dp1perp * duvdy[..., :1]) * facing
+    along = (dp2perp * duvdx[..., 1:2] + dp1perp * duvdy[..., 1:2]) * facing
+    length = np.sqrt(_dot(across, across))[..., None]
+    t = np.where(length > 0, across / np.maximum(length, F32(1e-38)), np.array([1, 0, 0], F32))
+    w = np.where(_dot(np.cross(N, across), along) < 0, F32(-1), F32(1))[..., None]
+    return np.concatenate([t, w], -1).astype(F32)
+
+
 def baker_hair_cards_depth(depth_texel, depth_range):
     return ((_f(depth_texel) * F32(2) - F32(1)) * F32(depth_range)).astype(F32)
 

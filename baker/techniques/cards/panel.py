@@ -36,11 +36,7 @@ PANELS = [
         "vec4 base = texture(u_baseColor, v_uv);\n"
         "    if (baker_hair_cards_cut(base.a, u_cutoff)) discard;\n"
         "    vec3 data = texture(u_data, v_uv).rgb;\n"
-        "    vec3 dpx = dFdx(P), dpy = dFdy(P);\n"
-        "    vec2 dux = dFdx(v_uv), duy = dFdy(v_uv);\n"
-        "    vec3 across = cross(dpy, N) * dux.x + cross(N, dpx) * duy.x;\n"
-        "    vec3 along = cross(dpy, N) * dux.y + cross(N, dpx) * duy.y;\n"
-        "    vec4 frame = vec4(normalize(across + 1e-12), dot(cross(N, across), along) < 0.0 ? -1.0 : 1.0);\n"
+        "    vec4 frame = baker_hair_cards_frame(N, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
         "    vec3 T = baker_hair_cards_flow(texture(u_flow, v_uv).rgb, N, frame);\n"
         "    color = 0.25 * base.rgb + baker_hair_cards_shade(base.rgb, T, N, u_light, V, vec3(1.0), data.g, data.b,"
         " 40.0, 0.1, 0.4);",
