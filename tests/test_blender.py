@@ -525,7 +525,8 @@ def test_blender_imports_hair_cards_alpha_clipped(blender_python, tmp_path):
     import ast
 
     from techniques.cards_groom import make_groom, write_groom_usd
-    from techniques.test_cards import card_silhouette, cards_from_glb
+    from techniques.cards_views import card_silhouette
+    from techniques.test_cards import cards_from_glb
 
     curves, widths = make_groom(strands=800, clumps=24, seed=3)
     groom = write_groom_usd(tmp_path / "groom.usda", curves, widths)

@@ -58,23 +58,32 @@ def pack_regions(sizes: np.ndarray, atlas_size: int, padding: int) -> tuple[np.n
 
 
 # ---------------------------------------------------------------------------------------------------- projection
+@numba.njit(cache=True, nogil=True, inline="always")
+def _dot3(ax, ay, az, bx, by, bz):
+    return ax * bx + ay * by + az * bz
+
+
 @numba.njit(cache=True, nogil=True)
-def _closest_on_triangle(p, a, b, c):
-    """Closest point of triangle abc to p as barycentrics (Ericson, Real-Time Collision Detection, 5.1.5)."""
-    ab, ac, ap = b - a, c - a, p - a
-    d1, d2 = np.dot(ab, ap), np.dot(ac, ap)
+def _closest_on_triangle(p, tri):
+    """Closest point of triangle ``tri`` (3, 3) to p as barycentrics (Ericson, Real-Time Collision Detection,
+    5.1.5), in scalars: no temporary arrays in the inner loop."""
+    ax, ay, az = tri[0, 0], tri[0, 1], tri[0, 2]
+    abx, aby, abz = tri[1, 0] - ax, tri[1, 1] - ay, tri[1, 2] - az
+    acx, acy, acz = tri[2, 0] - ax, tri[2, 1] - ay, tri[2, 2] - az
+    apx, apy, apz = p[0] - ax, p[1] - ay, p[2] - az
+    d1, d2 = _dot3(abx, aby, abz, apx, apy, apz), _dot3(acx, acy, acz, apx, apy, apz)
     if d1 <= 0.0 and d2 <= 0.0:
         return 1.0, 0.0, 0.0
-    bp = p - b
-    d3, d4 = np.dot(ab, bp), np.dot(ac, bp)
+    bpx, bpy, bpz = p[0] - tri[1, 0], p[1] - tri[1, 1], p[2] - tri[1, 2]
+    d3, d4 = _dot3(abx, aby, abz, bpx, bpy, bpz), _dot3(acx, acy, acz, bpx, bpy, bpz)
     if d3 >= 0.0 and d4 <= d3:
         return 0.0, 1.0, 0.0
     vc = d1 * d4 - d3 * d2
     if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
         v = d1 / (d1 - d3)
         return 1.0 - v, v, 0.0
-    cp = p - c
-    d5, d6 = np.dot(ab, cp), np.dot(ac, cp)
+    cpx, cpy, cpz = p[0] - tri[2, 0], p[1] - tri[2, 1], p[2] - tri[2, 2]
+    d5, d6 = _dot3(abx, aby, abz, cpx, cpy, cpz), _dot3(acx, acy, acz, cpx, cpy, cpz)
     if d6 >= 0.0 and d5 <= d6:
         return 0.0, 0.0, 1.0
     vb = d5 * d2 - d1 * d6
@@ -103,14 +112,17 @@ def closest_on_cards(points, card_of_point, tri_start, tri_count, corners):
         best = np.inf
         p = points[i]
         for t in range(tri_start[c], tri_start[c] + tri_count[c]):
-            u, v, w = _closest_on_triangle(p, corners[t, 0], corners[t, 1], corners[t, 2])
-            q = u * corners[t, 0] + v * corners[t, 1] + w * corners[t, 2]
-            d = np.sqrt(np.sum((p - q) ** 2))
+            k = corners[t]
+            u, v, w = _closest_on_triangle(p, k)
+            dx = p[0] - (u * k[0, 0] + v * k[1, 0] + w * k[2, 0])
+            dy = p[1] - (u * k[0, 1] + v * k[1, 1] + w * k[2, 1])
+            dz = p[2] - (u * k[0, 2] + v * k[1, 2] + w * k[2, 2])
+            d = dx * dx + dy * dy + dz * dz
             if d < best:
                 best = d
                 tri[i] = t
                 bary[i, 0], bary[i, 1], bary[i, 2] = u, v, w
-        dist[i] = best
+        dist[i] = math.sqrt(best)
     return tri, bary, dist
 
 
