@@ -338,3 +338,29 @@ def test_bad_input_one_line_exit_2(tmp_path, capsys, case):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "Traceback" not in err, err
     assert not out.exists()
+
+
+def test_validate_reports_broken_card_layouts(tmp_path):
+    """The semantic check catches what the schema cannot: a region outside [0, 1] or upside down, first indices
+    that do not ascend, a non-MASK material."""
+    curves, widths = make_groom(strands=120, clumps=6, seed=4)
+    src = write_groom_usd(tmp_path / "g.usda", curves, widths)
+    out = tmp_path / "c.gltf"
+    assert cli_main(["cards", str(src), "-o", str(out), "--cards", "6", "--atlas-size", "128", "-q"]) == 0
+    assert validate_file(out, khronos=False)["issues"]["numErrors"] == 0
+    gltf = json.loads(out.read_text())
+    ext = gltf["meshes"][0]["primitives"][0]["extensions"]["BAKER_hair_cards"]
+    bin_path = out.parent / gltf["buffers"][0]["uri"]
+    blob = bytearray(bin_path.read_bytes())
+
+    def offset(accessor):
+        a = gltf["accessors"][accessor]
+        return gltf["bufferViews"][a["bufferView"]].get("byteOffset", 0) + a.get("byteOffset", 0)
+
+    struct.pack_into("<4f", blob, offset(ext["regions"]), 0.5, 0.5, 0.25, 1.5)  # u1 < u0 and v1 > 1
+    struct.pack_into("<2I", blob, offset(ext["cardFirstIndex"]), 0, 0)  # not ascending
+    bin_path.write_bytes(bytes(blob))
+    gltf["materials"][0]["alphaMode"] = "BLEND"
+    out.write_text(json.dumps(gltf))
+    codes = {m["code"] for m in validate_file(out, khronos=False)["issues"]["messages"]}
+    assert {"BAKER_HAIR_CARDS_REGIONS", "BAKER_HAIR_CARDS_FIRST_INDEX", "BAKER_HAIR_CARDS_ALPHA_MODE"} <= codes, codes
