@@ -176,17 +176,18 @@ def _segment_texels(x0, y0, x1, y1, radius, clip, stamp, cov, attr, a0, a1, pass
 def rasterize_strands(xy, attributes, radius, clip, height, width):
     """Draw strands (S, V, 2 texel coordinates) with per-vertex ``attributes`` (S, V, A) and half-widths ``radius``
     (S, V, texels), each inside its ``clip`` rectangle (S, 4: x0, y0, x1, y1, exclusive ends).
-    Returns alpha (H, W), coverage-weighted attribute sums (H, W, A), weights (H, W), top strand (H, W; -1: none)."""
+    Returns alpha (H, W), coverage-weighted attribute sums (H, W, A), weights (H, W), top strand (H, W; -1: none).
+    Per-texel arrays are float32 / int32 (about 16 x 4 bytes per texel at A = 5: 1 GB for a 4096² atlas)."""
     s, v, _ = xy.shape
     n_attr = attributes.shape[2]
-    alpha = np.zeros((height, width))
-    sums = np.zeros((height, width, n_attr))
-    weight = np.zeros((height, width))
-    top = np.full((height, width), -1, np.int64)
-    top_cov = np.zeros((height, width))
-    stamp = np.full((height, width), -1, np.int64)
-    cov = np.zeros((height, width))
-    attr = np.zeros((height, width, n_attr))
+    alpha = np.zeros((height, width), np.float32)
+    sums = np.zeros((height, width, n_attr), np.float32)
+    weight = np.zeros((height, width), np.float32)
+    top = np.full((height, width), -1, np.int32)
+    top_cov = np.zeros((height, width), np.float32)
+    stamp = np.full((height, width), -1, np.int32)
+    cov = np.zeros((height, width), np.float32)
+    attr = np.zeros((height, width, n_attr), np.float32)
     for i in range(s):
         for pass_two in (False, True):
             for j in range(v - 1):

@@ -43,9 +43,9 @@ class CardsResult:
 
 
 def srgb_encode(linear: np.ndarray) -> np.ndarray:
-    """Linear [0, 1] -> sRGB [0, 1] (IEC 61966-2-1)."""
+    """Linear [0, 1] -> sRGB [0, 1] (IEC 61966-2-1), in the input's float type."""
     x = np.clip(linear, 0.0, 1.0)
-    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
+    return np.where(x <= 0.0031308, x * 12.92, np.power(x, 1.0 / 2.4) * 1.055 - 0.055).astype(x.dtype)
 
 
 def strand_random(count: int, seed: int) -> np.ndarray:
@@ -54,7 +54,7 @@ def strand_random(count: int, seed: int) -> np.ndarray:
 
 
 def to_u8(x: np.ndarray) -> np.ndarray:
-    return np.rint(np.clip(x, 0.0, 1.0) * 255.0).astype(np.uint8)
+    return np.rint(np.clip(x, 0.0, 1.0) * np.float32(255.0)).astype(np.uint8)
 
 
 def card_mesh(cards: list, order: np.ndarray, rects: np.ndarray, atlas_size: int, padding: int):
@@ -139,25 +139,30 @@ def make_cards(strands: np.ndarray, lengths: np.ndarray, widths: np.ndarray | No
     alpha, sums, weight, top = rasterize_strands(np.ascontiguousarray(xy), np.ascontiguousarray(attributes),
                                                  np.ascontiguousarray(radius), inside, size, size)
     covered = weight > 0
-    mean = np.where(covered[..., None], sums / np.maximum(weight, 1e-300)[..., None], 0.0)
-    random = strand_random(s, options.seed)
-    rand_texel = np.where(top >= 0, random[np.maximum(top, 0)], 0.5)
+    f32 = np.float32
+    # float32 from here: a 4096² atlas holds 16.7 M texels, and 8 bits per channel is what is written
+    mean = sums / np.maximum(weight, f32(1e-30))[..., None]
+    del sums
+    random = strand_random(s, options.seed).astype(f32)
+    rand_texel = np.where(top >= 0, random[np.maximum(top, 0)], f32(0.5))
     # texels no strand reached: the card's own root-to-tip position, flow along the card, depth 0
-    rows = (np.arange(size) + 0.5) / size
-    fill_grad = np.zeros((size, size))
+    rows = ((np.arange(size) + 0.5) / size).astype(f32)
+    grad_texel = np.zeros((size, size), f32)
     for u0, v0, u1, v1 in regions:
         y0, y1, x0, x1 = (int(round(a * size)) for a in (v0, v1, u0, u1))
-        fill_grad[y0:y1, x0:x1] = ((rows[y0:y1] - v0) / max(v1 - v0, 1e-300))[:, None]
-    grad_texel = np.where(covered, mean[..., 1], fill_grad)
-    depth_texel = np.where(covered, mean[..., 0], 0.0)
-    flow_texel = np.where(covered[..., None], mean[..., 2:5], np.array([0.0, 1.0, 0.0]))
-    flow_texel /= np.maximum(np.linalg.norm(flow_texel, axis=2, keepdims=True), 1e-300)
-    color = np.asarray(options.color, np.float64)
-    shade = (0.55 + 0.45 * grad_texel) * (0.8 + 0.4 * rand_texel)  # darker roots, strand-to-strand variation
-    rgb = srgb_encode(color[None, None, :] * shade[..., None])
+        grad_texel[y0:y1, x0:x1] = ((rows[y0:y1] - v0) / max(v1 - v0, 1e-30))[:, None]
+    grad_texel = np.where(covered, mean[..., 1], grad_texel)
+    data = np.stack([to_u8(f32(0.5) + f32(0.5 / depth_range) * np.where(covered, mean[..., 0], f32(0.0))),
+                     to_u8(grad_texel), to_u8(rand_texel)], axis=2)
+    flow_texel = np.where(covered[..., None], mean[..., 2:5], np.array([0.0, 1.0, 0.0], f32))
+    del mean
+    flow_texel /= np.maximum(np.linalg.norm(flow_texel, axis=2, keepdims=True), f32(1e-30))
+    flow_image = to_u8(f32(0.5) + f32(0.5) * flow_texel)
+    del flow_texel
+    shade = (f32(0.55) + f32(0.45) * grad_texel) * (f32(0.8) + f32(0.4) * rand_texel)  # darker roots, variation
+    rgb = srgb_encode(np.asarray(options.color, f32)[None, None, :] * shade[..., None])
     base_color = np.concatenate([to_u8(rgb), to_u8(alpha)[..., None]], axis=2)
-    data = np.stack([to_u8(0.5 + 0.5 * depth_texel / depth_range), to_u8(grad_texel), to_u8(rand_texel)], axis=2)
-    flow_image = to_u8(0.5 + 0.5 * flow_texel)
+    del rgb, shade
     # statistics: how well the cards hold the strands
     near = distance <= 0.05 * mean_length
     texel = np.clip(np.floor(uv * size).astype(np.int64), 0, size - 1)

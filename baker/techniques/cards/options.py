@@ -11,7 +11,7 @@ class CardsOptions:
     """Options of the groom -> hair cards bake (``baker cards``)."""
 
     cards: int = opt(64, "number of cards: one per clump of strands", min=1, max=65536)
-    atlas_size: int = opt(1024, "atlas width and height in texels (a power of two)", min=64, max=8192)
+    atlas_size: int = opt(1024, "atlas width and height in texels (a power of two)", min=64, max=4096)
     vertices_per_strand: int = opt(32, "vertices of every strand after resampling at equal arc-length steps "
                                        "(card segments are chosen among them)", min=4, max=256)
     tolerance: float = opt(0.005, "card segments: the ribbon's centre line may leave the clump's curve by this "
