@@ -34,9 +34,9 @@ import baker
 from baker import registry
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, ROOT, SPOT, assert_cards_alpha_tested, assert_caustics_move, build_viewer,
-                     gltf_json, require_tools, serve, shoot, techniques_in, write_caustic_floor, write_hair_cards,
-                     write_label_and_groom)
+from browser import (BACKGROUND_RGB, CARD_DISTANCES, ROOT, SPOT, assert_cards_alpha_tested, assert_caustics_move,
+                     build_viewer, gltf_json, require_tools, serve, shoot, techniques_in, write_caustic_floor,
+                     write_hair_cards, write_label_and_groom)
 
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_babylon"
 W, H = 400, 300
@@ -302,7 +302,8 @@ def test_babylon_draws_alpha_tested_hair_cards_like_three(site, tmp_path):
     """The hair cards (tests/browser.py) on the Babylon.js page with the three.js page's views at three distances:
     alpha-tested and shaded (assert_cards_alpha_tested), and the pixels the alpha test keeps are three.js's."""
     name = write_hair_cards(site["root"])
-    shots = {"near": "", "middle": "&distance=2.5", "far": "&distance=6", "off": "&off=cards"}
+    shots = {**{key: f"&distance={d}" for key, d in zip(("near", "middle", "far"), CARD_DISTANCES)},
+             "off": "&off=cards"}
     base = f"{site['url']}/index.html?hud=0&src={name}"
 
     def jobs(engine, views=None):
