@@ -303,6 +303,14 @@ def test_every_groom_format_and_same_seed_same_bytes(tmp_path):
         assert cli_main(["cards", str(src), "-o", str(out), *args]) == 0
         outs.append(out.read_bytes())
     assert outs[0] == outs[1]
+    usd = []
+    for k in range(2):
+        (tmp_path / f"u{k}").mkdir()
+        out = tmp_path / f"u{k}" / "cards.usda"
+        assert cli_main(["cards", str(src), "-o", str(out), *args]) == 0
+        usd.append({p.relative_to(out.parent).as_posix(): p.read_bytes() for p in sorted(out.parent.rglob("*"))
+                    if p.is_file()})
+    assert usd[0] == usd[1] and len(usd[0]) == 4  # the stage and its three textures
     # the same groom as glTF BAKER_hair and TressFX (through baker guides), and a .gltf output
     for suffix in (".glb", ".tfx"):
         converted = tmp_path / f"groom{suffix}"
