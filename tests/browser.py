@@ -123,6 +123,46 @@ def assert_caustics_move(early, late, off):
     assert moved.mean() > 0.2, moved.mean()
 
 
+def write_hair_cards(root):
+    """Hair cards (root/cards.glb) of an independent groom (tests/techniques/cards_groom.py, written by pxr)."""
+    from techniques.cards_groom import make_groom, write_groom_usd
+
+    curves, widths = make_groom(strands=1500, clumps=48, seed=8)
+    groom = write_groom_usd(root / "cards_groom.usda", curves, widths)
+    assert baker_main(["cards", str(groom), "-o", str(root / "cards.glb"), "--cards", "48", "--atlas-size", "512",
+                       "-q"]) == 0
+    return "cards.glb"
+
+
+CARD_DISTANCES = (1.0, 2.5, 6.0)  # ?distance= of the three hair-card frames
+
+
+def assert_cards_alpha_tested(frames, off):
+    """Frames (H, W, 3 in 0-1) of the hair cards at CARD_DISTANCES (?distance=), and the nearest with the technique
+    off: the hair shows at every distance without thinning out (its drawn pixels x distance² stay within 20 % of
+    the nearest frame's: what a mip chain that loses alpha-test coverage fails), the alpha test leaves gaps between
+    strands inside the hair's outline (a card drawn opaque would fill it), and the Kajiya-Kay shading changes the
+    picture. Returns the drawn pixels per distance."""
+    import numpy as np
+    from scipy import ndimage
+
+    background = np.array(BACKGROUND_RGB) / 255.0
+    drawn = [np.abs(frame - background).max(axis=2) > 0.03 for frame in frames]
+    counts = [int(d.sum()) for d in drawn]
+    print("hair pixels per distance", counts)
+    assert all(c > 150 for c in counts), counts
+    for count, distance in zip(counts, CARD_DISTANCES):
+        assert 0.8 < count * distance ** 2 / counts[0] < 1.25, (counts, CARD_DISTANCES)
+    near = drawn[0]
+    outline = ndimage.binary_fill_holes(ndimage.binary_closing(near, iterations=4))
+    gaps = (outline & ~near).sum() / outline.sum()
+    print("gaps inside the outline", gaps)
+    assert gaps > 0.05, gaps
+    changed = (np.abs(frames[0] - off).max(axis=2) > 4 / 255) & near
+    assert changed.mean() / near.mean() > 0.3
+    return counts
+
+
 def gltf_json(path):
     """The JSON chunk of a GLB file."""
     data = Path(path).read_bytes()
@@ -136,7 +176,7 @@ def techniques_in(doc):
     found = set()
     per_material = {"BAKER_thickness": "translucency", "BAKER_skin_lut": "skin", "BAKER_toon_ramp": "toon",
                     "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature",
-                    "BAKER_caustics": "caustics"}
+                    "BAKER_caustics": "caustics", "BAKER_hair_cards": "cards"}
     for material in doc.get("materials", []):
         found |= {per_material[name] for name in material.get("extensions", {}) if name in per_material}
     for mesh in doc.get("meshes", []):

@@ -34,8 +34,9 @@ import baker
 from baker import registry
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, ROOT, SPOT, assert_caustics_move, build_viewer, gltf_json, require_tools, serve,
-                     shoot, techniques_in, write_caustic_floor, write_label_and_groom)
+from browser import (BACKGROUND_RGB, CARD_DISTANCES, ROOT, SPOT, assert_cards_alpha_tested, assert_caustics_move,
+                     build_viewer, gltf_json, require_tools, serve, shoot, techniques_in, write_caustic_floor,
+                     write_hair_cards, write_label_and_groom)
 
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_babylon"
 W, H = 400, 300
@@ -295,3 +296,36 @@ def test_babylon_draws_moving_caustics_like_three(site, tmp_path):
         if ratio > DELTA_RATIO:
             raise AssertionError(f"{key}: change error {ratio:.2f} (artifacts: "
                                  f"{_keep(f'caustics-{key}', images[('three', key)], images[('babylon', key)])})")
+
+
+def test_babylon_draws_alpha_tested_hair_cards_like_three(site, tmp_path):
+    """The hair cards (tests/browser.py) on the Babylon.js page with the three.js page's views at three distances:
+    alpha-tested and shaded (assert_cards_alpha_tested), and the pixels the alpha test keeps are three.js's."""
+    name = write_hair_cards(site["root"])
+    shots = {**{key: f"&distance={d}" for key, d in zip(("near", "middle", "far"), CARD_DISTANCES)},
+             "off": "&off=cards"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+
+    def jobs(engine, views=None):
+        out = []
+        for i, (key, query) in enumerate(shots.items()):
+            url = base + query
+            if views is not None:
+                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
+        return out
+
+    three = shoot(jobs("three"), tmp_path / "three.json")
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    for info in three + babylon:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["cards"], info
+    images = {(engine, key): _image(tmp_path / f"{engine}-{key}.png") for engine in ("three", "babylon") for key in shots}
+    assert_cards_alpha_tested([images[("babylon", k)] for k in ("near", "middle", "far")], images[("babylon", "off")])
+    background = np.array(BACKGROUND_RGB) / 255.0
+    drawn = {e: np.abs(images[(e, "near")] - background).max(axis=2) > 0.03 for e in ("three", "babylon")}
+    iou = (drawn["three"] & drawn["babylon"]).sum() / (drawn["three"] | drawn["babylon"]).sum()
+    print("cards coverage IoU three/babylon", round(float(iou), 3))
+    if iou < 0.8:
+        raise AssertionError(f"coverage IoU {iou:.2f} (artifacts: "
+                             f"{_keep('cards', images[('three', 'near')], images[('babylon', 'near')])})")

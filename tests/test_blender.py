@@ -515,3 +515,45 @@ def test_addon_shows_caustics_on_a_floor(blender_python, tmp_path):
     added = data["lit"][..., :3].mean(-1) - data["control"][..., :3].mean(-1)
     assert (added > 0.02).mean() > 0.05 and (added < -0.02).mean() > 0.05
     assert np.corrcoef(added.ravel(), ((expected - 1) * fade).ravel())[0, 1] > 0.95
+
+
+def test_blender_imports_hair_cards_alpha_clipped(blender_python, tmp_path):
+    """`baker cards` output in stock Blender: one mesh with every vertex, the base colour's alpha clipping the
+    material, and a Cycles render (orthographic along glTF -Z, pixel centres, transparent film) covering the pixels a
+    numpy rasteriser of the same triangles and atlas covers (tests/techniques/test_cards.py). With the add-on the flow
+    texture drives the Principled BSDF's tangent and the data and flow images come in."""
+    import ast
+
+    from techniques.cards_groom import make_groom, write_groom_usd
+    from techniques.cards_views import card_silhouette
+    from techniques.test_cards import cards_from_glb
+
+    curves, widths = make_groom(strands=800, clumps=24, seed=3)
+    groom = write_groom_usd(tmp_path / "groom.usda", curves, widths)
+    glb = tmp_path / "cards.glb"
+    bake("cards", groom, "-o", glb, "--cards", "24", "--atlas-size", "512")
+    cards = cards_from_glb(glb)
+    lo, hi = cards["positions"].min(0), cards["positions"].max(0)
+    centre = (lo + hi) / 2
+    half = float((hi - lo)[:2].max()) / 2 * 1.05
+    size = 128
+    runs = {}
+    for kind, addon in (("stock", "-"), ("addon", ADDON)):
+        out = tmp_path / f"{kind}.npz"
+        run_blender(blender_python, "render_cards.py", addon, glb, out, centre[0], centre[1], half, size)
+        data = np.load(out)
+        runs[kind] = (data["pixels"], ast.literal_eval(str(data["report"])))
+    pixels, report = runs["stock"]
+    assert report["meshes"] == 1 and report["vertices"] == len(cards["positions"]), report
+    assert report["polygons"] == len(cards["triangles"]) and report["alpha_linked"], report
+    basis = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+    expected = card_silhouette(cards, basis, (centre[:2] - half, 2 * half), size, cards["material"]["alphaCutoff"])
+    drawn = pixels[..., 3] > 0.5
+    iou = (drawn & expected).sum() / (drawn | expected).sum()
+    print("cards coverage IoU Cycles/numpy", iou, int(drawn.sum()), int(expected.sum()))
+    assert iou > 0.8 and drawn.sum() > 300, iou
+    addon_pixels, addon_report = runs["addon"]
+    assert addon_report["tangent_linked"] and addon_report["alpha_linked"], addon_report
+    assert sum("baker texture" in name for name in addon_report["images"]) >= 2, addon_report
+    addon_drawn = addon_pixels[..., 3] > 0.5
+    assert (addon_drawn & drawn).sum() / (addon_drawn | drawn).sum() > 0.95  # the add-on keeps the clip

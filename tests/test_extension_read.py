@@ -211,3 +211,30 @@ def test_hair(tmp_path):
     assert math.isclose(float(children.guide_weights.reshape(children.strand_count, -1).sum(1).mean()), 1.0,
                         rel_tol=1e-5)
     assert read(doc, 0, 0) is None  # the emitter
+
+
+def test_hair_cards(tmp_path):
+    import json
+
+    from baker.techniques.cards.extension import NAME, read, read_material
+    from techniques.cards_groom import make_groom, write_groom_usd
+
+    curves, widths = make_groom(strands=200, clumps=8, seed=1)
+    groom = write_groom_usd(tmp_path / "groom.usda", curves, widths)
+    out = tmp_path / "cards.gltf"
+    assert main(["cards", str(groom), "-o", str(out), "--cards", "8", "--atlas-size", "128", "-q"]) == 0
+    doc = GltfDocument.load(out)
+    raw = json.loads(out.read_text())
+    ext = raw["meshes"][0]["primitives"][0]["extensions"][NAME]
+    cards = read(doc, 0, 0)
+    assert cards.card_count == ext["cardCount"] == len(cards.regions) == len(cards.card_first_index)
+    assert cards.card_first_index[0] == 0 and (np.diff(cards.card_first_index) > 0).all()
+    assert cards.groom["strandCount"] == 200 and cards.draw_order == "innerFirst"
+    assert cards.clustering_error == ext["clusteringError"]
+    material = read_material(doc, 0)
+    mext = raw["materials"][0]["extensions"][NAME]
+    assert (material.data_texture, material.flow_texture) == (mext["dataTexture"]["index"],
+                                                            mext["flowTexture"]["index"])
+    assert material.depth_range == mext["depthRange"] > 0 and material.data_channels["g"] == "rootToTip"
+    plain = baker.bake(SPOT, bakes=["curvature"], options={}).doc
+    assert read(plain, 0, 0) is None and read_material(plain, 0) is None

@@ -42,6 +42,8 @@ REFS = {
     "BAKER_tonal_art_map": {"levels/*/textures/*": "texture", "levels/*/texture": "texture"},
     "BAKER_toon_ramp": {"rampTexture": "texture"},
     "BAKER_caustics": {"frameTextures/*": "texture"},
+    "BAKER_hair_cards": {"dataTexture": "texture", "flowTexture": "texture", "regions": "accessor",
+                         "cardFirstIndex": "accessor"},
     "BAKER_edges": {"edges": "accessor", "oppositeVertices": "accessor", "flags": "accessor",
                     "dihedralAngles": "accessor", "wireframeMask": "accessor", "fins": "primitive",
                     "finsOf": "primitive"},
@@ -136,6 +138,13 @@ def assets(tmp_path_factory):
     assert baker_main(["hair", str(sphere), "--guides", "12", "--children", "2", "--segments", "4",
                        "--iterations", "2", "-o", str(hair), "-q"]) == 0
     out["hair"] = hair
+    from techniques.cards_groom import make_groom, write_groom_usd
+
+    curves, widths = make_groom(strands=150, clumps=6, seed=2)
+    groom = write_groom_usd(folder / "groom.usda", curves, widths)
+    cards = folder / "cards.glb"
+    assert baker_main(["cards", str(groom), "-o", str(cards), "--cards", "6", "--atlas-size", "128", "-q"]) == 0
+    out["cards"] = cards
     return out
 
 
@@ -270,7 +279,8 @@ def test_every_extension_survives_the_pipeline(assets, tmp_path):
             assert _texture(after, vol_after["thicknessTexture"]["index"]) == \
                 _texture(before, vol_before["thicknessTexture"]["index"])
     expected = {"BAKER_thickness", "BAKER_curvature", "BAKER_skin_lut", "BAKER_edges", EDGE_VISIBILITY,
-                "BAKER_tonal_art_map", "BAKER_toon_ramp", "BAKER_fur", "BAKER_hair", "BAKER_caustics"}
+                "BAKER_tonal_art_map", "BAKER_toon_ramp", "BAKER_fur", "BAKER_hair", "BAKER_caustics",
+                "BAKER_hair_cards"}
     if "text" in assets:
         expected |= {"BAKER_glyph_atlas", "BAKER_text"}
     assert expected <= seen, f"not covered: {expected - seen}"

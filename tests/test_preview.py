@@ -195,3 +195,21 @@ def test_text_and_hair_panels(tmp_path):
 def test_unknown_panel_is_an_error(baked_spot):
     with pytest.raises(baker.errors.BakerError):
         preview(baked_spot, size=32, panels=["nope"])
+
+
+def test_hair_cards_panel_is_alpha_tested_and_shaded_along_the_flow(tmp_path):
+    """The cards panel draws the cards alpha-tested: inside the reference's silhouette of the card quads (no
+    alpha test) and cutting a good part of it."""
+    from techniques.cards_groom import make_groom, write_groom_usd
+
+    curves, widths = make_groom(strands=600, clumps=24, seed=6)
+    groom = write_groom_usd(tmp_path / "groom.usda", curves, widths)
+    cards = tmp_path / "cards.glb"
+    assert main(["cards", str(groom), "-o", str(cards), "--cards", "24", "--atlas-size", "512", "-q"]) == 0
+    result = preview(cards, size=192, azimuth=20, elevation=10)
+    assert [n for n, _, _ in result.panels] == ["lambert", "cards"]
+    solid = _covered(_panel(result, "lambert"))
+    cut = _covered(_panel(result, "cards"))
+    print("card pixels", int(solid.sum()), "after the alpha test", int(cut.sum()))
+    assert cut.sum() > 300 and (cut & ~ndimage.binary_dilation(solid, iterations=1)).sum() < 0.02 * cut.sum()
+    assert cut.sum() < 0.9 * solid.sum()

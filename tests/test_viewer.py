@@ -16,8 +16,9 @@ import baker
 from baker.preview import core as pv
 from baker.gltf.images import read_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, DEFAULT_OFF, SPOT, VIEWER, assert_caustics_move, build_viewer, gltf_json,
-                     require_tools, serve, shoot, techniques_in, write_caustic_floor, write_label_and_groom)
+from browser import (BACKGROUND_RGB, CARD_DISTANCES, DEFAULT_OFF, SPOT, VIEWER, assert_cards_alpha_tested,
+                     assert_caustics_move, build_viewer, gltf_json, require_tools, serve, shoot, techniques_in,
+                     write_caustic_floor, write_hair_cards, write_label_and_groom)
 from conftest import assert_khronos_clean
 
 SIZE = 256
@@ -178,3 +179,23 @@ def test_viewer_draws_moving_caustics_on_a_floor(site, tmp_path):
         assert info["techniques"] == ["caustics"] and "caustics" in info["status"], info
     early, late, off = (dict(zip(shots, images))[key] for key in shots)
     assert_caustics_move(early, late, off)
+
+
+def test_viewer_draws_alpha_tested_hair_cards_at_three_distances(site, tmp_path):
+    """`baker cards` output: the cards show alpha-tested (gaps between strands inside the hair's outline) at the
+    framing distance, 2.5x and 6x it without thinning out (drawn pixels x distance² within 20 %), with no console
+    error, and the Kajiya-Kay switch changes the picture."""
+    name = write_hair_cards(site["root"])
+    assert techniques_in(gltf_json(site["root"] / name)) == {"cards"}
+    assert_khronos_clean(site["root"] / name)
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+    shots = {**{key: f"&distance={d}" for key, d in zip(("near", "middle", "far"), CARD_DISTANCES)},
+             "off": "&off=cards"}
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in shots.items()]
+    infos, images = _shoot(jobs, tmp_path)
+    for info in infos:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["cards"] and "cards" in info["status"], info
+    frames = dict(zip(shots, images))
+    assert_cards_alpha_tested([frames["near"], frames["middle"], frames["far"]], frames["off"])

@@ -3,22 +3,22 @@
 //   import '@babylonjs/loaders/glTF/2.0/glTFLoader.js';
 //   import { registerBakerExtensions } from '@baker/babylon';
 //   import translucency from '@baker/runtime-shaders/baker_translucency.glsl';  // text (e.g. Vite '?raw')
-//   registerBakerExtensions({ shaders: { translucency, skin, toon, hatching, edges, fur, hair, text } });
+//   registerBakerExtensions({ shaders: { translucency, skin, toon, hatching, edges, fur, hair, text, caustics, cards } });
 //   const result = await ImportMeshAsync('asset.glb', scene);
 //   const baker = bakerControls(result.meshes[0]);   // the __root__ node
 //   baker.setEnabled('toon', false);                // one switch per technique found (baker.techniques)
 //
 // The GLSL comes from runtime-shaders/ as text: the extensions inject the very modules the reference renders and
 // @baker/three use, they do not carry a copy. One extension per module (BAKER_<name> -> <name>.js). Surface
-// techniques (translucency, pre-integrated skin, toon ramp, hatching, curvature view, caustics) add a MaterialPluginBase to
+// techniques (translucency, pre-integrated skin, toon ramp, hatching, curvature view, caustics, hair cards) add a MaterialPluginBase to
 // the PBRMaterial the loader made, so Babylon's PBR, lights and image processing stay; geometry techniques (fins,
 // shell outline, wireframe, fur shells and fins, hair ribbons, MSDF text) add or replace meshes with ShaderMaterials
 // that include the matching module, lit by the scene's directional lights. Every extension does its work in
 // onReady, when the loader has built the whole scene, and reads custom attributes from their accessors.
 import { registerGLTFExtension, unregisterGLTFExtension } from '@babylonjs/loaders/glTF/2.0/glTFLoaderExtensionRegistry.js';
 import {
-	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_SKIN_LUT, BAKER_TEXT,
-	BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, controls,
+	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_HAIR_CARDS, BAKER_SKIN_LUT,
+	BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, controls,
 } from './common.js';
 import { BakerThicknessExtension } from './thickness.js';
 import { BakerCurvatureExtension } from './curvature.js';
@@ -31,10 +31,12 @@ import { BakerHairExtension } from './hair.js';
 import { BakerGlyphAtlasExtension } from './glyph_atlas.js';
 import { BakerTextExtension } from './text.js';
 import { BakerCausticsExtension } from './caustics.js';
+import { BakerHairCardsExtension } from './hair_cards.js';
 
 export {
-	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_SKIN_LUT, BAKER_TEXT,
-	BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, TECHNIQUES, BakerControls, readAccessor,
+	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_HAIR_CARDS, BAKER_SKIN_LUT,
+	BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, TECHNIQUES, BakerControls,
+	readAccessor,
 } from './common.js';
 export { BakerSurfacePlugin } from './surface.js';
 export { thicknessParameters } from './thickness.js';
@@ -45,7 +47,7 @@ export { textStyle } from './text.js';
 export {
 	BakerThicknessExtension, BakerCurvatureExtension, BakerSkinLutExtension, BakerToonRampExtension,
 	BakerTonalArtMapExtension, BakerEdgesExtension, EdgeVisibilityExtension, BakerFurExtension, BakerHairExtension,
-	BakerGlyphAtlasExtension, BakerTextExtension, BakerCausticsExtension,
+	BakerGlyphAtlasExtension, BakerTextExtension, BakerCausticsExtension, BakerHairCardsExtension,
 };
 
 /** extension name -> loader extension class (each a glTF extension: used only by files that list it). */
@@ -55,7 +57,7 @@ export const EXTENSIONS = {
 	[BAKER_TONAL_ART_MAP]: BakerTonalArtMapExtension, [BAKER_EDGES]: BakerEdgesExtension,
 	[EXT_EDGE_VISIBILITY]: EdgeVisibilityExtension, [BAKER_FUR]: BakerFurExtension, [BAKER_HAIR]: BakerHairExtension,
 	[BAKER_GLYPH_ATLAS]: BakerGlyphAtlasExtension, [BAKER_TEXT]: BakerTextExtension,
-	[BAKER_CAUSTICS]: BakerCausticsExtension,
+	[BAKER_CAUSTICS]: BakerCausticsExtension, [BAKER_HAIR_CARDS]: BakerHairCardsExtension,
 };
 
 const CONTROLS = 'BAKER_controls';

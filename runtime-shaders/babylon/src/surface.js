@@ -1,5 +1,5 @@
 // The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature,
-// BAKER_caustics):
+// BAKER_caustics, BAKER_hair_cards):
 // each extension builds one part (GLSL module, uniforms, samplers, attributes); one MaterialPluginBase per PBR
 // material composes the parts of that material. Per punctual light, after Babylon's own diffuse
 // (computeDiffuseLighting), the clamped N.L of Lambert's term becomes f (vec3): the skin LUT (Penner) and/or the
@@ -10,7 +10,7 @@ import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase
 import { controls, glslType, loadedPrimitives } from './common.js';
 
 const PLUGIN_NAME = 'BakerSurface';
-const PART_DEFINES = ['translucency', 'skin', 'toon', 'tam', 'curvature', 'caustics'];
+const PART_DEFINES = ['translucency', 'skin', 'toon', 'tam', 'curvature', 'caustics', 'cards'];
 const define = (name) => `BAKER_${name.toUpperCase()}`;
 // regular expressions (Babylon's "!" points) matched in the PBR fragment shader after its includes are expanded
 const LIGHT_POINT = '!info\\.diffuse=computeDiffuseLighting\\(preInfo,diffuse(\\d+)\\.rgb\\);';
@@ -50,6 +50,14 @@ if (u_baker_caustics_on > 0.5) {
 	finalDiffuse = baker_caustics_apply(finalDiffuse, bakerSun * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x,
 		bakerCausticsE, u_bakerCausticsStrength, bakerCausticsFade);
 }`;
+
+// hair cards: the strand direction from the flow texture in the card's frame (from screen-space derivatives, as
+// @baker/three), then per light Kajiya-Kay along it instead of Lambert's term (baker_hair_cards.glsl); the alpha test
+// is the loader's own (alphaCutOff)
+const CARDS_FRAME = `
+vec3 bakerCardsData = texture(u_bakerCardsData, v_bakerUv).rgb;
+vec3 bakerCardsT = baker_hair_cards_flow(texture(u_bakerCardsFlow, v_bakerUv).rgb, normalW,
+	baker_hair_cards_frame(normalW, dFdx(vPositionW), dFdy(vPositionW), dFdx(v_bakerUv), dFdy(v_bakerUv)));`;
 
 // every texture a part holds (all its frames when it swaps them), not only those bound now
 const partTextures = (p) => p.textures || Object.values(p.samplers || {});
@@ -183,7 +191,7 @@ v_bakerUv = vec2(0.0);
 		const code = {
 			CUSTOM_FRAGMENT_DEFINITIONS: `${modules}\n${structs}\n${samplers}\n${varyings}\n${KEY_LIGHT}`,
 		};
-		if (diffuse.length || p.translucency || p.caustics) {
+		if (diffuse.length || p.translucency || p.caustics || p.cards) {
 			// after Babylon's own diffuse of light $1 (directional, point or spot): f replaces the clamped N.L
 			code[LIGHT_POINT] = `info.diffuse=computeDiffuseLighting(preInfo,diffuse$1.rgb);
 {
@@ -196,13 +204,18 @@ v_bakerUv = vec2(0.0);
 	if (bakerReplaced) bakerDirect += (f - vec3(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb;
 	${p.translucency ? `bakerDirect += u_baker_translucency_on * preInfo.attenuation * diffuse$1.rgb *
 		baker_translucency(${p.translucency.struct}, normalW, viewDirectionW, bakerL, ${p.translucency.thickness});` : ''}
+	${p.cards ? `if (u_baker_cards_on > 0.5) bakerCards += (preInfo.attenuation / PI) * (baker_hair_cards_shade(
+		albedoOpacityOut.surfaceAlbedo, bakerCardsT, normalW, bakerL, viewDirectionW, diffuse$1.rgb, bakerCardsData.g,
+		bakerCardsData.b, 40.0, 0.1, 0.4) - clamp(dotNL, 0.0, 1.0) * diffuse$1.rgb * albedoOpacityOut.surfaceAlbedo);` : ''}
 #ifdef DIRLIGHT$1
 	bakerSun += clamp(dotNL, 0.0, 1.0) * (preInfo.attenuation / PI) * diffuse$1.rgb;
 #endif
 }`;
 		}
-		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);\nvec3 bakerSun = vec3(0.0);';
+		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);\nvec3 bakerSun = vec3(0.0);\nvec3 bakerCards = vec3(0.0);' +
+			(p.cards ? CARDS_FRAME : '');
 		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;' +
+			'finalDiffuse += bakerCards * vLightingIntensity.x;' +
 			(p.caustics ? CAUSTICS : '');
 		let outgoing = '';
 		if (p.tam) outgoing += `

@@ -287,6 +287,81 @@ def add_caustics(mat, caustics: dict, textures: dict, location) -> None:
     output.location = (x + 500, y)
 
 
+CARDS_TANGENT = "BAKER Hair Cards Tangent"
+
+
+def add_hair_cards(mat, cards: dict, textures: dict, location) -> None:
+    """BAKER_hair_cards (baker_hair_cards.glsl, RTR4 14.7.1): the flow texture decoded in the card's frame (UV
+    tangent T, N, bitangent cross(T, N): root -> tip, as baker_hair_cards_flow with TANGENT.w = -1) into the
+    Principled BSDF's Tangent, with anisotropy, so its highlight runs across the strands (Kajiya-Kay's look); the
+    data texture's strand random value varies the roughness per strand. The stock importer's alpha clip stays."""
+    tree = mat.node_tree
+    principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    x, y = location
+    flow = image_node(tree, textures, cards.get("flowTexture"), (x - 1400, y))
+    data = image_node(tree, textures, cards.get("dataTexture"), (x - 1400, y - 300))
+    if principled is None or flow is None:
+        return
+    coords = tree.nodes.new("ShaderNodeUVMap")
+    coords.location = (x - 1650, y)
+    for image in (flow, data):
+        if image is not None:
+            tree.links.new(coords.outputs["UV"], image.inputs["Vector"])
+    decode = tree.nodes.new("ShaderNodeVectorMath")  # 0..1 texel -> -1..1
+    decode.operation = "MULTIPLY_ADD"
+    decode.location = (x - 1150, y)
+    tree.links.new(flow.outputs["Color"], decode.inputs[0])
+    decode.inputs[1].default_value = (2.0, 2.0, 2.0)
+    decode.inputs[2].default_value = (-1.0, -1.0, -1.0)
+    split = tree.nodes.new("ShaderNodeSeparateXYZ")
+    split.location = (x - 950, y)
+    tree.links.new(decode.outputs["Vector"], split.inputs[0])
+    tangent = tree.nodes.new("ShaderNodeTangent")
+    tangent.direction_type = "UV_MAP"
+    tangent.location = (x - 1150, y - 250)
+    geometry = tree.nodes.new("ShaderNodeNewGeometry")
+    geometry.location = (x - 1150, y - 450)
+    bitangent = tree.nodes.new("ShaderNodeVectorMath")
+    bitangent.operation = "CROSS_PRODUCT"
+    bitangent.location = (x - 950, y - 300)
+    tree.links.new(tangent.outputs["Tangent"], bitangent.inputs[0])
+    tree.links.new(geometry.outputs["Normal"], bitangent.inputs[1])
+    total = None
+    for i, (component, axis) in enumerate((("X", tangent.outputs["Tangent"]), ("Y", bitangent.outputs["Vector"]),
+                                           ("Z", geometry.outputs["Normal"]))):
+        term = tree.nodes.new("ShaderNodeVectorMath")
+        term.operation = "SCALE"
+        term.location = (x - 750, y - 150 * i)
+        tree.links.new(axis, term.inputs[0])
+        tree.links.new(split.outputs[component], term.inputs["Scale"])
+        if total is None:
+            total = term.outputs["Vector"]
+            continue
+        add = tree.nodes.new("ShaderNodeVectorMath")
+        add.operation = "ADD"
+        add.location = (x - 550, y - 150 * i)
+        tree.links.new(total, add.inputs[0])
+        tree.links.new(term.outputs["Vector"], add.inputs[1])
+        total = add.outputs["Vector"]
+    unit = tree.nodes.new("ShaderNodeVectorMath")
+    unit.operation = "NORMALIZE"
+    unit.name = unit.label = CARDS_TANGENT
+    unit.location = (x - 350, y)
+    tree.links.new(total, unit.inputs[0])
+    tree.links.new(unit.outputs["Vector"], principled.inputs["Tangent"])
+    principled.inputs["Anisotropic"].default_value = 0.8
+    if data is not None:
+        channels = tree.nodes.new("ShaderNodeSeparateColor")
+        channels.location = (x - 1150, y - 650)
+        tree.links.new(data.outputs["Color"], channels.inputs["Color"])
+        roughness = tree.nodes.new("ShaderNodeMapRange")
+        roughness.location = (x - 950, y - 650)
+        roughness.inputs["To Min"].default_value = 0.4
+        roughness.inputs["To Max"].default_value = 0.6
+        tree.links.new(channels.outputs["Blue"], roughness.inputs["Value"])
+        tree.links.new(roughness.outputs["Result"], principled.inputs["Roughness"])
+
+
 def add_material_groups(mat, exts: dict, textures: dict) -> None:
     if not mat.use_nodes:
         mat.use_nodes = True
@@ -380,3 +455,7 @@ def add_material_groups(mat, exts: dict, textures: dict) -> None:
     caustics = exts.get("BAKER_caustics")
     if isinstance(caustics, dict):
         add_caustics(mat, caustics, textures, (x, y))
+        y -= 400
+    cards = exts.get("BAKER_hair_cards")
+    if isinstance(cards, dict):
+        add_hair_cards(mat, cards, textures, (x, y))

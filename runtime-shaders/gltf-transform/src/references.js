@@ -62,6 +62,16 @@ export const REFERENCES = {
 			["rootBinding/barycentrics", "accessor"],
 		],
 	},
+	"BAKER_hair_cards": {
+		"material": [
+			["dataTexture", "texture"],
+			["flowTexture", "texture"],
+		],
+		"mesh.primitive": [
+			["regions", "accessor"],
+			["cardFirstIndex", "accessor"],
+		],
+	},
 	"BAKER_skin_lut": {
 		"material": [
 			["lutTexture", "texture"],

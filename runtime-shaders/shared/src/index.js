@@ -13,6 +13,7 @@ export const BAKER_TEXT = 'BAKER_text';
 export const BAKER_HAIR = 'BAKER_hair';
 export const BAKER_FUR = 'BAKER_fur';
 export const BAKER_CAUSTICS = 'BAKER_caustics';
+export const BAKER_HAIR_CARDS = 'BAKER_hair_cards';
 
 /** Techniques (switch names) and the extension each comes from. Techniques off by default are debug views. */
 export const TECHNIQUES = {
@@ -27,13 +28,14 @@ export const TECHNIQUES = {
 	hair: { extension: BAKER_HAIR, label: 'hair ribbons' },
 	text: { extension: BAKER_TEXT, label: 'MSDF text' },
 	caustics: { extension: BAKER_CAUSTICS, label: 'caustics' },
+	cards: { extension: BAKER_HAIR_CARDS, label: 'hair cards (Kajiya-Kay)' },
 	curvature: { extension: BAKER_CURVATURE, label: 'curvature view', defaultOff: true },
 };
 
 const GLSL_NAMES = {
 	translucency: 'baker_translucency.glsl', skin: 'baker_skin.glsl', toon: 'baker_toon.glsl',
 	hatching: 'baker_hatching.glsl', edges: 'baker_edges.glsl', fur: 'baker_fur.glsl', hair: 'baker_hair.glsl',
-	text: 'baker_text.glsl', caustics: 'baker_caustics.glsl',
+	text: 'baker_text.glsl', caustics: 'baker_caustics.glsl', cards: 'baker_hair_cards.glsl',
 };
 
 /** The runtime-shaders module `key` of options.shaders, as given; throws a message naming the file when missing. */

@@ -1,5 +1,5 @@
 // The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature,
-// BAKER_caustics):
+// BAKER_caustics, BAKER_hair_cards):
 // the plugins of those extensions each build one part (GLSL module, uniforms, attributes); BakerSurface composes
 // the parts of one material in a single onBeforeCompile.
 import { DIRECTIONAL_DIFFUSE, TECHNIQUES, controls, sceneMaterials } from './common.js';
@@ -78,9 +78,10 @@ vBakerUv = uv;`)
 					: baker_xtoon_detail_orientation(normal, normalize(vViewPosition) * -1.0, u_bakerToonOrientationPower)));
 		}`);
 		let lights = '';
-		if (diffuse.length || p.translucency || p.caustics) {
+		if (diffuse.length || p.translucency || p.caustics || p.cards) {
 			lights = `
 vec3 bakerSun = vec3(0.0);  // Lambert light of the directional lights (the sun) on the base colour
+${p.cards ? CARDS_FRAME : ''}
 #if NUM_DIR_LIGHTS > 0
 	for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
 		vec3 L = directionalLights[i].direction;  // view space, towards the light
@@ -90,6 +91,7 @@ vec3 bakerSun = vec3(0.0);  // Lambert light of the directional lights (the sun)
 		reflectedLight.directDiffuse += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * (f - vec3(saturate(dotNL)));
 		${p.translucency ? `reflectedLight.directDiffuse += u_baker_translucency_on * diffuseColor.rgb * directionalLights[i].color *
 			baker_translucency(u_bakerThickness, normal, normalize(vViewPosition), L, vBaker${p.translucency.attribute});` : ''}
+		${p.cards ? CARDS_LIGHT : ''}
 		bakerSun += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * saturate(dotNL);
 	}
 #endif
@@ -141,6 +143,19 @@ if (u_baker_caustics_on > 0.5) {
 	reflectedLight.directDiffuse = baker_caustics_apply(reflectedLight.directDiffuse, bakerSun, bakerCausticsE,
 		u_bakerCausticsStrength, bakerCausticsFade);
 }`;
+
+// hair cards: the strand direction from the flow texture in the card's frame (from screen-space derivatives: three.js
+// passes no TANGENT without a normal map), then per directional light Kajiya-Kay along it instead of Lambert
+// (baker_hair_cards.glsl); the alpha test is the material's own (alphaTest = alphaCutoff)
+const CARDS_FRAME = `
+vec3 bakerCardsData = texture(u_bakerCardsData, vBakerUv).rgb;
+vec3 bakerCardsT = baker_hair_cards_flow(texture(u_bakerCardsFlow, vBakerUv).rgb, normal,
+	baker_hair_cards_frame(normal, dFdx(-vViewPosition), dFdy(-vViewPosition), dFdx(vBakerUv), dFdy(vBakerUv)));`;
+const CARDS_LIGHT = `if (u_baker_cards_on > 0.5) {
+			reflectedLight.directDiffuse += RECIPROCAL_PI * baker_hair_cards_shade(diffuseColor.rgb, bakerCardsT, normal, L,
+				normalize(vViewPosition), directionalLights[i].color, bakerCardsData.g, bakerCardsData.b, 40.0, 0.1, 0.4)
+				- directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * saturate(dotNL);
+		}`;
 
 export function surfacePlugin(name, build) {
 	return class {

@@ -1,0 +1,101 @@
+"""``baker cards GROOM -o OUT``: read a groom (any format ``baker guides`` reads), make the cards, write them.
+
+``.glb``/``.gltf``: a ``hair_cards`` mesh + material with ``BAKER_hair_cards`` (:mod:`.extension`);
+``.usda``/``.usdc``/``.usd``: the same document through baker's USD writer (a Mesh, UsdPreviewSurface with the
+atlas's colour and opacity (``opacityThreshold`` = alphaCutoff), the data and flow textures as ``UsdUVTexture``
+outputs of the material, the card layout as ``baker:hair_cards:*`` attributes).
+"""
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+
+
+from baker.errors import BakerError
+from baker.techniques.cards.command import CARDS_OUTPUT_SUFFIXES
+from baker.techniques.cards.options import CardsOptions
+
+
+def checked_options(args) -> CardsOptions:
+    from baker.options import from_args
+
+    if Path(args.output).suffix.lower() not in CARDS_OUTPUT_SUFFIXES:
+        raise BakerError(args.output, f"unsupported output type (use one of {', '.join(CARDS_OUTPUT_SUFFIXES)})")
+    try:
+        options = from_args(CardsOptions, "cards", args)
+    except ValueError as exc:
+        raise BakerError(None, str(exc)) from None
+    if options.atlas_size & (options.atlas_size - 1):
+        raise BakerError(None, f"--atlas-size must be a power of two, got {options.atlas_size}")
+    return options
+
+
+def make_cards_from_file(groom_path, options: CardsOptions):
+    """(CardsResult, groom counts for BAKER_hair_cards, seconds per step) of a groom file."""
+    from baker.techniques.cards.kernel import make_cards
+    from baker.techniques.hair.groom import clean_groom, read_groom
+    from baker.techniques.hair.guide_solver import resample_strands
+
+    seconds = {}
+    start = time.perf_counter()
+    groom = clean_groom(read_groom(groom_path), groom_path, options.bad_curves)
+    strands, lengths, widths = resample_strands(groom.points, groom.counts, options.vertices_per_strand,
+                                                groom.widths)
+    seconds["read"] = time.perf_counter() - start
+    start = time.perf_counter()
+    try:
+        result = make_cards(strands, lengths, widths, options)
+    except ValueError as exc:  # the atlas cannot hold the cards
+        raise BakerError(None, str(exc)) from None
+    seconds["cards"] = time.perf_counter() - start
+    counts = {"strandCount": int(groom.count), "pointCount": int(len(groom.points)),
+              "verticesPerStrand": int(options.vertices_per_strand),
+              "meanStrandLength": float(lengths.mean()),
+              "skippedCurves": int(sum((groom.skipped or {}).values()))}
+    return result, counts, seconds
+
+
+def build_document(result, counts: dict, options: CardsOptions):
+    from baker.gltf.document import GltfDocument
+    from baker.techniques.cards.extension import write_cards
+
+    doc = GltfDocument()
+    write_cards(doc, result, groom=counts, options=options)
+    return doc
+
+
+def write_output(doc, output) -> None:
+    suffix = Path(output).suffix.lower()
+    if suffix in (".glb", ".gltf"):
+        doc.save(output)
+    else:
+        from baker.gltf.usd import write_usd
+        from baker.registry import usd_primitive_hooks, vertex_attribute_widths
+
+        write_usd(doc, output, usd_primitive_hooks(), vertex_attribute_widths())
+
+
+def run(args) -> int:
+    options = checked_options(args)
+    result, counts, seconds = make_cards_from_file(args.input, options)
+    start = time.perf_counter()
+    write_output(build_document(result, counts, options), args.output)
+    seconds["write"] = time.perf_counter() - start
+    s = result.stats
+    info = {"input": str(args.input), "output": str(args.output), "strands": counts["strandCount"],
+            "skippedCurves": counts["skippedCurves"], "cards": result.card_count, "quads": s["quadCount"],
+            "atlasSize": options.atlas_size, "clusteringError": s["clusteringError"],
+            "cardDistance": s["cardDistance"], "pointsOnOpaqueTexels": s["pointsOnOpaqueTexels"],
+            "seconds": {k: round(v, 3) for k, v in seconds.items()}}
+    if args.format == "json":
+        print(json.dumps(info, indent=2, sort_keys=True))
+    elif not args.quiet:
+        print(f"cards: {info['strands']} strands -> {info['cards']} cards, {info['quads']} quads, atlas "
+              f"{options.atlas_size}², {100 * s['cardDistance']['within5Percent']:.1f} % of strand points within "
+              f"5 % of the mean length of a card, {100 * s['pointsOnOpaqueTexels']:.1f} % on opaque texels -> "
+              f"{args.output}", file=sys.stderr)
+    return 0
+
+
