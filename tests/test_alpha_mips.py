@@ -303,3 +303,43 @@ def test_corrupt_chain_is_one_line_exit_2(fur_files, tmp_path, capsys):
     err = capsys.readouterr()
     assert code != 0 and "BAKER_COVERAGE_MIPS_KTX2" in err.out + err.err
     assert "Traceback" not in err.out + err.err
+
+
+def test_inspect_lists_the_chains(fur_files, capsys):
+    from baker.cli import main
+
+    assert main(["inspect", str(fur_files[0]), "--format", "json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    rows = info["coverageMips"]
+    assert len(rows) == 5 and {r["place"] for r in rows} == {"/materials/0/extensions/BAKER_fur"}
+    for row in rows:
+        sizes = level_sizes(row["size"][1], row["size"][0])
+        assert row["levels"] == len(sizes) and row["alphaCutoff"] == 0.5
+        assert not levels_off_coverage(np.array(row["coverage"]), sizes)
+
+
+def test_usd_references_each_chain(fur_files, tmp_path):
+    from pxr import Usd
+
+    from baker.gltf.usd import write_usd
+
+    doc = GltfDocument.load(fur_files[0])
+    ext = doc.json["materials"][0]["extensions"]["BAKER_fur"]
+    stage_path = tmp_path / "fur.usda"
+    write_usd(doc, stage_path)
+    stage = Usd.Stage.Open(str(stage_path))
+    (material,) = [p for p in stage.Traverse() if p.GetTypeName() == "Material"]
+    for i, entry in enumerate(ext["coverageMips"]):
+        at = f"baker:fur:coverageMips:_{i}"
+        ktx2 = Path(material.GetAttribute(f"{at}:file").Get().resolvedPath)
+        png = Path(material.GetAttribute(f"{at}:image").Get().resolvedPath)
+        assert ktx2.suffix == ".ktx2" and png.suffix == ".png"
+        assert material.GetAttribute(f"{at}:alphaCutoff").Get() == 0.5
+        spec = read_ktx2_per_spec(ktx2.read_bytes())
+        blob = ktx2.read_bytes()
+        expected = read_coverage_mips(doc, entry)
+        assert spec["levelCount"] == material.GetAttribute(f"{at}:levelCount").Get() == len(expected)
+        for (offset, length, _), level in zip(spec["levels"], expected):
+            assert blob[offset: offset + length] == level.tobytes()
+        texture = doc.json["textures"][entry["texture"]]
+        assert png.read_bytes() == doc.image_bytes(texture["source"])
