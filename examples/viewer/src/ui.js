@@ -60,9 +60,12 @@ export function addToggle(label, key, checked, onChange) {
 	toggles.appendChild(el);
 }
 
-/** Camera distance that fits a bounding sphere in the vertical field of view. */
+// ?distance=K: the camera K times as far as the framing distance (tests draw the same view from afar)
+const DISTANCE_SCALE = Number(params.get('distance')) > 0 ? Number(params.get('distance')) : 1;
+
+/** Camera distance that fits a bounding sphere in the vertical field of view (times ?distance=). */
 export function frameDistance(radius) {
-	return radius / Math.sin((FOV_DEGREES / 2) * Math.PI / 180) * 1.05;
+	return radius / Math.sin((FOV_DEGREES / 2) * Math.PI / 180) * 1.05 * DISTANCE_SCALE;
 }
 export const FRAME_DIRECTION = (() => {
 	const v = [0.5, 0.25, 0.85];
