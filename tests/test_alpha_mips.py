@@ -343,3 +343,56 @@ def test_usd_references_each_chain(fur_files, tmp_path):
             assert blob[offset: offset + length] == level.tobytes()
         texture = doc.json["textures"][entry["texture"]]
         assert png.read_bytes() == doc.image_bytes(texture["source"])
+
+
+# ------------------------------------------------------------------------------------------------ baker preview
+QUAD_OBJ = ("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+            "f 1/1/1 2/2/1 3/3/1 4/4/1\n")
+QUAD_FUR = {"shells": 2, "texture_size": 64, "hairs": 800, "root_radius": 0.012, "tip_radius": 0.006, "tiling": 4.0,
+            "fins": False}
+
+
+def _replace_chains(source, target, make_levels):
+    """Copy of the furred file with every chain's KTX2 replaced by make_levels(level 0, cutoff)."""
+    doc = GltfDocument.load(source)
+    for entry in doc.json["materials"][0]["extensions"]["BAKER_fur"]["coverageMips"]:
+        base = read_coverage_mips(doc, entry)[0]
+        levels = make_levels(base, entry["alphaCutoff"])
+        entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(levels), np.uint8), target=None)
+    doc.save(target)
+    return target
+
+
+def test_preview_fur_keeps_coverage_when_small(tmp_path):
+    """`baker preview`'s fur panel draws the shells alpha-tested from the chains: rendered at 384, 128 and 64 px (the
+    quad 3x and 6x as far) the fur keeps at least half its near coverage (texel coverage is what the chain holds;
+    bilinear sampling of level 0's sharp hairs passes less often, see tests/test_alpha_mips_hosts.py), while with
+    the box chain it is gone."""
+    from baker.preview.core import BACKGROUND, preview
+
+    (tmp_path / "quad.obj").write_text(QUAD_OBJ)
+    fur = tmp_path / "fur.glb"
+    save(baker.bake(tmp_path / "quad.obj", bakes=["fur"], options={"fur": QUAD_FUR}, seed=1), fur)
+    box = _replace_chains(fur, tmp_path / "box.glb", lambda base, cut: alpha_mip_chain(
+        base, cut, transfer="gamma2.2", preserve_coverage=False).levels)
+    bare = _replace_chains(fur, tmp_path / "bare.glb", lambda base, cut: [
+        np.concatenate([lv[..., :3], np.zeros_like(lv[..., 3:])], axis=2)
+        for lv in alpha_mip_chain(base, cut, transfer="gamma2.2").levels])  # every texel fails: the skin alone
+
+    def coverage(path, size):
+        result = preview(path, size=size, azimuth=20, elevation=10, panels=["fur"])
+        (_, _, (y, x, s)), = [p for p in result.panels if p[0] == "fur"]
+        return result.sheet[y: y + s, x: x + s].astype(np.float64) / 255.0
+
+    measured = {}
+    for name, path in (("chain", fur), ("box", box)):
+        for size in (384, 128, 64):
+            on, off = coverage(path, size), coverage(bare, size)
+            quad = np.abs(off - np.array(BACKGROUND)).max(axis=2) > 0.02
+            changed = np.abs(on - off).max(axis=2) > 0.02  # the panel's skin is the hair's mean colour, darker
+            measured[name, size] = float((changed & quad).sum() / quad.sum())
+    print(measured)
+    near = measured["chain", 384]
+    assert 0.05 < near < 0.9
+    assert measured["chain", 128] >= 0.5 * near and measured["chain", 64] >= 0.5 * near
+    assert measured["box", 128] < 0.1 * near and measured["box", 64] < 0.1 * near
