@@ -5,9 +5,10 @@ texels around them gives texels below the cutoff, so hair, fur shells and fins t
 (RTR4 14.7.1, "Geometry and Alpha"). Castaño ("Computing Alpha Mipmaps", 2010) scales each level's alpha so the
 fraction of texels passing the test equals level 0's, the scale found by binary search.
 
-Filter: every level is the exact box (area) average of level 0's texels under its footprint, computed from level 0
-directly through prefix sums, so non-power-of-two sizes (a 64 x 100 fin texture) get their true footprint and no
-rounding compounds from level to level. Colour is filtered *premultiplied* (weighted by alpha) in linear light and
+Filter: every level is the exact box (area) average of level 0's texels under its footprint (kept unquantized from
+level to level: the 2 x 2 mean of the level above where sides halve exactly, else straight from level 0 through prefix
+sums), so non-power-of-two sizes (a 64 x 100 fin texture) get their true footprint and no rounding compounds from
+level to level. Colour is filtered *premultiplied* (weighted by alpha) in linear light and
 stored straight: texels that pass the test after the alpha scale show the strands' colour, not the colour under the
 transparent texels around them; where a footprint holds no alpha at all, its plain average is kept. Alpha is
 filtered plainly, then scaled. Level 0 is the input unchanged (the PNG the document keeps).
@@ -70,6 +71,31 @@ def alpha_coverage(alpha_u8: np.ndarray, alpha_cutoff: float) -> float:
     return float(np.mean(a >= np.float32(alpha_cutoff))) if a.size else 0.0
 
 
+def bilinear_coverage(alpha_u8: np.ndarray, alpha_cutoff: float, samples: int = 4, repeat: bool = True) -> float:
+    """Fraction of ``samples`` x ``samples`` bilinear samples per texel that pass the test: what a GPU's LINEAR
+    filter sees, Castaño's (2010) own coverage measure (the chains hold :func:`alpha_coverage`, the texel
+    fraction; this measures how that survives bilinear sampling). ``repeat``: wrap at the edges, else clamp."""
+    a = np.asarray(alpha_u8, np.float64) / 255.0
+    offsets = (np.arange(samples) + 0.5) / samples - 0.5  # from the texel centre, in texels
+    passed = 0.0
+    for axis_y in offsets:
+        ay = _lerp_neighbour(a, axis_y, 0, repeat)
+        for axis_x in offsets:
+            passed += float(np.mean(_lerp_neighbour(ay, axis_x, 1, repeat) >= alpha_cutoff))
+    return passed / samples ** 2
+
+
+def _lerp_neighbour(a: np.ndarray, offset: float, axis: int, repeat: bool) -> np.ndarray:
+    """``a`` sampled ``offset`` texels (|offset| < 1) along ``axis`` with linear interpolation."""
+    step = 1 if offset > 0 else -1
+    if repeat:
+        neighbour = np.roll(a, -step, axis=axis)
+    else:
+        n = a.shape[axis]
+        neighbour = np.take(a, np.clip(np.arange(n) + step, 0, n - 1), axis=axis)
+    return (1.0 - abs(offset)) * a + abs(offset) * neighbour
+
+
 def box_resample(values: np.ndarray, height: int, width: int) -> np.ndarray:
     """Area-weighted (box) average of ``values`` (H, W, C) float64 onto ``height`` x ``width``: each output texel is
     the mean of the input over its footprint, fractional texels weighted by the part covered. Exact, any ratio."""
@@ -113,12 +139,23 @@ def alpha_scale_for_coverage(alpha: np.ndarray, alpha_cutoff: float, target: flo
     """The scale ``s`` whose stored alpha ``round(clip(alpha * s) * 255)`` passes the test on a fraction of texels
     closest to ``target`` (Castaño 2010: binary search on the scale; coverage only grows with ``s``).
 
-    alpha : float64 filtered alpha, 0..1."""
-    def covered(scale: float) -> float:
-        return alpha_coverage(np.rint(np.clip(alpha * scale, 0.0, 1.0) * 255.0), alpha_cutoff)
-
+    alpha : float64 filtered alpha, 0..1. A stored value ``k`` passes when ``k / 255 >= cutoff`` (float32), i.e.
+    ``k >= k_pass``; ``round(x) >= k_pass`` when ``x >= k_pass - 0.5``; so a texel passes at scale ``s`` when
+    ``alpha >= (k_pass - 0.5) / (255 s)``, counted by a binary search in the sorted alphas (one sort per level,
+    not one pass over the level per step)."""
     if target <= 0.0:
         return 1.0  # nothing passes at level 0: nothing to preserve
+    k_pass = int(np.argmax(np.arange(256, dtype=np.float32) / np.float32(255.0) >= np.float32(alpha_cutoff)))
+    if k_pass == 0:
+        return 1.0  # a cutoff of 0: every texel passes at any scale
+    ordered = np.sort(alpha, axis=None)
+    n = ordered.size
+
+    def covered(scale: float) -> float:
+        if scale <= 0.0:
+            return 0.0
+        return (n - int(np.searchsorted(ordered, (k_pass - 0.5) / (255.0 * scale), side="left"))) / n
+
     low, high = 0.0, MAX_SCALE
     if covered(high) <= target:
         return high if covered(high) > covered(1.0) else 1.0
@@ -161,8 +198,13 @@ def alpha_mip_chain(rgba: np.ndarray, alpha_cutoff: float, *, preserve_coverage:
     stacked = np.concatenate([color0 * alpha0[..., None], color0, alpha0[..., None]], axis=2)
     target = alpha_coverage(rgba[..., 3], alpha_cutoff)
     levels, coverage, scales = [np.ascontiguousarray(rgba)], [target], [1.0]
+    previous = stacked
     for h, w in level_sizes(height, width)[1:]:
-        filtered = box_resample(stacked, h, w)
+        if previous.shape[:2] == (2 * h, 2 * w):  # footprints nest: the 2 x 2 mean of the level above is exact
+            filtered = previous.reshape(h, 2, w, 2, -1).mean(axis=(1, 3))
+        else:  # an odd side: each texel's exact footprint in level 0
+            filtered = box_resample(stacked, h, w)
+        previous = filtered
         alpha = np.clip(filtered[..., 6], 0.0, 1.0)
         weighted = alpha > 1e-9
         color = np.where(weighted[..., None], filtered[..., 0:3] / np.maximum(alpha, 1e-9)[..., None],
