@@ -1,7 +1,7 @@
 // BAKER_fur: Lengyel et al. 2001 shells (one blended pass per shell texture) and fins.
 import * as THREE from 'three';
 import { coverageMipsOf } from '@baker/shared';
-import { BAKER_EDGES, BAKER_FUR, controls, coverageMipsTexture, DIRECTIONAL_DIFFUSE, litShaderMaterial, primitiveOf, requireShader, sceneMaterials, textureOf } from './common.js';
+import { BAKER_EDGES, BAKER_FUR, controls, coverageMipsTexture, DIRECTIONAL_DIFFUSE, litShaderMaterial, primitiveOf, requireShader, textureOf } from './common.js';
 
 const FUR_SHELL_VERTEX = `
 uniform float u_shell;
@@ -91,11 +91,16 @@ export class BakerFurPlugin {
 		const c = controls(this.parser);
 		const materials = this.parser.json.materials || [];
 		const glsl = () => requireShader(this.shaders, 'fur');
-		for (const [object, , index] of sceneMaterials(this.parser, result.scene)) {
-			const ext = materials[index]?.extensions?.[BAKER_FUR];
-			if (!ext) continue;
+		const objects = [];
+		result.scene.traverse((o) => o.isMesh && objects.push(o));
+		for (const object of objects) {
 			const primitive = primitiveOf(this.parser, object);
 			const finOf = primitive?.extensions?.[BAKER_FUR]?.finsOf;
+			// a fin primitive has no material of its own (BAKER_fur README): its source primitive's material says
+			const source = finOf !== undefined
+				? this.parser.json.meshes[this.parser.associations.get(object).meshes]?.primitives?.[finOf] : primitive;
+			const ext = materials[source?.material]?.extensions?.[BAKER_FUR];
+			if (!ext) continue;
 			if (finOf !== undefined) {
 				const chain = coverageMipsOf(ext, ext.finTexture);
 				const mipped = chain && await coverageMipsTexture(this.parser, chain);
