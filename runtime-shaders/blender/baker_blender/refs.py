@@ -15,6 +15,7 @@ ACCESSORS = {
                           "fonts[].glyphs.advance", "fonts[].glyphs.planeBounds", "fonts[].glyphs.atlasBounds",
                           "fonts[].kerning.pairs", "fonts[].kerning.advance"),
     "BAKER_text": ("glyphs.glyph", "glyphs.position"),
+    "BAKER_fur": ("coverageMips[].accessor",),  # the KTX2 bytes of each coverage-preserving mip chain
 }
 # accessors holding vertex indices of their primitive (remapped by position when Blender renumbers vertices)
 VERTEX_INDEX_ACCESSORS = {("BAKER_edges", "edges"), ("BAKER_edges", "oppositeVertices"),
