@@ -12,7 +12,7 @@ measured here (SwiftShader), coverage near / 3x / 6x = 0.153 / 0.125 / 0.108 (th
 and the same asset with each chain replaced by the plain box-filtered chain (what mipmapping the PNG gives; written
 here with the alpha scale off) to lose it (below LOST of near at 3x and 6x; measured 0): the control that shows the
 test can fail. (Matching Castaño's bilinear-sampled coverage instead would hold the frames closer but move the texel
-fraction 20-35% off level 0's on these shells; see benchmarks/cards.py.)
+fraction 10-40% or more off level 0's on these shells; see benchmarks/RESULTS.md.)
 """
 from __future__ import annotations
 
