@@ -76,13 +76,10 @@ def _percent(values, sizes, down_to=2):
     return " / ".join(f"{100 * v:.1f}" for v, (h, w) in zip(values, sizes) if min(h, w) >= down_to)
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeat", type=int, default=3)
-    args = parser.parse_args()
-    rows = coverage_per_mip(args.repeat)
+def print_coverage_table(rows, repeat: int) -> None:
+    """The RESULTS.md table of :func:`coverage_per_mip`'s rows."""
     print(f"alpha cutoff {CUTOFF}; coverage in % of texels per level, level 0 first, down to 2 texels on the short "
-          f"side; 'off': levels down to 8 x 8 more than 10% (or one texel) from level 0; best of {args.repeat}, "
+          f"side; 'off': levels down to 8 x 8 more than 10% (or one texel) from level 0; best of {repeat}, "
           "2 cores\n")
     print("| texture | chain | texel coverage per level (%) | levels off | bilinear coverage per level (%) | "
           "build (ms) |")
@@ -97,6 +94,13 @@ def main() -> None:
     for r in rows:
         print(f"{r['name']}: chain build {r['seconds_chain'] / r['seconds_box']:.1f}x the box chain's time; "
               f"alpha scales {' '.join(f'{s:.2f}' for s in r['scales'])}")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3)
+    args = parser.parse_args()
+    print_coverage_table(coverage_per_mip(args.repeat), args.repeat)
 
 
 if __name__ == "__main__":
