@@ -360,8 +360,14 @@ def extension_references(gltf: dict, found: dict) -> set:
     schema_files = schema_registry()
     pointers = set()
 
-    def walk(value, schema):
+    def walk(value, schema, root):
         schema = schema or {}
+        ref = schema.get("$ref")
+        if isinstance(ref, str) and ref.startswith("#/"):  # a definition in the same schema file ($defs)
+            target = root
+            for key in ref[2:].split("/"):
+                target = target.get(key, {}) if isinstance(target, dict) else {}
+            schema = {**target, **{k: v for k, v in schema.items() if k != "$ref"}}
         if isinstance(value, dict):
             if isinstance(value.get("index"), int) and not isinstance(value.get("index"), bool):
                 pointers.add(f"/textures/{value['index']}")
@@ -371,15 +377,16 @@ def extension_references(gltf: dict, found: dict) -> set:
                 if isinstance(item, int) and not isinstance(item, bool) and \
                         str(sub.get("description", "")).startswith("Accessor"):
                     pointers.add(f"/accessors/{item}")
-                walk(item, sub)
+                walk(item, sub, root)
         elif isinstance(value, list):
             for item in value:
-                walk(item, schema.get("items", {}))
+                walk(item, schema.get("items", {}), root)
 
     for name, places in found.items():
         for parts, value in places:
             path = schema_files.get((name, _object_kind(parts)))
-            walk(value, json.loads(path.read_text()) if path else {})
+            schema = json.loads(path.read_text()) if path else {}
+            walk(value, schema, schema)
     also = {ext: fields for ext, (_, fields) in _also_checked().items()}
     for _, name, value in _walk_extensions(gltf):
         if name in also and isinstance(value, dict):

@@ -233,6 +233,8 @@ def canonical_extensions(path) -> dict:
                 row["material"] = resolve_textures(doc, {k: v for k, v in material.items() if k.startswith("BAKER_")})
                 for fin in (row["material"].get("BAKER_fur") or {}).get("fins", []):
                     fin["primitive"] = primitive_digest(doc, gltf["meshes"][fin.pop("mesh")]["primitives"][fin["primitive"]])
+                for chain in (row["material"].get("BAKER_fur") or {}).get("coverageMips", []):
+                    chain["accessor"] = digest(doc.accessor(chain["accessor"]).tobytes())  # the KTX2's bytes
             positions = np.ascontiguousarray(doc.accessor(prim["attributes"]["POSITION"]), np.float32)
             for name, acc in prim["attributes"].items():
                 if name.startswith("_"):

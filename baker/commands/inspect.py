@@ -95,7 +95,32 @@ def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
         "skins": len(doc.json.get("skins", [])),
         "extensionsUsed": doc.json.get("extensionsUsed", []),
         "extensionsRequired": doc.json.get("extensionsRequired", []),
+        "coverageMips": coverage_mips(doc),
     }
+
+
+def coverage_mips(doc) -> list[dict]:
+    """Every coverage-preserving mip chain an extension lists (``coverageMips``, :mod:`baker.gltf.alpha_mips`):
+    where, its texture, size, level count, cutoff and the alpha-test coverage of each level as stored."""
+    from baker.gltf.alpha_mips import alpha_coverage, read_coverage_mips
+
+    out = []
+    places = [("", doc.json)] + [(f"/{kind}/{i}", item) for kind in ("materials", "nodes")
+                                 for i, item in enumerate(doc.json.get(kind) or []) if isinstance(item, dict)]
+    for where, item in places:
+        for name, ext in sorted((item.get("extensions") or {}).items()):
+            entries = ext.get("coverageMips") if isinstance(ext, dict) else None
+            for entry in entries if isinstance(entries, list) else []:
+                row = {"place": f"{where}/extensions/{name}", "texture": entry.get("texture"),
+                       "alphaCutoff": entry.get("alphaCutoff"), "levels": None, "size": None, "coverage": None}
+                try:
+                    levels = read_coverage_mips(doc, entry)
+                    row.update(levels=len(levels), size=[int(levels[0].shape[1]), int(levels[0].shape[0])],
+                               coverage=[alpha_coverage(lv[..., 3], float(entry["alphaCutoff"])) for lv in levels])
+                except Exception:  # unreadable: inspect lists it, `baker validate` says why
+                    pass
+                out.append(row)
+    return out
 
 
 def material_textures(doc, material: dict) -> list[dict]:
@@ -202,4 +227,11 @@ def main(path, fmt: str = "text", allow_outside=None, max_memory: int | None = N
     if textures:
         print()
         print(_table(["material", "texture slot", "texture", "size"], textures))
+    if info["coverageMips"]:
+        print()
+        print(_table(["coverage mips of", "texture", "size", "levels", "cutoff", "coverage per level"],
+                     [[c["place"], c["texture"], "x".join(map(str, c["size"])) if c["size"] else "?",
+                       c["levels"] or "?", c["alphaCutoff"],
+                       " ".join(f"{v:.3f}" for v in c["coverage"]) if c["coverage"] else "unreadable"]
+                      for c in info["coverageMips"]]))
     return 0

@@ -123,11 +123,18 @@ def decode_ktx2(blob: bytes) -> dict:
     """
     if blob[:12] != IDENTIFIER:
         raise ValueError("not a KTX2 file (bad identifier)")
+    if len(blob) < 80:
+        raise ValueError(f"{len(blob)} bytes: shorter than the KTX2 header")
     vk, type_size, width, height, depth, layers, faces, level_count, scheme = struct.unpack_from("<9I", blob, 12)
     dfd_off, dfd_len, kvd_off, kvd_len, sgd_off, sgd_len = struct.unpack_from("<4I2Q", blob, 48)
     channels = {v: k for k, v in VK_FORMATS.items()}.get(vk)
     if channels is None or type_size != 1 or depth != 0 or faces != 1 or scheme != 0 or sgd_len != 0:
         raise ValueError("only uncompressed 8-bit UNORM 2D textures are supported")
+    if level_count > 32 or 80 + 24 * max(1, level_count) > len(blob):
+        raise ValueError(f"levelCount {level_count}: the level index does not fit in the file")
+    for name, offset, length in (("DFD", dfd_off, dfd_len), ("KVD", kvd_off, kvd_len)):
+        if offset + length > len(blob) or (name == "DFD" and length < 4):
+            raise ValueError(f"the {name} ({length} bytes at {offset}) lies outside the file")
     (total,) = struct.unpack_from("<I", blob, dfd_off)
     if total != dfd_len:
         raise ValueError(f"dfdTotalSize {total} != dfdByteLength {dfd_len}")
@@ -135,6 +142,8 @@ def decode_ktx2(blob: bytes) -> dict:
     kvd, pos = {}, kvd_off
     while pos < kvd_off + kvd_len:
         (n,) = struct.unpack_from("<I", blob, pos)
+        if pos + 4 + n > kvd_off + kvd_len:
+            raise ValueError("a key/value entry runs past the KVD")
         key, _, value = blob[pos + 4: pos + 4 + n].partition(b"\0")
         kvd[key.decode("utf-8")] = value.rstrip(b"\0").decode("utf-8")
         pos += 4 + n + (-n % 4)

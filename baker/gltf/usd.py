@@ -606,7 +606,45 @@ class _Writer:
                         out = tex.CreateOutput("rgba", Sdf.ValueTypeNames.Float4)
                         name = ":".join([namespace, *(f"_{k}" if isinstance(k, int) else _valid_name(k) for k in path)])
                         material.CreateOutput(name, Sdf.ValueTypeNames.Float4).ConnectToSource(out)
+                if isinstance(params.get("coverageMips"), list):
+                    self._coverage_mips(prim, namespace + ":coverageMips", params["coverageMips"])
         return material
+
+    def _coverage_mips(self, prim, namespace: str, entries: list) -> None:
+        """Each coverage-preserving mip chain (:mod:`baker.gltf.alpha_mips`) as its KTX2 file beside the textures:
+        ``<namespace>:_<i>:file`` (the KTX2), ``:image`` (level 0, the PNG), ``:alphaCutoff``, ``:levelCount``.
+        UsdUVTexture reads no KTX2 and its PNG gets mips from the renderer; the chain is there for a runtime
+        that loads it, as the glTF plugins do."""
+        from pxr import Sdf
+
+        from baker.gltf.alpha_mips import coverage_mips_bytes
+
+        textures = self.doc.json.get("textures") or []
+        for i, entry in enumerate(entries):
+            texture = entry.get("texture") if isinstance(entry, dict) else None
+            if not isinstance(texture, int) or not 0 <= texture < len(textures) or "source" not in textures[texture]:
+                continue
+            try:
+                data = coverage_mips_bytes(self.doc, entry)
+            except Exception:  # an unreadable chain is `baker validate`'s to report; the stage does without it
+                continue
+            image = self._image(textures[texture]["source"])
+            key = ("coverageMips", entry["accessor"])
+            if key not in self.image_paths:
+                stem = Path(image).stem + "_mips"
+                taken = {name for name, _ in self.image_files}
+                name, k = f"{stem}.ktx2", 1
+                while name in taken:
+                    name, k = f"{stem}_{k}.ktx2", k + 1
+                self.image_files.append((name, data))
+                self.image_paths[key] = f"./{self.texture_folder}/{name}"
+            at = f"{namespace}:_{i}"
+            prim.CreateAttribute(f"{at}:file", Sdf.ValueTypeNames.Asset, custom=True).Set(
+                Sdf.AssetPath(self.image_paths[key]))
+            prim.CreateAttribute(f"{at}:image", Sdf.ValueTypeNames.Asset, custom=True).Set(Sdf.AssetPath(image))
+            for field, type_name in (("alphaCutoff", Sdf.ValueTypeNames.Float), ("levelCount", Sdf.ValueTypeNames.Int)):
+                if isinstance(entry.get(field), (int, float)):
+                    prim.CreateAttribute(f"{at}:{field}", type_name, custom=True).Set(entry[field])
 
     def _texture(self, mat_path: str, shader_name: str, info: dict, color_space: str, readers: dict):
         from pxr import Sdf, UsdShade

@@ -124,6 +124,29 @@ class Scene:
             self.cache[key] = tex
         return self.cache[key]
 
+    def coverage_mips(self, ctx, entry: dict, repeat: bool = True):
+        """A texture whose levels are a coverage-preserving mip chain (``coverageMips`` entry,
+        :mod:`baker.gltf.alpha_mips`), uploaded as given, sampled trilinear; None when the chain cannot be read."""
+        import moderngl
+
+        from baker.gltf.alpha_mips import read_coverage_mips
+
+        key = ("coverage", id(ctx), entry.get("accessor"), repeat)
+        if key not in self.cache:
+            try:
+                levels = read_coverage_mips(self.doc, entry)
+            except Exception:  # `baker validate` says why; the preview draws the PNG instead
+                return None
+            h, w = levels[0].shape[:2]
+            tex = ctx.texture((w, h), 4, levels[0].tobytes())
+            tex.build_mipmaps(0, len(levels) - 1)  # allocates the levels; their contents are replaced below
+            for i, level in enumerate(levels):
+                tex.write(np.ascontiguousarray(level).tobytes(), level=i)
+            tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+            tex.repeat_x = tex.repeat_y = repeat
+            self.cache[key] = tex
+        return self.cache[key]
+
     def release(self) -> None:
         for key, value in list(self.cache.items()):
             if key[0] != "image":

@@ -13,10 +13,11 @@ Where the data goes (see ``schemas/BAKER_fur/README.md``):
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from baker.gltf.alpha_mips import check_coverage_mips, write_coverage_mips
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
 from baker.gltf.derived import copy_skinning, match_morph_targets
 from baker.gltf.images import encode_image
@@ -35,14 +36,21 @@ def encode_rgba_png(pixels: np.ndarray) -> bytes:
     return encode_image(np.ascontiguousarray(pixels, np.uint8), ".png")
 
 
-def write_fur_textures(doc: GltfDocument, shells: np.ndarray, fin: np.ndarray) -> tuple[list, int]:
-    """Add the shell textures and the fin texture; returns ([shell texture indices], fin texture index)."""
-    out = []
+def write_fur_textures(doc: GltfDocument, shells: np.ndarray, fin: np.ndarray, alpha_cutoff: float | None = None
+                       ) -> tuple[list, int, list]:
+    """Add the shell textures and the fin texture, and with ``alpha_cutoff`` each one's coverage-preserving mip
+    chain (:mod:`baker.gltf.alpha_mips`); returns ([shell texture indices], fin texture index, coverageMips)."""
+    out, mips = [], []
     for i, shell in enumerate(shells):
         image = doc.add_image(encode_rgba_png(shell), "image/png", f"fur_shell{i:02d}")
         out.append(doc.add_texture(image, sampler=SAMPLER_REPEAT, name=f"baker fur shell {i}"))
     image = doc.add_image(encode_rgba_png(fin), "image/png", "fur_fin")
-    return out, doc.add_texture(image, sampler=SAMPLER_FIN, name="baker fur fin")
+    fin_texture = doc.add_texture(image, sampler=SAMPLER_FIN, name="baker fur fin")
+    if alpha_cutoff is not None:
+        # the kernel encodes colour with the power 1 / 2.2: the chain filters it in linear light the same way
+        mips = [write_coverage_mips(doc, t, pixels, alpha_cutoff, transfer="gamma2.2")
+                for t, pixels in zip(out + [fin_texture], [*shells, fin])]
+    return out, fin_texture, mips
 
 
 def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: np.ndarray, normals: np.ndarray,
@@ -85,7 +93,8 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: n
 
 
 def write_material(doc: GltfDocument, material: int, *, options, length: float, shell_textures: list,
-                   fin_texture: int, fins: list, coverage: np.ndarray, tile_size: float) -> dict:
+                   fin_texture: int, fins: list, coverage: np.ndarray, tile_size: float,
+                   coverage_mips: list = ()) -> dict:
     ext = {
         "shellCount": int(options.shells),
         "length": float(length),
@@ -96,7 +105,10 @@ def write_material(doc: GltfDocument, material: int, *, options, length: float, 
         "shellCoverage": [float(c) for c in coverage],
         "finTexture": {"index": int(fin_texture)},
         "fins": [{"mesh": int(m), "primitive": int(p)} for m, p in fins],
+        "alphaCutoff": float(options.alpha_cutoff),
     }
+    if coverage_mips:
+        ext["coverageMips"] = [dict(entry) for entry in coverage_mips]
     doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
     doc.use_extension(NAME)
     return ext
@@ -126,6 +138,15 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             if all(isinstance(x, (int, float)) for x in (spacing, length, count)) and count and \
                     abs(spacing * count - length) > 1e-6 * max(length, 1e-30):
                 issues.error("BAKER_FUR_SPACING", "shellSpacing x shellCount must equal length", ptr)
+            if "coverageMips" in ext:
+                check_coverage_mips(doc, ext["coverageMips"], ptr + "/coverageMips", issues)
+                mipped = {e.get("texture") for e in ext["coverageMips"] if isinstance(e, dict)} \
+                    if isinstance(ext["coverageMips"], list) else set()
+                missing = [info.get("index") for info in shells + [ext.get("finTexture") or {}]
+                           if isinstance(info, dict) and info.get("index") not in mipped]
+                if missing:
+                    issues.warning("BAKER_FUR_COVERAGE_MIPS", f"textures {missing} have no coverage-preserving mip "
+                                   "chain", ptr + "/coverageMips")
             for j, ref in enumerate(ext.get("fins") or []):
                 m, p = ref.get("mesh"), ref.get("primitive")
                 if not is_index(m, meshes) or not is_index(p, meshes[m].get("primitives") or []):
@@ -167,6 +188,8 @@ class FurMaterial:
     shell_coverage: tuple = ()
     fin_texture: int | None = None
     fins: tuple = ()  # (mesh, primitive) of each fin primitive
+    alpha_cutoff: float | None = None  # the alpha-test threshold (None: an older file, shells blended)
+    coverage_mips: dict = field(default_factory=dict)  # texture index -> its coverageMips entry
 
 
 def read(doc: GltfDocument, material: int) -> FurMaterial | None:
@@ -182,7 +205,9 @@ def read(doc: GltfDocument, material: int) -> FurMaterial | None:
         tile_size=float(ext["tileSize"]) if "tileSize" in ext else None,
         shell_coverage=tuple(float(c) for c in ext.get("shellCoverage", ())),
         fin_texture=int(fin["index"]) if "index" in fin else None,
-        fins=tuple((int(f["mesh"]), int(f["primitive"])) for f in ext.get("fins", ())))
+        fins=tuple((int(f["mesh"]), int(f["primitive"])) for f in ext.get("fins", ())),
+        alpha_cutoff=float(ext["alphaCutoff"]) if "alphaCutoff" in ext else None,
+        coverage_mips={int(e["texture"]): dict(e) for e in ext.get("coverageMips", ())})
 
 
 def read_fin_source(doc: GltfDocument, mesh: int, primitive: int) -> int | None:

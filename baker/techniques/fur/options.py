@@ -24,3 +24,7 @@ class FurOptions:
     tip_color: tuple = opt((0.75, 0.62, 0.45), "hair colour at the tip (linear RGB, 0..1)", min=0.0, max=1.0)
     fin_depth: float = opt(0.1, "thickness of the volume slab seen on a fin, in tile widths", min=1e-3, max=1.0)
     fins: bool = opt(True, "write fin geometry along every mesh edge (needs the edge adjacency of the edges bake)")
+    alpha_cutoff: float = opt(0.5, "alpha-test threshold of the shells and fins (coverage above it is drawn)",
+                              min=0.0, max=1.0)
+    coverage_mips: bool = opt(True, "also write each shell and fin texture's coverage-preserving mip chain (KTX2 "
+                                    "RGBA8, Castano 2010) so the fur does not thin out with distance")

@@ -1,6 +1,7 @@
 """Preview panel of BAKER_fur: Lengyel's fur shells (``runtime-shaders/baker_fur.glsl``), the surface then
-``shellCount`` alpha-blended copies pushed out along the normal. Fur fin primitives (degenerate quads) are no
-surface of the preview."""
+``shellCount`` copies pushed out along the normal: alpha-tested at ``alphaCutoff`` from each shell texture's
+coverage-preserving mip chain (``coverageMips``, Castaño 2010) when the file has them, as the web runtimes do, else
+alpha-blended from the PNGs. Fur fin primitives (degenerate quads) are no surface of the preview."""
 from __future__ import annotations
 
 from baker.preview.core import LAMBERT, REFERENCE, DrawItem, Panel, draw_surfaces
@@ -35,15 +36,23 @@ class FurPanel(Panel):
             skin = Panel("fur-skin", "", (), "uniform vec3 u_base;",
                          "color = u_base * 0.4 * (0.3 + 0.7 * max(dot(N, u_light), 0.0));")
             draw_surfaces(ctx, skin, one, camera, size, extra={"u_base": tuple(float(c) for c in base)})
-            ctx.enable(ctx.BLEND)
-            ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
-            ctx.depth_mask = False
             count = len(shells)
             for i, texture in enumerate(shells):
-                shell = FurShellPanel(texture)
+                chain = fur.coverage_mips.get(texture)
+                mipped = chain is not None and scene.coverage_mips(ctx, chain) is not None
+                if mipped:  # alpha-tested, opaque, depth written: the chain keeps the coverage the test draws
+                    ctx.disable(ctx.BLEND)
+                    ctx.depth_mask = True
+                else:
+                    ctx.enable(ctx.BLEND)
+                    ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
+                    ctx.depth_mask = False
+                shell = FurShellPanel(texture, chain if mipped else None)
                 draw_surfaces(ctx, shell, one, camera, size, extra={
                     "u_shell": float(i), "u_shellCount": float(count),
-                    "u_shellSpacing": fur.shell_spacing, "u_tiling": fur.tiling})
+                    "u_shellSpacing": fur.shell_spacing, "u_tiling": fur.tiling,
+                    "u_alphaCutoff": float(chain["alphaCutoff"]) if mipped else 0.01,
+                    "u_alphaTest": 1.0 if mipped else 0.0})
             ctx.depth_mask = True
             ctx.disable(ctx.BLEND)
 
@@ -51,21 +60,26 @@ class FurPanel(Panel):
 class FurShellPanel(Panel):
     """One shell: the surface pushed out to its height, shaded with its texture."""
 
-    def __init__(self, texture: int):
+    def __init__(self, texture: int, chain: dict | None = None):
         super().__init__(
             "fur-shell", "", ("baker_fur.glsl",),
-            "uniform sampler2D u_shellTexture; uniform float u_shell; uniform float u_shellCount; uniform float u_tiling;",
+            "uniform sampler2D u_shellTexture; uniform float u_shell; uniform float u_shellCount; uniform float u_tiling;"
+            " uniform float u_alphaCutoff; uniform float u_alphaTest;",
             "vec4 texel = texture(u_shellTexture, baker_fur_shell_uv(v_uv, u_tiling));\n"
+            "    if (texel.a < u_alphaCutoff) discard;\n"
             "    vec4 shaded = baker_fur_shell_shade(texel, baker_fur_shell_height(u_shell, u_shellCount), 0.4);\n"
             "    color = shaded.rgb * (0.3 + 0.7 * max(dot(N, u_light), 0.0));\n"
-            "    alpha = shaded.a;",
+            "    alpha = mix(shaded.a, 1.0, u_alphaTest);",
             inputs="in vec2 v_uv;", vertex_modules=("baker_fur.glsl",),
             vertex_declarations="uniform float u_shell; uniform float u_shellCount; uniform float u_shellSpacing;",
             vertex_body="position = baker_fur_shell_position(POSITION, normalize(NORMAL), u_shell, u_shellSpacing, "
                         "u_shellCount, vec3(0.0));")
         self.texture_index = texture
+        self.chain = chain
 
     def textures(self, scene, ctx, item):
+        if self.chain is not None:
+            return {"u_shellTexture": scene.coverage_mips(ctx, self.chain, repeat=True)}
         return {"u_shellTexture": scene.texture(ctx, self.texture_index, repeat=True)}
 
 

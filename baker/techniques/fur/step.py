@@ -58,7 +58,10 @@ def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = Q
     with progress.task("fur textures", 1) as advance:
         textures = bake_fur_textures(options, seed)
         advance(1)
-    shell_tex, fin_tex = ext.write_fur_textures(doc, textures.shells, textures.fin)
+    with progress.task("fur coverage mips", 1) as advance:
+        shell_tex, fin_tex, mips = ext.write_fur_textures(
+            doc, textures.shells, textures.fin, options.alpha_cutoff if options.coverage_mips else None)
+        advance(1)
     for material, (members, geoms) in furred.items():
         # world size of one tile: sqrt(surface area / UV area) / tiling
         area = uv_area = 0.0
@@ -80,4 +83,5 @@ def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = Q
                 for p, (corners, normals, fin_u, edges) in sorted(_fins(asset, m, prims, tile_size).items()):
                     fins.append((m, ext.write_fin_primitive(doc, m, p, corners, normals, fin_u, edges)))
         ext.write_material(doc, material, options=options, length=length, shell_textures=shell_tex,
-                           fin_texture=fin_tex, fins=fins, coverage=textures.coverage, tile_size=tile_size)
+                           fin_texture=fin_tex, fins=fins, coverage=textures.coverage, tile_size=tile_size,
+                           coverage_mips=mips)

@@ -1,7 +1,7 @@
 // baker viewer: drag and drop a baked .glb; one toggle per baked technique found in it.
 // ?src=URL loads an asset; ?off=tam,fins switches techniques off and ?on=curvature on (names: TECHNIQUES of
 // @baker/three), so a test can render the same view with and without one technique; ?time=SECONDS holds the
-// caustic animation at that time.
+// caustic animation at that time; ?distance=K puts the camera K times as far as the framing distance.
 // Test mode (?panel=FRAGMENT_URL&setup=JSON_URL&src=GLB_URL): renders the asset with one of `baker preview`'s
 // panel shaders and the camera/uniforms the test passes, so the page can be compared with `baker preview`.
 import * as THREE from 'three';

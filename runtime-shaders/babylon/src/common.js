@@ -3,9 +3,10 @@
 // accessor reader for custom attributes, data textures, scene lights for ShaderMaterials). Import from index.js.
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
+import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
 import { Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 
-import { shaderText } from '@baker/shared';
+import { parseKtx2Rgba8, shaderText } from '@baker/shared';
 
 // the extension names, TECHNIQUES (the same switch names as @baker/three's) and the switch registry are
 // engine-neutral: @baker/shared, re-exported here
@@ -122,6 +123,48 @@ export async function dataTexture(loader, info, { repeat = false, mipmaps = fals
 	texture.wrapU = texture.wrapV = repeat ? Constants.TEXTURE_WRAP_ADDRESSMODE : Constants.TEXTURE_CLAMP_ADDRESSMODE;
 	texture.updateSamplingMode(mipmaps ? Constants.TEXTURE_TRILINEAR_SAMPLINGMODE : Constants.TEXTURE_LINEAR_LINEAR);
 	return texture;
+}
+
+const WRAPS = { 10497: Constants.TEXTURE_WRAP_ADDRESSMODE, 33071: Constants.TEXTURE_CLAMP_ADDRESSMODE,
+	33648: Constants.TEXTURE_MIRROR_ADDRESSMODE };
+
+/**
+ * The coverage-preserving mip chain of a `coverageMips` entry (Castaño 2010; @baker/shared coverage_mips.js) as a
+ * RawTexture holding the chain's levels, sampled trilinear with the glTF texture's wrap modes; raw data like
+ * dataTexture (no sRGB decode). WebGL's raw textures take one level: the texture is created with its full mip storage
+ * (Babylon allocates it by generating mips from level 0) and every further level is then uploaded over it from the
+ * chain (engine.updateTextureData at that lod), so what is sampled is the chain, not generated mips. Null when the
+ * chain cannot be read: the caller keeps the PNG.
+ */
+export async function coverageMipsTexture(loader, entry) {
+	try {
+		const accessor = loader.gltf.accessors?.[entry.accessor];
+		if (!accessor || accessor.componentType !== 5121 || accessor.type !== 'SCALAR' || accessor.sparse || accessor.bufferView === undefined) {
+			throw new Error(`accessor ${entry.accessor} is not a plain UNSIGNED_BYTE SCALAR accessor`);
+		}
+		const view = loader.gltf.bufferViews[accessor.bufferView];
+		const buffer = await loader.loadBufferViewAsync(`/bufferViews/${accessor.bufferView}`, view);
+		const offset = accessor.byteOffset || 0;
+		if (offset + accessor.count > buffer.byteLength) throw new Error(`accessor ${entry.accessor} overruns its buffer view`);
+		const { width, height, levels } = parseKtx2Rgba8(buffer.subarray(offset, offset + accessor.count));
+		const scene = loader.babylonScene;
+		const texture = new RawTexture(levels[0].data, width, height, Constants.TEXTUREFORMAT_RGBA, scene, true, false,
+			Constants.TEXTURE_TRILINEAR_SAMPLINGMODE, Constants.TEXTURETYPE_UNSIGNED_BYTE);
+		const engine = scene.getEngine();
+		const internal = texture.getInternalTexture();
+		levels.forEach(({ data, width: w, height: h }, lod) => {
+			if (lod > 0) engine.updateTextureData(internal, data, 0, 0, w, h, 0, lod, false);
+		});
+		texture.name = `coverage mips of texture ${entry.texture}`;
+		texture.gammaSpace = false;
+		const sampler = loader.gltf.samplers?.[loader.gltf.textures?.[entry.texture]?.sampler] || {};
+		texture.wrapU = WRAPS[sampler.wrapS ?? 10497] ?? Constants.TEXTURE_WRAP_ADDRESSMODE;
+		texture.wrapV = WRAPS[sampler.wrapT ?? 10497] ?? Constants.TEXTURE_WRAP_ADDRESSMODE;
+		return texture;
+	} catch (e) {
+		console.warn(`@baker/babylon: coverage mips of texture ${entry.texture} unreadable, using its PNG: ${e.message || e}`);
+		return null;
+	}
 }
 
 // ------------------------------------------------------------------------------------------------ ShaderMaterials

@@ -214,6 +214,9 @@ class Rewriter:
                 continue
             exts = copy.deepcopy(payload["extensions"])
             self.retexture(exts, payload["textures"])
+            for name, ext in exts.items():
+                for container, key, _ in list(refs.accessor_slots(name, ext)):
+                    container[key] = self.add_accessor(payload.get("accessors", {})[str(container[key])])
             for ext in exts.values():
                 for ref in ext.get("fins", []) if isinstance(ext.get("fins"), list) else []:
                     if isinstance(ref, dict) and (ref.get("mesh"), ref.get("primitive")) is not None:

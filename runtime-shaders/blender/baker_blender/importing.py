@@ -85,8 +85,11 @@ def import_materials(gltf_importer, gltf: dict, binary: bytes) -> None:
             mat = bpy.data.materials.get(name)
             if mat is None:
                 continue
+            accessors = {}  # the accessors a material extension names (BAKER_fur's coverage mip chains)
+            for name, ext in exts.items():
+                accessors.update(store_accessors(gltf, binary, name, ext) if isinstance(ext, dict) else {})
             mat[PROPERTY] = json.dumps({"index": index, "name": material.get("name"), "extensions": exts,
-                                        "textures": textures})
+                                        "textures": textures, "accessors": accessors})
             nodes.add_material_groups(mat, exts, textures)
 
 

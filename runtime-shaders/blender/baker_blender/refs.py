@@ -16,6 +16,7 @@ ACCESSORS = {
                           "fonts[].kerning.pairs", "fonts[].kerning.advance"),
     "BAKER_text": ("glyphs.glyph", "glyphs.position"),
     "BAKER_hair_cards": ("regions", "cardFirstIndex"),
+    "BAKER_fur": ("coverageMips[].accessor",),  # the KTX2 bytes of each coverage-preserving mip chain
 }
 # accessors holding vertex indices of their primitive (remapped by position when Blender renumbers vertices)
 VERTEX_INDEX_ACCESSORS = {("BAKER_edges", "edges"), ("BAKER_edges", "oppositeVertices"),

@@ -32,6 +32,8 @@ export const REFERENCES = {
 			["shellTextures/*", "texture"],
 			["finTexture", "texture"],
 			["fins/*", "mesh-primitive"],
+			["coverageMips/*/texture", "texture-index"],
+			["coverageMips/*/accessor", "accessor"],
 		],
 		"mesh.primitive": [
 			["finsOf", "primitive"],

@@ -3,7 +3,7 @@
 // viewport uniform). Not an entry point: import from index.js.
 import * as THREE from 'three';
 
-import { shaderText } from '@baker/shared';
+import { parseKtx2Rgba8, shaderText } from '@baker/shared';
 
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: @baker/shared, re-exported here
 export {
@@ -53,6 +53,39 @@ export function dataTexture(texture, { repeat = false, linear = true } = {}) {
 	texture.generateMipmaps = false;
 	texture.needsUpdate = true;
 	return texture;
+}
+
+const WRAPS = { 10497: THREE.RepeatWrapping, 33071: THREE.ClampToEdgeWrapping, 33648: THREE.MirroredRepeatWrapping };
+
+/**
+ * The coverage-preserving mip chain of a `coverageMips` entry (Castaño 2010; @baker/shared coverage_mips.js) as a
+ * DataTexture whose mipmaps are the chain's levels, uploaded as given (generateMipmaps off), sampled trilinear with
+ * the glTF texture's wrap modes; raw data like the PNG path (no sRGB decode). Null when the chain cannot be read:
+ * the caller keeps the PNG.
+ */
+export async function coverageMipsTexture(parser, entry) {
+	try {
+		const accessor = await parser.getDependency('accessor', entry.accessor);
+		const array = accessor.array;
+		const bytes = new Uint8Array(array.buffer, array.byteOffset, array.byteLength);
+		const { width, height, levels } = parseKtx2Rgba8(bytes);
+		const texture = new THREE.DataTexture(levels[0].data, width, height, THREE.RGBAFormat, THREE.UnsignedByteType);
+		texture.mipmaps = levels.map(({ data, width: w, height: h }) => ({ data, width: w, height: h }));
+		texture.generateMipmaps = false;
+		texture.flipY = false; // KTXorientation rd: row 0 is the top, at v = 0 as in glTF
+		texture.colorSpace = THREE.NoColorSpace;
+		texture.magFilter = THREE.LinearFilter;
+		texture.minFilter = THREE.LinearMipmapLinearFilter;
+		const sampler = parser.json.samplers?.[parser.json.textures?.[entry.texture]?.sampler] || {};
+		texture.wrapS = WRAPS[sampler.wrapS ?? 10497] ?? THREE.RepeatWrapping;
+		texture.wrapT = WRAPS[sampler.wrapT ?? 10497] ?? THREE.RepeatWrapping;
+		texture.name = `coverage mips of texture ${entry.texture}`;
+		texture.needsUpdate = true;
+		return texture;
+	} catch (e) {
+		console.warn(`@baker/three: coverage mips of texture ${entry.texture} unreadable, using its PNG: ${e.message || e}`);
+		return null;
+	}
 }
 
 /** A ShaderMaterial lit by the scene's lights (view-space directionalLights[] etc. through lights_pars_begin). */
