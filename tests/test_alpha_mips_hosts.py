@@ -13,6 +13,12 @@ and the same asset with each chain replaced by the plain box-filtered chain (wha
 here with the alpha scale off) to lose it (below LOST of near at 3x and 6x; measured 0): the control that shows the
 test can fail. (Matching Castaño's bilinear-sampled coverage instead would hold the frames closer but move the texel
 fraction 10-40% or more off level 0's on these shells; see benchmarks/RESULTS.md.)
+
+The hair cards (`baker cards`, a 1024² atlas, so that the far frames sample its levels 4 to 6) likewise: the
+plugins swap the base colour for its chain and the loaders' own alpha test cuts it; the hair's drawn pixels x
+distance² hold within 20% of the near frame's, and with the box chain instead they fall below CARDS_LOST of it at 6x
+(measured: chain 7223 / 7362 / 6948 (three.js), 6878 / 7470 / 6912 (Babylon.js); box 5627 / 3402 / 936 and
+5967 / 4635 / 2088).
 """
 from __future__ import annotations
 
@@ -25,6 +31,7 @@ from baker.gltf.document import GltfDocument
 from baker.gltf.images import read_image, write_image
 from baker.gltf.ktx2 import encode_ktx2
 from baker.pipeline import save
+from baker.cli import main as baker_main
 from browser import BACKGROUND_RGB, ROOT, build_viewer, require_tools, serve, shoot
 from conftest import assert_khronos_clean
 
@@ -34,6 +41,7 @@ DISTANCES = (1, 3, 6)
 KEEP = 0.5  # the chain: coverage at 3x and 6x at least this fraction of the near frame's
 LOST = 0.1  # the box chain: coverage at 3x and 6x below this fraction of the chain's near coverage
 CHANGED = 0.08  # a pixel the fur changes by more than this (max over RGB, 0..1)
+CARDS_LOST = 0.5  # the cards' box chain: drawn pixels x distance² at 6x below this fraction of the near frame's
 # a 2 x 2 quad facing +z, UVs 0..1; 4 tiles of 64 texels across it: 256 texels over ~200 px near, ~35 px far
 QUAD_OBJ = ("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
             "f 1/1/1 2/2/1 3/3/1 4/4/1\n")
@@ -60,6 +68,19 @@ def site(tmp_path_factory):
         box = alpha_mip_chain(base, entry["alphaCutoff"], transfer="gamma2.2", preserve_coverage=False)
         entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels), np.uint8), target=None)
     doc.save(root / "fur_box.glb")
+    # hair cards of an independent groom, and the same with the atlas's chain replaced by its box chain
+    from techniques.cards_groom import make_groom, write_groom_usd
+
+    curves, widths = make_groom(strands=600, clumps=24, seed=6)
+    groom = write_groom_usd(root / "groom.usda", curves, widths)
+    assert baker_main(["cards", str(groom), "-o", str(root / "cards.glb"), "--cards", "24", "--atlas-size", "1024",
+                       "-q"]) == 0
+    assert_khronos_clean(root / "cards.glb")
+    doc = GltfDocument.load(root / "cards.glb")
+    (entry,) = doc.json["materials"][0]["extensions"]["BAKER_hair_cards"]["coverageMips"]
+    box = alpha_mip_chain(read_coverage_mips(doc, entry)[0], entry["alphaCutoff"], preserve_coverage=False)
+    entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels), np.uint8), target=None)
+    doc.save(root / "cards_box.glb")
     server, url = serve(root)
     yield {"url": url, "root": root}
     server.shutdown()
@@ -116,3 +137,25 @@ def test_fur_keeps_its_coverage_at_three_distances(site, tmp_path, engine):
         _keep(f"{engine}-box", box)
     assert far_ok, kept
     assert box_thins, lost
+
+
+@pytest.mark.parametrize("engine", ["three", "babylon"])
+def test_hair_cards_keep_their_coverage_at_three_distances(site, tmp_path, engine):
+    def drawn(name):
+        jobs = [{"url": f"{site['url']}/index.html?hud=0&src={name}&distance={d}"
+                        + ("&engine=babylon" if engine == "babylon" else ""),
+                 "out": str(tmp_path / f"{engine}-{name}-{d}.png"), "width": W, "height": H} for d in DISTANCES]
+        infos = shoot(jobs, tmp_path / f"{engine}-{name}.json")
+        for info in infos:
+            assert info["ready"] and not info["errors"] and not info["warnings"], info
+            assert info["techniques"] == ["cards"], info
+        background = np.array(BACKGROUND_RGB) / 255.0
+        frames = [read_image(job["out"])[..., :3].astype(np.float32) / 255.0 for job in jobs]
+        return {d: int((np.abs(f - background).max(axis=2) > 0.03).sum()) * d * d for d, f in zip(DISTANCES, frames)}
+
+    chain, box = drawn("cards.glb"), drawn("cards_box.glb")
+    print(engine, "cards drawn pixels x distance², chain", chain, "box", box)
+    near = chain[1]
+    assert near > 2000, chain
+    assert all(0.8 < chain[d] / near < 1.25 for d in DISTANCES[1:]), chain
+    assert box[DISTANCES[-1]] < CARDS_LOST * near, box

@@ -559,3 +559,33 @@ def test_blender_imports_hair_cards_alpha_clipped(blender_python, tmp_path):
     assert sum("baker texture" in name for name in addon_report["images"]) >= 2, addon_report
     addon_drawn = addon_pixels[..., 3] > 0.5
     assert (addon_drawn & drawn).sum() / (addon_drawn | drawn).sum() > 0.95  # the add-on keeps the clip
+
+
+def test_blender_round_trip_keeps_the_cards_coverage_mips(blender_python, tmp_path):
+    """`baker cards` output imported with the add-on and exported again: BAKER_hair_cards keeps its coverage mip
+    chain (the accessor renumbered, the same KTX2 bytes, still naming the material's base colour texture) and the
+    exported file passes baker's checks (level 0 equal to the exported PNG, coverage held) and Khronos'."""
+    from techniques.cards_groom import make_groom, write_groom_usd
+
+    curves, widths = make_groom(strands=300, clumps=8, seed=3)
+    groom = write_groom_usd(tmp_path / "groom.usda", curves, widths)
+    glb = tmp_path / "cards.glb"
+    bake("cards", groom, "-o", glb, "--cards", "8", "--atlas-size", "256")
+    exported = tmp_path / "cards_blender.glb"
+    run_blender(blender_python, "round_trip.py", ADDON, glb, exported, tmp_path / "report.json")
+    from baker.validate import validate_file
+
+    messages = validate_file(exported, khronos=False)["issues"]["messages"]
+    assert not [m for m in messages if m["severity"] <= 1], messages  # no error, no warning
+    assert_khronos_clean(exported)
+
+    def chains(path):
+        doc = GltfDocument.load(path)
+        (material,) = [m for m in doc.json["materials"] if "BAKER_hair_cards" in (m.get("extensions") or {})]
+        ext = material["extensions"]["BAKER_hair_cards"]
+        base = material["pbrMetallicRoughness"]["baseColorTexture"]["index"]
+        return [(digest(doc.accessor(e["accessor"]).tobytes()), e["texture"] == base, e["alphaCutoff"],
+                 e["levelCount"]) for e in ext["coverageMips"]]
+
+    before, after = chains(glb), chains(exported)
+    assert len(before) == 1 and before[0][1] and after == before

@@ -236,5 +236,8 @@ def test_hair_cards(tmp_path):
     assert (material.data_texture, material.flow_texture) == (mext["dataTexture"]["index"],
                                                             mext["flowTexture"]["index"])
     assert material.depth_range == mext["depthRange"] > 0 and material.data_channels["g"] == "rootToTip"
+    # the base colour's coverage mip chain, keyed by its texture
+    base = raw["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"]
+    assert material.coverage_mips == {base: mext["coverageMips"][0]} and mext["coverageMips"][0]["levelCount"] == 8
     plain = baker.bake(SPOT, bakes=["curvature"], options={}).doc
     assert read(plain, 0, 0) is None and read_material(plain, 0) is None

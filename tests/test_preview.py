@@ -213,3 +213,36 @@ def test_hair_cards_panel_is_alpha_tested_and_shaded_along_the_flow(tmp_path):
     print("card pixels", int(solid.sum()), "after the alpha test", int(cut.sum()))
     assert cut.sum() > 300 and (cut & ~ndimage.binary_dilation(solid, iterations=1)).sum() < 0.02 * cut.sum()
     assert cut.sum() < 0.9 * solid.sum()
+
+
+def test_hair_cards_panel_keeps_coverage_when_small(tmp_path):
+    """The cards panel alpha-tests the base colour's coverage-preserving mip chain: rendered at 384, 128 and 64 px
+    (the cards 3x and 6x as far; a 1024² atlas minified to about levels 2, 4 and 5) the share of the card quads'
+    pixels that pass the test stays near the 384 px frame's, while with the file's chain replaced by the plain box
+    chain of the same atlas (what mipmapping the PNG gives) it falls away."""
+    from baker.gltf.alpha_mips import alpha_mip_chain, read_coverage_mips
+    from baker.gltf.document import GltfDocument
+    from baker.gltf.ktx2 import encode_ktx2
+    from techniques.cards_groom import make_groom, write_groom_usd
+
+    curves, widths = make_groom(strands=600, clumps=24, seed=6)
+    groom = write_groom_usd(tmp_path / "groom.usda", curves, widths)
+    cards = tmp_path / "cards.glb"
+    assert main(["cards", str(groom), "-o", str(cards), "--cards", "24", "--atlas-size", "1024", "-q"]) == 0
+    doc = GltfDocument.load(cards)
+    (entry,) = doc.json["materials"][0]["extensions"]["BAKER_hair_cards"]["coverageMips"]
+    box = alpha_mip_chain(read_coverage_mips(doc, entry)[0], entry["alphaCutoff"], preserve_coverage=False)
+    entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels), np.uint8), target=None)
+    doc.save(tmp_path / "box.glb")
+    kept = {}
+    for name, path in (("chain", cards), ("box", tmp_path / "box.glb")):
+        for size in (384, 128, 64):
+            result = preview(path, size=size, azimuth=20, elevation=10)
+            solid, cut = _covered(_panel(result, "lambert")), _covered(_panel(result, "cards"))
+            assert (cut & ~ndimage.binary_dilation(solid, iterations=1)).sum() <= 0.02 * cut.sum() + 1
+            kept[name, size] = float(cut.sum() / solid.sum())
+    print("share of the card pixels kept by the alpha test", kept)
+    near = kept["chain", 384]
+    assert 0.1 < near < 0.9
+    assert kept["chain", 128] >= 0.8 * near and kept["chain", 64] >= 0.75 * near
+    assert kept["box", 64] < 0.4 * near

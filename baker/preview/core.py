@@ -124,21 +124,27 @@ class Scene:
             self.cache[key] = tex
         return self.cache[key]
 
-    def coverage_mips(self, ctx, entry: dict, repeat: bool = True):
+    def coverage_mips(self, ctx, entry: dict, repeat: bool = True, srgb: bool = False):
         """A texture whose levels are a coverage-preserving mip chain (``coverageMips`` entry,
-        :mod:`baker.gltf.alpha_mips`), uploaded as given, sampled trilinear; None when the chain cannot be read."""
+        :mod:`baker.gltf.alpha_mips`), uploaded as given, sampled trilinear; None when the chain cannot be read.
+        ``srgb``: colour decoded to linear like :meth:`texture` (float levels; alpha as stored)."""
         import moderngl
 
         from baker.gltf.alpha_mips import read_coverage_mips
 
-        key = ("coverage", id(ctx), entry.get("accessor"), repeat)
+        key = ("coverage", id(ctx), entry.get("accessor"), repeat, srgb)
         if key not in self.cache:
             try:
                 levels = read_coverage_mips(self.doc, entry)
             except Exception:  # `baker validate` says why; the preview draws the PNG instead
                 return None
+            if srgb:
+                levels = [np.concatenate([srgb_to_linear(lv[..., :3].astype(np.float32) / np.float32(255.0)),
+                                          lv[..., 3:].astype(np.float32) / np.float32(255.0)], axis=2)
+                          for lv in levels]
             h, w = levels[0].shape[:2]
-            tex = ctx.texture((w, h), 4, levels[0].tobytes())
+            dtype = "f4" if srgb else "f1"
+            tex = ctx.texture((w, h), 4, np.ascontiguousarray(levels[0]).tobytes(), dtype=dtype)
             tex.build_mipmaps(0, len(levels) - 1)  # allocates the levels; their contents are replaced below
             for i, level in enumerate(levels):
                 tex.write(np.ascontiguousarray(level).tobytes(), level=i)

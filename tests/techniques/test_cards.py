@@ -39,7 +39,7 @@ def read_glb(path: Path):
     bin_len, bin_type = struct.unpack_from("<I4s", data, 20 + json_len)
     assert bin_type == b"BIN\x00"
     blob = data[28 + json_len:28 + json_len + bin_len]
-    dtypes = {5126: "<f4", 5125: "<u4", 5123: "<u2"}
+    dtypes = {5126: "<f4", 5125: "<u4", 5123: "<u2", 5121: "u1"}
     sizes = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
 
     def accessor(i):
@@ -72,6 +72,26 @@ def cards_from_glb(path: Path) -> dict:
             "color": image(material["pbrMetallicRoughness"]["baseColorTexture"]["index"]),
             "data": image(material["extensions"]["BAKER_hair_cards"]["dataTexture"]["index"]),
             "flow": image(material["extensions"]["BAKER_hair_cards"]["flowTexture"]["index"])}
+
+
+def ktx2_levels(blob: bytes) -> list:
+    """The levels of an uncompressed RGBA8 KTX 2.0 file, level 0 first, read from the spec's header and level index
+    (https://registry.khronos.org/KTX/specs/2.0/ktxspec.v2.html), without baker."""
+    assert blob[:12] == bytes([0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A])
+    vk_format, type_size, width, height, depth, layers, faces, count, scheme = struct.unpack_from("<9I", blob, 12)
+    assert (vk_format, type_size, depth, layers, faces, scheme) == (37, 1, 0, 0, 1, 0)  # R8G8B8A8_UNORM, 2D
+    levels = []
+    for i in range(count):
+        offset, length, _ = struct.unpack_from("<3Q", blob, 80 + 24 * i)
+        h, w = max(1, height >> i), max(1, width >> i)
+        assert length == w * h * 4
+        levels.append(np.frombuffer(blob, np.uint8, length, offset).reshape(h, w, 4))
+    return levels
+
+
+def coverage(alpha, cutoff):
+    """Fraction of texels passing the alpha test (8-bit alpha / 255 >= cutoff, compared in float32 as a GPU does)."""
+    return float(np.mean(alpha.astype(np.float32) / np.float32(255) >= np.float32(cutoff)))
 
 
 # -------------------------------------------------------------------------------------------- geometry, here
@@ -237,6 +257,10 @@ def test_glb_validates_and_inspect_lists_cards(baked, capsys):
     assert cli_main(["inspect", str(baked[".glb"]), "--format", "json"]) == 0
     text = capsys.readouterr().out
     assert "BAKER_hair_cards" in text and f'"cards": {CARDS}' in text
+    (row,) = json.loads(text)["coverageMips"]
+    assert row["place"].endswith("/extensions/BAKER_hair_cards") and row["size"] == [ATLAS, ATLAS]
+    assert len(row["coverage"]) == row["levels"] == int(np.log2(ATLAS)) + 1
+    assert row["coverage"][0] == pytest.approx(coverage(baked["cards"]["color"][..., 3], row["alphaCutoff"]))
 
 
 def test_usd_output_read_by_pxr(baked):
@@ -261,6 +285,97 @@ def test_usd_output_read_by_pxr(baked):
     assert np.allclose(regions, acc(baked["cards"]["ext"]["regions"]))
     outputs = [o.GetBaseName() for o in material.GetOutputs()]
     assert any("dataTexture" in o for o in outputs) and any("flowTexture" in o for o in outputs)
+    # the base colour's coverage mip chain: a KTX2 file beside the PNGs, byte-equal to the GLB's
+    prim = material.GetPrim()
+    ktx2 = Path(prim.GetAttribute("baker:hair_cards:coverageMips:_0:file").Get().resolvedPath)
+    png = Path(prim.GetAttribute("baker:hair_cards:coverageMips:_0:image").Get().resolvedPath)
+    assert ktx2.suffix == ".ktx2" and ktx2.parent == png.parent and png == file.resolve()
+    (entry,) = baked["cards"]["material"]["extensions"]["BAKER_hair_cards"]["coverageMips"]
+    assert ktx2.read_bytes() == acc(entry["accessor"]).tobytes()
+    assert prim.GetAttribute("baker:hair_cards:coverageMips:_0:levelCount").Get() == entry["levelCount"]
+
+
+# ------------------------------------------------------------------------------------ coverage-preserving mips
+def box_chain(rgba):
+    """The plain mip chain of a square power-of-two RGBA8 image: each level the 2 x 2 mean of the one above
+    (alpha and colour averaged as stored, rounded): what mipmapping the PNG gives."""
+    levels, level = [rgba], rgba.astype(np.float64)
+    while level.shape[0] > 1:
+        h, w = level.shape[0] // 2, level.shape[1] // 2
+        level = level.reshape(h, 2, w, 2, 4).mean(axis=(1, 3))
+        levels.append(np.rint(level).astype(np.uint8))
+    return levels
+
+
+def test_atlas_chain_keeps_alpha_test_coverage_down_to_8x8(baked):
+    """The base colour's chain, read from the GLB and decoded here: level 0 is the PNG atlas, the full chain down to
+    1 x 1, and every level down to 8 x 8 passes the alpha test on level 0's fraction of texels within 10% (or one
+    texel); the box chain of the same atlas, built here, loses it."""
+    cards = baked["cards"]
+    gltf, acc, _ = read_glb(baked[".glb"])
+    material = cards["material"]
+    (entry,) = material["extensions"]["BAKER_hair_cards"]["coverageMips"]
+    assert entry["texture"] == material["pbrMetallicRoughness"]["baseColorTexture"]["index"]
+    assert entry["mimeType"] == "image/ktx2" and entry["alphaCutoff"] == material["alphaCutoff"]
+    accessor = gltf["accessors"][entry["accessor"]]
+    assert accessor["componentType"] == 5121 and accessor["type"] == "SCALAR"
+    levels = ktx2_levels(acc(entry["accessor"]).tobytes())
+    assert len(levels) == entry["levelCount"] == int(np.log2(ATLAS)) + 1 and levels[-1].shape == (1, 1, 4)
+    assert np.array_equal(levels[0], cards["color"])
+    cutoff = material["alphaCutoff"]
+
+    def off(chain):
+        """(level, coverage) of the levels of at least 8 x 8 more than 10% (or one texel) from level 0's."""
+        target = coverage(chain[0][..., 3], cutoff)
+        return [(i, coverage(lv[..., 3], cutoff)) for i, lv in enumerate(chain) if lv.shape[0] >= 8 and
+                abs(coverage(lv[..., 3], cutoff) - target) > max(0.1 * target, 1 / lv[..., 3].size)]
+
+    target = coverage(levels[0][..., 3], cutoff)
+    assert 0.02 < target < 0.6 and entry["coverage"] == pytest.approx(target)
+    print("chain coverage per level", [round(coverage(lv[..., 3], cutoff), 4) for lv in levels])
+    assert off(levels) == []
+    box = off(box_chain(cards["color"]))
+    print("box chain: levels off", box)
+    assert len(box) >= 3 and box[-1][1] < 0.5 * target
+    # colour: where the chain passes the test, it shows the strands' colour (premultiplied filtering), not the
+    # dark or empty texels between them: the mean colour of passing texels stays near level 0's
+    def passing_mean(level):
+        keep = level[..., 3].astype(np.float32) / 255 >= cutoff
+        return level[..., :3][keep].astype(np.float64).mean(0)
+    assert np.abs(passing_mean(levels[4]) - passing_mean(levels[0])).max() < 20
+
+
+def test_coverage_mips_read_back_and_checked(baked, tmp_path):
+    """read_material() returns the chain entry; the semantic check catches a chain whose level 0 is not the atlas,
+    a box chain that loses coverage (warning), and a chain made for another cutoff (warning)."""
+    from baker.gltf.alpha_mips import read_coverage_mips
+    from baker.gltf.document import GltfDocument
+    from baker.gltf.ktx2 import encode_ktx2
+    from baker.techniques.cards.extension import read_material
+
+    doc = GltfDocument.load(baked[".glb"])
+    index = baked["cards"]["gltf"]["meshes"][0]["primitives"][0]["material"]
+    read = read_material(doc, index)
+    (entry,) = doc.json["materials"][index]["extensions"]["BAKER_hair_cards"]["coverageMips"]
+    assert read.coverage_mips == {entry["texture"]: entry}
+    levels = read_coverage_mips(doc, entry)
+    _, acc, _ = read_glb(baked[".glb"])
+    assert all(np.array_equal(a, b) for a, b in zip(levels, ktx2_levels(acc(entry["accessor"]).tobytes())))
+
+    def codes_of(levels, **changes):
+        broken = GltfDocument.load(baked[".glb"])
+        (e,) = broken.json["materials"][index]["extensions"]["BAKER_hair_cards"]["coverageMips"]
+        e["accessor"] = broken.add_accessor(np.frombuffer(encode_ktx2(levels), np.uint8), target=None)
+        e.update(changes)
+        out = tmp_path / f"broken{len(list(tmp_path.iterdir()))}.glb"
+        broken.save(out)
+        return {m["code"] for m in validate_file(out, khronos=False)["issues"]["messages"]}
+
+    shifted = [np.roll(levels[0], 1, axis=1)] + levels[1:]
+    assert "BAKER_COVERAGE_MIPS_BASE" in codes_of(shifted)
+    assert "BAKER_COVERAGE_MIPS_COVERAGE" in codes_of(box_chain(levels[0]))
+    assert "BAKER_HAIR_CARDS_COVERAGE_MIPS" in codes_of(levels, alphaCutoff=0.25)
+    assert "BAKER_HAIR_CARDS_COVERAGE_MIPS" in codes_of(levels, texture=entry["texture"] + 1)
 
 
 # ------------------------------------------------------------------------------------------- kernel, analytic
@@ -310,7 +425,13 @@ def test_every_groom_format_and_same_seed_same_bytes(tmp_path):
         assert cli_main(["cards", str(src), "-o", str(out), *args]) == 0
         usd.append({p.relative_to(out.parent).as_posix(): p.read_bytes() for p in sorted(out.parent.rglob("*"))
                     if p.is_file()})
-    assert usd[0] == usd[1] and len(usd[0]) == 4  # the stage and its three textures
+    assert usd[0] == usd[1] and len(usd[0]) == 5  # the stage, its three textures and the base colour's KTX2
+    # --coverage-mips false: no chain, nothing else changes
+    plain = tmp_path / "plain.glb"
+    assert cli_main(["cards", str(src), "-o", str(plain), *args, "--coverage-mips", "false"]) == 0
+    gltf, _, _ = read_glb(plain)
+    assert "coverageMips" not in gltf["materials"][0]["extensions"]["BAKER_hair_cards"]
+    assert len(gltf["accessors"]) == len(read_glb(tmp_path / "o0.glb")[0]["accessors"]) - 1
     # the same groom as glTF BAKER_hair and TressFX (through baker guides), and a .gltf output
     for suffix in (".glb", ".tfx"):
         converted = tmp_path / f"groom{suffix}"

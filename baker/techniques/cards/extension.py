@@ -10,16 +10,17 @@ Where the data goes (see ``schemas/BAKER_hair_cards/README.md``):
 - its material: the atlas's base colour (sRGB) with coverage in alpha, ``alphaMode: MASK`` + ``alphaCutoff``,
   double-sided; ``BAKER_hair_cards`` on the material: the data texture (depth offset from the card plane,
   root-to-tip parameter, per-strand random value) and the flow texture (the strands' direction in tangent space),
-  what each channel holds, the depth range and the atlas layout parameters.
-
-:func:`alpha_tested_image` hands the base colour RGBA and the cutoff to a coverage-preserving mip builder.
+  what each channel holds, the depth range and the atlas layout parameters; ``coverageMips``: the base colour's
+  coverage-preserving mip chain (Castaño 2010; :mod:`baker.gltf.alpha_mips`), an RGBA8 KTX2 in an accessor, so
+  the cards keep their alpha-test coverage with distance (RTR4 14.7.1) in a runtime that loads it.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from baker.gltf.alpha_mips import check_coverage_mips, write_coverage_mips
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
 from baker.gltf.images import encode_image
 
@@ -37,7 +38,8 @@ def alpha_tested_image(result) -> tuple[np.ndarray, float]:
 
 
 def write_cards(doc: GltfDocument, result, *, groom: dict, options) -> tuple[int, int]:
-    """Add the cards mesh, its node, material and textures to ``doc``; returns (mesh, material)."""
+    """Add the cards mesh, its node, material and textures to ``doc`` (with ``options.coverage_mips``, the base
+    colour's coverage-preserving mip chain too); returns (mesh, material)."""
     images = [doc.add_image(encode_image(np.ascontiguousarray(pixels), ".png"), "image/png", name)
               for pixels, name in ((result.base_color, "hair_cards_color"), (result.data, "hair_cards_data"),
                                    (result.flow, "hair_cards_flow"))]
@@ -55,6 +57,11 @@ def write_cards(doc: GltfDocument, result, *, groom: dict, options) -> tuple[int
             "depthRange": float(result.depth_range), "atlasSize": int(result.base_color.shape[0]),
             "padding": int(options.padding), "texelDensity": float(result.texel_density)}}})
     material = len(materials) - 1
+    if options.coverage_mips:
+        rgba, cutoff = alpha_tested_image(result)
+        # the base colour is sRGB (glTF): the chain filters its colour in linear light
+        materials[material]["extensions"][NAME]["coverageMips"] = [
+            write_coverage_mips(doc, color, rgba, cutoff, transfer="srgb")]
     attributes = {
         "POSITION": doc.add_accessor(result.positions, min_max=True),
         "NORMAL": doc.add_accessor(result.normals),
@@ -113,6 +120,21 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                                  f"{ptr}/{key}/index")
             if is_number(ext.get("depthRange")) and not ext["depthRange"] > 0:
                 issues.error("BAKER_HAIR_CARDS_DEPTH_RANGE", "depthRange must be > 0", ptr + "/depthRange")
+            if "coverageMips" in ext:
+                check_coverage_mips(doc, ext["coverageMips"], ptr + "/coverageMips", issues)
+                base = ((material.get("pbrMetallicRoughness") or {}).get("baseColorTexture") or {}).get("index")
+                mipped = [e.get("texture") for e in ext["coverageMips"] if isinstance(e, dict)] \
+                    if isinstance(ext["coverageMips"], list) else []
+                if base is not None and base not in mipped:
+                    issues.warning("BAKER_HAIR_CARDS_COVERAGE_MIPS", f"the base colour texture {base!r} has no "
+                                   "coverage-preserving mip chain", ptr + "/coverageMips")
+                for i, entry in enumerate(ext["coverageMips"] if isinstance(ext["coverageMips"], list) else []):
+                    if isinstance(entry, dict) and is_number(entry.get("alphaCutoff")) and \
+                            is_number(material.get("alphaCutoff", 0.5)) and \
+                            abs(entry["alphaCutoff"] - material.get("alphaCutoff", 0.5)) > 1e-6:
+                        issues.warning("BAKER_HAIR_CARDS_COVERAGE_MIPS", f"the chain preserves the coverage of "
+                                       f"alphaCutoff {entry['alphaCutoff']}, the material cuts at "
+                                       f"{material.get('alphaCutoff', 0.5)}", f"{ptr}/coverageMips/{i}/alphaCutoff")
         elif len(parts) == 4 and parts[0] == "meshes" and parts[2] == "primitives":
             m, p = parts[1], parts[3]
             prim = meshes[m]["primitives"][p]
@@ -159,6 +181,7 @@ class HairCardsMaterial:
     flow_encoding: str
     atlas_size: int | None = None
     padding: int | None = None
+    coverage_mips: dict = field(default_factory=dict)  # texture index -> its coverageMips entry
 
 
 @dataclass(frozen=True)
@@ -179,7 +202,8 @@ def read_material(doc: GltfDocument, material: int) -> HairCardsMaterial | None:
         return None
     return HairCardsMaterial(int(ext["dataTexture"]["index"]), int(ext["flowTexture"]["index"]),
                              float(ext["depthRange"]), dict(ext.get("dataChannels", DATA_CHANNELS)),
-                             str(ext.get("flowEncoding", FLOW_ENCODING)), ext.get("atlasSize"), ext.get("padding"))
+                             str(ext.get("flowEncoding", FLOW_ENCODING)), ext.get("atlasSize"), ext.get("padding"),
+                             {int(e["texture"]): dict(e) for e in ext.get("coverageMips", ())})
 
 
 def read(doc: GltfDocument, mesh: int, primitive: int) -> HairCards | None:

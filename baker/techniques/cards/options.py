@@ -28,6 +28,8 @@ class CardsOptions:
                                    max=8.0)
     padding: int = opt(4, "texels around every card's region of the atlas (mips and filtering stay inside)",
                        min=0, max=64)
+    coverage_mips: bool = opt(True, "also write the base colour's coverage-preserving mip chain (KTX2 RGBA8, "
+                                    "Castano 2010) so the cards do not thin out with distance")
     color: tuple = opt((0.30, 0.19, 0.10), "hair base colour (linear RGB); roots darker, per-strand variation",
                        min=0.0, max=1.0)
     seed: int = opt(0, "random seed; the same seed gives byte-identical output")

@@ -1,7 +1,9 @@
 """Preview panel of BAKER_hair_cards: the cards alpha-tested at the material's cutoff and shaded Kajiya-Kay along
 the flow texture (``runtime-shaders/baker_hair_cards.glsl``). The preview has no TANGENT attribute: the card's
 tangent frame comes from the screen-space derivatives of position and texture coordinates (the cotangent frame),
-which for a card is its TANGENT up to length."""
+which for a card is its TANGENT up to length. The base colour (and the alpha the test cuts) is sampled from the
+atlas's coverage-preserving mip chain (``coverageMips``, Castaño 2010) when the file has one, as the web runtimes do,
+so the cards keep their coverage at a distance; else from the PNG."""
 from __future__ import annotations
 
 from baker.preview.core import LAMBERT, DrawItem, Panel
@@ -24,7 +26,9 @@ class HairCardsPanel(Panel):
     def textures(self, scene, ctx, item):
         cards = item.data["hair_cards"]
         base = item.material["pbrMetallicRoughness"]["baseColorTexture"]["index"]
-        return {"u_baseColor": scene.texture(ctx, base, srgb=True), "u_data": scene.texture(ctx, cards.data_texture),
+        chain = cards.coverage_mips.get(base)
+        mipped = scene.coverage_mips(ctx, chain, repeat=False, srgb=True) if chain is not None else None
+        return {"u_baseColor": mipped or scene.texture(ctx, base, srgb=True), "u_data": scene.texture(ctx, cards.data_texture),
                 "u_flow": scene.texture(ctx, cards.flow_texture)}
 
 

@@ -60,8 +60,14 @@ class Rewriter:
         self.textures[name] = len(textures) - 1
         return self.textures[name]
 
-    def retexture(self, ext: dict, stored_textures: dict) -> None:
+    def retexture(self, ext: dict, stored_textures: dict, exported: dict | None = None) -> None:
+        """Point every texture reference in ``ext`` at its exported texture: ``exported`` (stored index -> index of a
+        texture Blender exported itself, e.g. the material's base colour), else a texture added from the stored
+        image."""
         for container, key in refs.texture_slots(ext):
+            if exported and container[key] in exported:
+                container[key] = exported[container[key]]
+                continue
             stored = stored_textures.get(str(container[key]))
             if stored is not None:
                 container[key] = self.texture(stored)
@@ -213,7 +219,11 @@ class Rewriter:
             if index is None:
                 continue
             exts = copy.deepcopy(payload["extensions"])
-            self.retexture(exts, payload["textures"])
+            base = ((gltf["materials"][index].get("pbrMetallicRoughness") or {}).get("baseColorTexture") or {}) \
+                .get("index")
+            own = {payload["baseColorTexture"]: base} if payload.get("baseColorTexture") is not None and \
+                base is not None else {}
+            self.retexture(exts, payload["textures"], own)
             for name, ext in exts.items():
                 for container, key, _ in list(refs.accessor_slots(name, ext)):
                     container[key] = self.add_accessor(payload.get("accessors", {})[str(container[key])])

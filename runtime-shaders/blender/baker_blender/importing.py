@@ -85,11 +85,14 @@ def import_materials(gltf_importer, gltf: dict, binary: bytes) -> None:
             mat = bpy.data.materials.get(name)
             if mat is None:
                 continue
-            accessors = {}  # the accessors a material extension names (BAKER_fur's coverage mip chains)
+            accessors = {}  # the accessors a material extension names (coverage mip chains)
             for name, ext in exts.items():
                 accessors.update(store_accessors(gltf, binary, name, ext) if isinstance(ext, dict) else {})
+            # the material's own base colour texture, which an extension may name too (BAKER_hair_cards'
+            # coverage mip chain): on export it is Blender's exported baseColorTexture, not a copy
+            base = ((material.get("pbrMetallicRoughness") or {}).get("baseColorTexture") or {}).get("index")
             mat[PROPERTY] = json.dumps({"index": index, "name": material.get("name"), "extensions": exts,
-                                        "textures": textures, "accessors": accessors})
+                                        "textures": textures, "accessors": accessors, "baseColorTexture": base})
             nodes.add_material_groups(mat, exts, textures)
 
 

@@ -15,7 +15,7 @@ ACCESSORS = {
                           "fonts[].glyphs.advance", "fonts[].glyphs.planeBounds", "fonts[].glyphs.atlasBounds",
                           "fonts[].kerning.pairs", "fonts[].kerning.advance"),
     "BAKER_text": ("glyphs.glyph", "glyphs.position"),
-    "BAKER_hair_cards": ("regions", "cardFirstIndex"),
+    "BAKER_hair_cards": ("regions", "cardFirstIndex", "coverageMips[].accessor"),
     "BAKER_fur": ("coverageMips[].accessor",),  # the KTX2 bytes of each coverage-preserving mip chain
 }
 # accessors holding vertex indices of their primitive (remapped by position when Blender renumbers vertices)

@@ -68,6 +68,8 @@ export const REFERENCES = {
 		"material": [
 			["dataTexture", "texture"],
 			["flowTexture", "texture"],
+			["coverageMips/*/texture", "texture-index"],
+			["coverageMips/*/accessor", "accessor"],
 		],
 		"mesh.primitive": [
 			["regions", "accessor"],

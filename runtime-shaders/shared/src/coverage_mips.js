@@ -1,5 +1,5 @@
 // Coverage-preserving mip chains (Castaño 2010; RTR4 14.7.1): the `coverageMips` entries baker writes next to an
-// alpha-tested texture (BAKER_fur today; schemas/BAKER_fur/README.md). Each holds an uncompressed RGBA8 KTX2 (every
+// alpha-tested texture (BAKER_fur, BAKER_hair_cards; schemas/BAKER_fur/README.md). Each holds an uncompressed RGBA8 KTX2 (every
 // level down to 1 x 1, each level's alpha scaled so the alpha test passes on level 0's fraction of texels) as the
 // bytes of an UNSIGNED_BYTE accessor. Both runtimes parse it here and upload the levels as the texture's mips.
 
