@@ -236,3 +236,65 @@ def test_material_without_normal_map_is_left_alone(tmp_path):
     asset = baker.bake(tmp_path / "plain.glb", bakes=["normal-blur"])
     assert NAME not in (asset.doc.json["materials"][0].get("extensions") or {})
     assert any("normal-blur" in note for note in asset.notes)
+
+
+def test_read_returns_what_was_written(baked):
+    _, path = baked
+    doc = GltfDocument.load(path)
+    ext = doc.json["materials"][0]["extensions"][NAME]
+    got = read(doc, 0)
+    assert got.diffuse_textures == tuple(t["index"] for t in ext["diffuseNormalTextures"]) and got.texcoord == 0
+    assert got.kernels == tuple(tuple((g["variance"], g["weight"]) for g in k) for k in ext["kernels"])
+    assert got.smoothed_texture == ext["smoothedNormalTexture"]["index"]
+    assert got.smoothed_channel == ext["smoothedChannel"]
+    assert got.channel_blend == tuple(ext["channelBlend"]) and got.stretch_scale == ext["stretchScale"]
+    assert got.stretch_texture == ext["stretchTexture"]["index"]
+    assert got.texture_space_diffusion == ext["textureSpaceDiffusion"]
+    assert read(doc, 0).meters_per_unit == 1.0
+    # the 12-tap kernel keeps the profile's mass per channel and d'Eon's blurs add up to each variance
+    for c in range(3):
+        assert sum(t["weights"][c] for t in ext["textureSpaceDiffusion"]["twelveTap"]["taps"]) == pytest.approx(1, abs=1e-3)
+    gaussians = ext["textureSpaceDiffusion"]["gaussians"]
+    assert np.allclose(np.cumsum([g["incrementalVariance"] for g in gaussians]), [g["variance"] for g in gaussians])
+
+
+def test_usd_carries_the_textures_and_parameters(baked, tmp_path):
+    from pxr import Usd, UsdShade
+
+    _, path = baked
+    asset = baker.bake(path, bakes=[])  # the baked file as it is
+    written = save(asset, tmp_path / "blurred.usda")
+    stage = Usd.Stage.Open(str(written[-1]))
+    materials = [UsdShade.Material(p) for p in stage.Traverse() if p.IsA(UsdShade.Material)]
+    assert len(materials) == 1
+    outputs = {o.GetBaseName() for o in materials[0].GetOutputs()}
+    for name in ("normal_blur:diffuseNormalTextures:_0", "normal_blur:diffuseNormalTextures:_2",
+                 "normal_blur:stretchTexture", "normal_blur:smoothedNormalTexture"):
+        assert f"baker:{name}" in outputs or name in outputs, outputs
+    prim = materials[0].GetPrim()
+    assert prim.GetAttribute("baker:normal_blur:stretchScale").Get() == pytest.approx(
+        GltfDocument.load(path).json["materials"][0]["extensions"][NAME]["stretchScale"])
+
+
+def test_cli_bake_inspect_and_bad_normal_map(tmp_path, capsys):
+    from baker.cli import main
+
+    source = bump_sphere(tmp_path / "s.glb", "u", segments=32, rings=16, size=64)
+    out = tmp_path / "o.glb"
+    assert main(["bake", str(source), "--bakes", "normal-blur", "--normal-blur-meters-per-unit", "0.5", "-o",
+                 str(out), "--quiet"]) in (0, None)
+    ext = GltfDocument.load(out).json["materials"][0]["extensions"][NAME]
+    assert ext["metersPerUnit"] == 0.5 and ext["kernels"][0][-1]["variance"] == pytest.approx(7.41e-6 / 0.25)
+    capsys.readouterr()
+    assert main(["inspect", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "BAKER_normal_blur.diffuseNormalTextures[2]" in text and "BAKER_normal_blur.stretchTexture" in text
+    # a normal texture whose image is not an image: exit 2, one line naming the file and the place
+    doc = GltfDocument.load(source)  # a grey (one-channel) image is no normal map
+    doc.json["textures"][0]["source"] = doc.add_image(encode_image(np.zeros((8, 8), np.uint8)), "image/png", "grey")
+    doc.save(tmp_path / "broken.glb")
+    capsys.readouterr()
+    assert main(["bake", str(tmp_path / "broken.glb"), "--bakes", "normal-blur", "-o", str(tmp_path / "x.glb"),
+                 "--quiet"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "/materials/0/normalTexture" in err[0] and "Traceback" not in err[0], err

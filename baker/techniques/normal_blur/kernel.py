@@ -158,25 +158,29 @@ def texel_areas(dpdu: np.ndarray, dpdv: np.ndarray, size: int) -> np.ndarray:
 
 
 def twelve_tap_kernel(variances: np.ndarray, weights: np.ndarray) -> dict:
-    """A 12-tap texture-space kernel after Hable et al. (ShaderX7, 2009): two rings of six taps plus the centre
-    taps (the outer ring turned by 30 degrees). The profile's mass is split into three annuli at the radii where
+    """A 12-tap texture-space kernel after Hable et al. (ShaderX7, 2009): two rings of six taps (the outer one
+    turned by 30 degrees) plus the centre tap. The profile's mass is split into three annuli at the radii where
     the red channel's cumulative mass reaches 1/3 and 2/3; each tap sits at its annulus's mass-weighted mean radius
     and carries its annulus's mass per channel, shared by the ring's taps. Offsets in mesh units."""
     variances = np.asarray(variances, np.float64)
     weights = np.asarray(weights, np.float64)
     weights = weights / weights.sum(axis=1, keepdims=True)
     radius = np.linspace(0.0, 8.0 * math.sqrt(variances.max()), 4097)
-    # a normalized 2D Gaussian's mass inside radius r is 1 - exp(-r^2 / (2 v))
-    mass = 1.0 - np.exp(-radius[:, None] ** 2 / (2.0 * variances[None, :]))  # (r, k)
-    cumulative = mass @ weights.T  # (r, 3)
+
+    def mass_inside(r):  # a normalized 2D Gaussian's mass inside radius r is 1 - exp(-r^2 / (2 v)); (..., 3)
+        r = np.asarray(r, np.float64)[..., None]
+        return (1.0 - np.exp(-r * r / (2.0 * variances))) @ weights.T
+
+    cumulative = mass_inside(radius)  # (r, 3)
     edges = [0.0] + [float(np.interp(q, cumulative[:, 0], radius)) for q in (1.0 / 3.0, 2.0 / 3.0)] + [radius[-1]]
+    total = mass_inside(radius[-1])
     taps = []
     for ring in range(3):
+        ring_mass = (mass_inside(edges[ring + 1]) - mass_inside(edges[ring])) / total
         inside = (radius >= edges[ring]) & (radius <= edges[ring + 1])
-        r, m = radius[inside], cumulative[inside]
-        ring_mass = m[-1] - m[0]
-        density = np.gradient(m[:, 0], r) if len(r) > 1 else np.ones(1)
-        mean_radius = float(_trapezoid(r * density, r) / max(_trapezoid(density, r), 1e-300)) if len(r) > 1 else 0.0
+        r = radius[inside]
+        density = np.gradient(cumulative[inside, 0], r) if len(r) > 1 else np.ones(1)
+        mean_radius = _trapezoid(r * density, r) / max(_trapezoid(density, r), 1e-300) if len(r) > 1 else 0.0
         if ring == 0:
             taps.append({"offset": [0.0, 0.0], "weights": [float(x) for x in ring_mass]})
             continue
