@@ -515,3 +515,50 @@ def test_addon_shows_caustics_on_a_floor(blender_python, tmp_path):
     added = data["lit"][..., :3].mean(-1) - data["control"][..., :3].mean(-1)
     assert (added > 0.02).mean() > 0.05 and (added < -0.02).mean() > 0.05
     assert np.corrcoef(added.ravel(), ((expected - 1) * fade).ravel())[0, 1] > 0.95
+
+
+def test_blender_exported_head_bakes_normal_blur_curvature_and_skin(blender_python, tmp_path):
+    """A real normal-mapped asset: a subdivided Suzanne with a ridged normal map, exported by Blender's own glTF
+    exporter with TANGENT (tests/blender/normal_mapped_head.py). normal-blur, curvature and skin bake together; both
+    validators are clean (no Khronos warning the export lacked); stock Blender imports the result; the diffuse maps
+    are softer than the input, red softest, and the input normal map (the specular term's) is untouched."""
+    from baker.techniques.normal_blur.extension import NAME, read
+
+    head = tmp_path / "head.glb"
+    run_blender(blender_python, "normal_mapped_head.py", head, 256)
+    source = GltfDocument.load(head)
+    assert "TANGENT" in source.json["meshes"][0]["primitives"][0]["attributes"]
+    out = tmp_path / "head_baked.glb"
+    bake("bake", head, "--bakes", "normal-blur,curvature,skin", "--skin-width", "64", "--skin-height", "64",
+         "-o", out)
+    before = assert_khronos_clean(head)["issues"]
+    after = assert_khronos_clean(out)["issues"]
+    assert after["numWarnings"] <= before["numWarnings"], after["messages"]
+    from baker import validate
+
+    report = validate.validate_file(out)
+    assert report["issues"]["numErrors"] == 0, [m for m in report["issues"]["messages"] if m["severity"] == 0]
+    doc = GltfDocument.load(out)
+    material = doc.json["materials"][0]
+    assert {NAME, "BAKER_curvature", "BAKER_skin_lut"} <= set(material["extensions"])
+    assert "generatedTangents" not in material["extensions"][NAME]  # Blender's TANGENT was used
+    assert material["normalTexture"] == source.json["materials"][0]["normalTexture"]
+
+    def detail(texture):  # mean squared tangent-plane part of the normals: the bump's energy
+        from baker.gltf.images import decode_image
+
+        pixels = decode_image(doc.image_bytes(doc.json["textures"][texture]["source"]), ".png")
+        n = pixels[..., :3].astype(np.float64) / np.iinfo(pixels.dtype).max * 2 - 1
+        return float((n[..., :2] ** 2).sum(-1).mean())
+
+    blur = read(doc, 0)
+    energies = [detail(t) for t in blur.diffuse_textures]
+    original = detail(material["normalTexture"]["index"])
+    assert energies[0] < energies[1] <= energies[2] <= original * 1.01 and energies[0] < 0.8 * original, \
+        (energies, original)
+
+    report_path = tmp_path / "report.json"
+    run_blender(blender_python, "import_report.py", "--out", report_path, "--", out)
+    entry = json.loads(report_path.read_text())[str(out)]
+    assert entry["error"] is None, entry["error"]
+    assert any(o["type"] == "MESH" for o in entry["objects"])
