@@ -104,7 +104,7 @@ class NormalBlurResult:
 
 
 def blur_normals(positions: np.ndarray, areas: np.ndarray, frames: TangentFrames, local_normals: np.ndarray,
-                 variances: np.ndarray, weights: np.ndarray, cell_fraction: float = 0.5) -> NormalBlurResult:
+                 variances: np.ndarray, weights: np.ndarray, cell_fraction: float = 1.0) -> NormalBlurResult:
     """The per-channel diffuse normals of texels.
 
     Parameters

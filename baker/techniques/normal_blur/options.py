@@ -14,8 +14,8 @@ class NormalBlurOptions:
                                     "reads; default: d'Eon & Luebke's skin)")
     meters_per_unit: float = opt(1.0, "metres per mesh unit (glTF: 1); the profile's millimetres are scaled by it",
                                  min=1e-12)
-    cell_fraction: float = opt(0.5, "lattice cell, in sigmas, of the Gaussians wider than two texel spacings "
-                                    "(smaller: closer to the brute-force convolution, slower)", min=0.05, max=1.0)
+    cell_fraction: float = opt(1.0, "lattice cell, in sigmas, of the Gaussians wider than 1.5 texel spacings "
+                                    "(smaller: closer to the brute-force convolution, slower)", min=0.05, max=1.5)
     texture_size: int | None = opt(None, "width and height of the output maps (default: the input normal map's "
                                          "larger side)", min=4, max=16384)
     stretch_bits: int = opt(16, "bits per channel of the stretch PNG", choices=(8, 16))

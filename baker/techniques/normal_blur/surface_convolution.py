@@ -11,7 +11,7 @@ open borders. A plane wave of wavenumber k on a flat (or gently curved, radius >
 by exp(-k^2 v / 2), the 2D Gaussian's transfer function.
 
 Speed (two levels, each exact to second order):
-- **direct**: Gaussians no wider than two texel spacings gather texel from texel through a bucket grid whose cell is
+- **direct**: Gaussians no wider than :data:`DIRECT_SPACINGS` texel spacings gather texel from texel through a bucket grid whose cell is
   the cut-off radius (27 buckets per texel);
 - **lattice**: wider ones splat the texels into cells of ``cell_fraction`` sigma (area-weighted centroid and sums),
   gather at the corners of occupied cells, and read back per texel by trilinear interpolation: the sparse
@@ -29,6 +29,11 @@ import numba
 import numpy as np
 
 CUTOFF_SIGMAS = 3.5  # gather radius: a 2D Gaussian keeps exp(-3.5^2 / 2) = 0.2 % of its mass beyond it
+# Gaussians up to this many texel spacings wide gather texel by texel: a direct gather visits ~(3.5 sigma /
+# spacing)^2 texels per texel, the lattice ~(3.5 / cell_fraction)^2 cells per node at ~3 nodes per cell, so the
+# two cost the same near sigma = 1.5 spacings (at the default cell of one sigma)
+DIRECT_SPACINGS = 1.5
+DENSE_TABLE_LIMIT = 1 << 24  # bucket grids up to this many cubes get a dense lookup table (8 bytes a cube)
 
 
 @dataclass(frozen=True)
@@ -56,10 +61,15 @@ def bucket_points(points: np.ndarray, size: float) -> Buckets:
 
 
 @numba.njit(cache=True, parallel=True)
-def _gather(targets, sources, values, order, keys, starts, origin, dims, size, inv_two_var, cutoff2, out):
-    """out[t, k, :] = sum over sources within sqrt(cutoff2[k]) of exp(-d^2 inv_two_var[k]) values[j, :]."""
+def _gather(targets, sources, values, keys, starts, table, origin, dims, size, inv_two_var, cutoff2, out):
+    """out[t, k, :] = sum over sources within sqrt(cutoff2[k]) of exp(-d^2 inv_two_var[k]) values[j, :].
+
+    ``sources`` and ``values`` are sorted by bucket (bucket b holds rows starts[b]:starts[b + 1]), so the inner loop
+    reads memory in order; a neighbour bucket whose cube lies farther than the largest cut-off is skipped. ``table``
+    (every cube's first row, dense, when the grid is small enough) replaces the binary search of ``keys``."""
     gaussians = inv_two_var.shape[0]
     width = values.shape[1]
+    reach2 = cutoff2.max()
     for t in numba.prange(targets.shape[0]):
         px, py, pz = targets[t, 0], targets[t, 1], targets[t, 2]
         cx = int(math.floor(px / size)) - origin[0]
@@ -68,22 +78,32 @@ def _gather(targets, sources, values, order, keys, starts, origin, dims, size, i
         for ix in range(cx - 1, cx + 2):
             if ix < 0 or ix >= dims[0]:
                 continue
+            gx = max(0.0, max((ix + origin[0]) * size - px, px - (ix + origin[0] + 1) * size))
             for iy in range(cy - 1, cy + 2):
                 if iy < 0 or iy >= dims[1]:
                     continue
+                gy = max(0.0, max((iy + origin[1]) * size - py, py - (iy + origin[1] + 1) * size))
                 for iz in range(cz - 1, cz + 2):
                     if iz < 0 or iz >= dims[2]:
                         continue
-                    key = (ix * dims[1] + iy) * dims[2] + iz
-                    b = np.searchsorted(keys, key)
-                    if b >= keys.shape[0] or keys[b] != key:
+                    gz = max(0.0, max((iz + origin[2]) * size - pz, pz - (iz + origin[2] + 1) * size))
+                    if gx * gx + gy * gy + gz * gz > reach2:
                         continue
-                    for s in range(starts[b], starts[b + 1]):
-                        j = order[s]
+                    key = (ix * dims[1] + iy) * dims[2] + iz
+                    if table.shape[0] > 0:
+                        first, last = table[key], table[key + 1]
+                    else:
+                        b = np.searchsorted(keys, key)
+                        if b >= keys.shape[0] or keys[b] != key:
+                            continue
+                        first, last = starts[b], starts[b + 1]
+                    for j in range(first, last):
                         dx = sources[j, 0] - px
                         dy = sources[j, 1] - py
                         dz = sources[j, 2] - pz
                         d2 = dx * dx + dy * dy + dz * dz
+                        if d2 > reach2:
+                            continue
                         for k in range(gaussians):
                             if d2 <= cutoff2[k]:
                                 w = math.exp(-d2 * inv_two_var[k])
@@ -99,8 +119,15 @@ def gather(targets: np.ndarray, sources: np.ndarray, values: np.ndarray, varianc
     radii = cutoff * np.sqrt(variances)
     buckets = bucket_points(sources, float(radii.max()))
     out = np.zeros((len(targets), len(variances), values.shape[1]))
-    _gather(np.ascontiguousarray(targets, np.float64), np.ascontiguousarray(sources, np.float64),
-            np.ascontiguousarray(values, np.float64), buckets.order, buckets.keys, buckets.starts, buckets.origin,
+    cubes = int(np.prod(buckets.dims))
+    table = np.zeros(0, np.int64)
+    if cubes <= DENSE_TABLE_LIMIT:  # each cube's first row: a lookup instead of a binary search
+        counts = np.zeros(cubes + 1, np.int64)
+        counts[buckets.keys + 1] = np.diff(buckets.starts)
+        table = np.cumsum(counts)
+    _gather(np.ascontiguousarray(targets, np.float64), np.ascontiguousarray(sources[buckets.order], np.float64),
+            np.ascontiguousarray(values[buckets.order], np.float64), buckets.keys, buckets.starts, table,
+            buckets.origin,
             buckets.dims, buckets.size, 0.5 / variances, radii * radii, out)
     return out
 
@@ -150,7 +177,7 @@ def texel_spacing(areas: np.ndarray) -> float:
 
 
 def surface_blur(positions: np.ndarray, areas: np.ndarray, vectors: np.ndarray, variances,
-                 cell_fraction: float = 0.5, cutoff: float = CUTOFF_SIGMAS) -> np.ndarray:
+                 cell_fraction: float = 1.0, cutoff: float = CUTOFF_SIGMAS) -> np.ndarray:
     """Area-weighted Gaussian means of ``vectors`` (texels, c) on the surface, one per variance.
 
     Parameters
@@ -159,7 +186,7 @@ def surface_blur(positions: np.ndarray, areas: np.ndarray, vectors: np.ndarray, 
     areas : (n,) surface area each texel stands for, mesh units^2.
     vectors : (n, c) values to blur (unit normals).
     variances : (k,) Gaussian variances, mesh units^2.
-    cell_fraction : lattice cell size in sigmas for the Gaussians too wide to gather texel by texel.
+    cell_fraction : lattice cell size in sigmas for the Gaussians wider than DIRECT_SPACINGS texel spacings.
     cutoff : gather radius in sigmas.
 
     Returns
@@ -171,7 +198,7 @@ def surface_blur(positions: np.ndarray, areas: np.ndarray, vectors: np.ndarray, 
     sums = np.zeros((len(positions), len(variances), weighted.shape[1]))
     spacing = texel_spacing(areas)
     sigma = np.sqrt(variances)
-    direct = sigma * cell_fraction <= spacing
+    direct = sigma <= DIRECT_SPACINGS * spacing
     if direct.any():
         sums[:, direct] = gather(positions, positions, weighted, variances[direct], cutoff)
     for k in np.flatnonzero(~direct):
