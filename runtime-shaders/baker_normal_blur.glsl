@@ -30,6 +30,18 @@ vec3 baker_normal_blur_decode(vec3 texel, float flipY) {
     return normalize(n);
 }
 
+// A tangent frame from screen-space derivatives where the host has no TANGENT (Schueler 2013, "Normal mapping without
+// precomputed tangents"): columns dP/du, -dP/dv (glTF's +Y is up in the image, v grows down) and N, the two scaled
+// alike. Pass dFdx/dFdy of the position and of the normal map's UV; N unit.
+mat3 baker_normal_blur_derivative_frame(vec3 N, vec3 dPdx, vec3 dPdy, vec2 dUVdx, vec2 dUVdy) {
+    vec3 dp2perp = cross(dPdy, N);
+    vec3 dp1perp = cross(N, dPdx);
+    vec3 T = dp2perp * dUVdx.x + dp1perp * dUVdy.x;
+    vec3 B = dp2perp * dUVdx.y + dp1perp * dUVdy.y;
+    float scale = inversesqrt(max(max(dot(T, T), dot(B, B)), 1e-30));
+    return mat3(T * scale, -B * scale, N);
+}
+
 // Per-channel N.L from the three diffuse normals (view or world space, like L). Feed it to a LUT
 // (baker_skin_lut_rgb) or saturate it for Lambert.
 vec3 baker_normal_blur_ndotl(vec3 nRed, vec3 nGreen, vec3 nBlue, vec3 L) {

@@ -195,3 +195,25 @@ def test_text_and_hair_panels(tmp_path):
 def test_unknown_panel_is_an_error(baked_spot):
     with pytest.raises(baker.errors.BakerError):
         preview(baked_spot, size=32, panels=["nope"])
+
+
+def test_normal_blur_panel_is_softest_in_red(tmp_path):
+    """A bumped sphere baked with normal-blur: the panel shades each channel with its diffuse normal map, so the
+    bump's pixel-scale detail is weakest in red and strongest in blue (d'Eon's skin profile)."""
+    from tests.techniques.test_normal_blur import bump_sphere
+
+    source = bump_sphere(tmp_path / "sphere.glb", "v", segments=128, rings=64, size=256)
+    out = tmp_path / "blurred.glb"
+    save(baker.bake(source, bakes=["normal-blur"]), out)
+    result = preview(out, size=SIZE, panels=["normal-blur"])
+    assert [n for n, _, _ in result.panels] == ["normal-blur"]
+    image = _panel(result, "normal-blur")
+    inside = ndimage.binary_erosion(_covered(image), iterations=4)
+
+    def detail(channel):  # pixel-scale variation: the bump, not the sphere's smooth shade
+        c = image[..., channel]
+        return np.abs(c - ndimage.uniform_filter(c, 5))[inside].mean()
+
+    red, green, blue = detail(0), detail(1), detail(2)
+    print("detail", red, green, blue)
+    assert inside.sum() > 500 and red < 0.7 * green and green <= blue * 1.05

@@ -12,7 +12,8 @@ from .twins_skin import F32, _dot, _f, mix, normalize, texture_linear
 
 
 def _times(tbn, v):
-    return np.einsum("ij,...j->...i", _f(tbn), _f(v)).astype(F32)
+    """tbn (3, 3) or (..., 3, 3), columns T, B, N, times v (..., 3)."""
+    return np.einsum("...ij,...j->...i", _f(tbn), _f(v)).astype(F32)
 
 
 def baker_normal_blur_decode(texel, flip_y):
@@ -20,6 +21,17 @@ def baker_normal_blur_decode(texel, flip_y):
     n = n.copy()
     n[..., 1] *= F32(flip_y)
     return normalize(n)
+
+
+def baker_normal_blur_derivative_frame(N, dPdx, dPdy, dUVdx, dUVdy):
+    """(..., 3, 3) matrices whose columns are T, B, N (as GLSL's mat3 of three columns)."""
+    N, dPdx, dPdy, dUVdx, dUVdy = map(_f, (N, dPdx, dPdy, dUVdx, dUVdy))
+    dp2perp = np.cross(dPdy, N).astype(F32)
+    dp1perp = np.cross(N, dPdx).astype(F32)
+    T = dp2perp * dUVdx[..., 0:1] + dp1perp * dUVdy[..., 0:1]
+    B = dp2perp * dUVdx[..., 1:2] + dp1perp * dUVdy[..., 1:2]
+    scale = F32(1.0) / np.sqrt(np.maximum(np.maximum(_dot(T, T), _dot(B, B)), F32(1e-30)))
+    return np.stack([T * scale[..., None], -B * scale[..., None], N], axis=-1)
 
 
 def baker_normal_blur_ndotl(n_red, n_green, n_blue, L):
