@@ -38,6 +38,7 @@ import { BakerFur } from './fur.js';
 import { BakerGlyphAtlas } from './glyph_atlas.js';
 import { BakerText } from './text.js';
 import { BakerCaustics } from './caustics.js';
+import { BakerNormalBlur } from './normal_blur.js';
 export { Thickness, BakerThickness } from './thickness.js';
 export { Curvature, BakerCurvature } from './curvature.js';
 export { SkinLut, BakerSkinLut } from './skin_lut.js';
@@ -50,6 +51,7 @@ export { Fur, FurFins, BakerFur } from './fur.js';
 export { GlyphAtlas, BakerGlyphAtlas } from './glyph_atlas.js';
 export { Text, BakerText } from './text.js';
 export { Caustics, BakerCaustics } from './caustics.js';
+export { NormalBlur, BakerNormalBlur } from './normal_blur.js';
 
 /** Every class, for `io.registerExtensions([...KHRONOS_EXTENSIONS, ...BAKER_EXTENSIONS])`. */
 export const BAKER_EXTENSIONS = [
@@ -65,4 +67,5 @@ export const BAKER_EXTENSIONS = [
 	BakerGlyphAtlas,
 	BakerText,
 	BakerCaustics,
+	BakerNormalBlur,
 ];

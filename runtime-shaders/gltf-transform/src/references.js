@@ -62,6 +62,13 @@ export const REFERENCES = {
 			["rootBinding/barycentrics", "accessor"],
 		],
 	},
+	"BAKER_normal_blur": {
+		"material": [
+			["diffuseNormalTextures/*", "texture"],
+			["smoothedNormalTexture", "texture"],
+			["stretchTexture", "texture"],
+		],
+	},
 	"BAKER_skin_lut": {
 		"material": [
 			["lutTexture", "texture"],
