@@ -136,7 +136,7 @@ def techniques_in(doc):
     found = set()
     per_material = {"BAKER_thickness": "translucency", "BAKER_skin_lut": "skin", "BAKER_toon_ramp": "toon",
                     "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature",
-                    "BAKER_caustics": "caustics"}
+                    "BAKER_caustics": "caustics", "BAKER_normal_blur": "normalBlur"}
     for material in doc.get("materials", []):
         found |= {per_material[name] for name in material.get("extensions", {}) if name in per_material}
     for mesh in doc.get("meshes", []):

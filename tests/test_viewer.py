@@ -178,3 +178,44 @@ def test_viewer_draws_moving_caustics_on_a_floor(site, tmp_path):
         assert info["techniques"] == ["caustics"] and "caustics" in info["status"], info
     early, late, off = (dict(zip(shots, images))[key] for key in shots)
     assert_caustics_move(early, late, off)
+
+
+def write_blurred_sphere(root, bakes=("normal-blur",)):
+    """A 6 cm sphere with a 4 mm bump along the meridians (tests/techniques/test_normal_blur.py), baked."""
+    from tests.techniques.test_normal_blur import bump_sphere
+
+    source = bump_sphere(root / "bump.glb", "v", segments=128, rings=96, size=512)
+    options = {"skin": {"width": 64, "height": 64, "penumbra_size": 32}}
+    save(baker.bake(source, bakes=bakes, options=options), root / "blurred.glb")
+    return "blurred.glb"
+
+
+def bump_detail(image, channel, covered):
+    """Pixel-scale variation of one channel: the bump's stripes, not the sphere's smooth shade."""
+    c = image[..., channel]
+    return float(np.abs(c - ndimage.uniform_filter(c, 5))[covered].mean())
+
+
+def test_viewer_shades_diffuse_with_the_blurred_normals(site, tmp_path):
+    """BAKER_normal_blur in three.js: with the technique on, the bump's detail drops in red (d'Eon's widest
+    channel: gain 0.5 at 4 mm) far more than in blue (gain 0.97); switched off, the picture is the plain
+    normal-mapped material's; without baker (?baker=0) it is the same as off."""
+    name = write_blurred_sphere(site["root"])
+    assert techniques_in(gltf_json(site["root"] / name)) == {"normalBlur"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+    shots = {"on": "", "off": "&off=normalBlur", "plain": "&baker=0"}
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in shots.items()]
+    infos, images = _shoot(jobs, tmp_path)
+    for key, info in zip(shots, infos):
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+    on, off, plain = images
+    assert infos[0]["techniques"] == ["normalBlur"]
+    background = np.array(BACKGROUND_RGB) / 255.0
+    covered = ndimage.binary_erosion(np.abs(off - background).max(axis=2) > 0.03, iterations=4)
+    assert covered.mean() > 0.05
+    red_on, red_off = bump_detail(on, 0, covered), bump_detail(off, 0, covered)
+    blue_on, blue_off = bump_detail(on, 2, covered), bump_detail(off, 2, covered)
+    print("red", red_on, red_off, "blue", blue_on, blue_off)
+    assert red_on < 0.75 * red_off and blue_on > 0.85 * blue_off
+    assert np.abs(off - plain)[covered].max() <= 2 / 255

@@ -8,5 +8,6 @@ import fur from '../../../runtime-shaders/baker_fur.glsl';
 import hair from '../../../runtime-shaders/baker_hair.glsl';
 import text from '../../../runtime-shaders/baker_text.glsl';
 import caustics from '../../../runtime-shaders/baker_caustics.glsl';
+import normalBlur from '../../../runtime-shaders/baker_normal_blur.glsl';
 
-export const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text, caustics };
+export const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text, caustics, normalBlur };

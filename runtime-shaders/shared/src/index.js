@@ -13,6 +13,7 @@ export const BAKER_TEXT = 'BAKER_text';
 export const BAKER_HAIR = 'BAKER_hair';
 export const BAKER_FUR = 'BAKER_fur';
 export const BAKER_CAUSTICS = 'BAKER_caustics';
+export const BAKER_NORMAL_BLUR = 'BAKER_normal_blur';
 
 /** Techniques (switch names) and the extension each comes from. Techniques off by default are debug views. */
 export const TECHNIQUES = {
@@ -27,13 +28,14 @@ export const TECHNIQUES = {
 	hair: { extension: BAKER_HAIR, label: 'hair ribbons' },
 	text: { extension: BAKER_TEXT, label: 'MSDF text' },
 	caustics: { extension: BAKER_CAUSTICS, label: 'caustics' },
+	normalBlur: { extension: BAKER_NORMAL_BLUR, label: 'blurred diffuse normals' },
 	curvature: { extension: BAKER_CURVATURE, label: 'curvature view', defaultOff: true },
 };
 
 const GLSL_NAMES = {
 	translucency: 'baker_translucency.glsl', skin: 'baker_skin.glsl', toon: 'baker_toon.glsl',
 	hatching: 'baker_hatching.glsl', edges: 'baker_edges.glsl', fur: 'baker_fur.glsl', hair: 'baker_hair.glsl',
-	text: 'baker_text.glsl', caustics: 'baker_caustics.glsl',
+	text: 'baker_text.glsl', caustics: 'baker_caustics.glsl', normalBlur: 'baker_normal_blur.glsl',
 };
 
 /** The runtime-shaders module `key` of options.shaders, as given; throws a message naming the file when missing. */

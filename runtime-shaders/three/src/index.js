@@ -10,7 +10,7 @@
 // The GLSL comes from runtime-shaders/ as text: the plugins inject the very modules the reference renders use, they
 // do not carry a copy. One plugin per extension, each in its own module (BAKER_<name> -> <name>.js: thickness.js,
 // skin_lut.js, toon_ramp.js, tonal_art_map.js, curvature.js, edges.js, fur.js, hair.js, glyph_atlas.js, text.js,
-// caustics.js);
+// caustics.js, normal_blur.js);
 // common.js holds what several use and surface.js the material composition. This module re-exports them and
 // registers them. Surface techniques (translucency, pre-integrated skin, toon ramp, hatching, curvature view, caustics)
 // augment the material GLTFLoader made (MeshStandardMaterial / MeshPhysicalMaterial) through onBeforeCompile, so
@@ -19,7 +19,7 @@
 // with ShaderMaterials that include the matching module, lit by the scene's lights (lights: true).
 export {
 	BAKER_THICKNESS, BAKER_CURVATURE, BAKER_SKIN_LUT, BAKER_EDGES, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
-	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, TECHNIQUES,
+	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_NORMAL_BLUR, TECHNIQUES,
 } from './common.js';
 import { controls } from './common.js';
 import { BakerThicknessPlugin } from './thickness.js';
@@ -32,6 +32,7 @@ import { BakerFurPlugin } from './fur.js';
 import { BakerHairPlugin } from './hair.js';
 import { BakerTextPlugin } from './text.js';
 import { BakerCausticsPlugin } from './caustics.js';
+import { BakerNormalBlurPlugin } from './normal_blur.js';
 export { thicknessParameters } from './thickness.js';
 export { tamTextures } from './tonal_art_map.js';
 export { wireframeGeometry } from './edges.js';
@@ -39,7 +40,7 @@ export { ribbonGeometry, setHairLod } from './hair.js';
 export { BakerGlyphAtlasPlugin } from './glyph_atlas.js';
 export {
 	BakerThicknessPlugin, BakerCurvaturePlugin, BakerSkinLutPlugin, BakerToonRampPlugin, BakerTonalArtMapPlugin,
-	BakerEdgesPlugin, BakerFurPlugin, BakerHairPlugin, BakerTextPlugin, BakerCausticsPlugin,
+	BakerEdgesPlugin, BakerFurPlugin, BakerHairPlugin, BakerTextPlugin, BakerCausticsPlugin, BakerNormalBlurPlugin,
 };
 
 // ------------------------------------------------------------------------------------------------ registration
@@ -59,11 +60,13 @@ class BakerControlsPlugin {
 }
 
 export const PLUGINS = [BakerThicknessPlugin, BakerCurvaturePlugin, BakerSkinLutPlugin, BakerToonRampPlugin,
-	BakerTonalArtMapPlugin, BakerEdgesPlugin, BakerFurPlugin, BakerHairPlugin, BakerTextPlugin, BakerCausticsPlugin];
+	BakerTonalArtMapPlugin, BakerEdgesPlugin, BakerFurPlugin, BakerHairPlugin, BakerTextPlugin, BakerCausticsPlugin,
+	BakerNormalBlurPlugin];
 
 /**
  * Register every baker plugin on a GLTFLoader. `options.shaders` holds the runtime-shaders/ modules as text:
- * { translucency, skin, toon, hatching, edges, fur, hair, text, caustics } (baker_<name>.glsl). `options.edges` overrides
+ * { translucency, skin, toon, hatching, edges, fur, hair, text, caustics, normalBlur } (baker_<name>.glsl;
+ * normalBlur: baker_normal_blur.glsl). `options.edges` overrides
  * the line style ({ color, finWidth, outlineWidth, wireframeWidth, wireframeColor } in pixels / linear RGB);
  * `options.caustics.time` fixes the caustic animation's clock (seconds, or a function returning seconds).
  */
