@@ -123,6 +123,25 @@ def assert_caustics_move(early, late, off):
     assert moved.mean() > 0.2, moved.mean()
 
 
+def write_blurred_sphere(root, bakes=("normal-blur",)):
+    """A 6 cm sphere with a 4 mm bump along the meridians (tests/techniques/test_normal_blur.py), baked."""
+    from tests.techniques.test_normal_blur import bump_sphere
+
+    source = bump_sphere(root / "bump.glb", "v", segments=128, rings=96, size=512)
+    options = {"skin": {"width": 64, "height": 64, "penumbra_size": 32}}
+    save(baker.bake(source, bakes=bakes, options=options), root / "blurred.glb")
+    return "blurred.glb"
+
+
+def bump_detail(image, channel, covered):
+    """Pixel-scale variation of one channel: the bump's stripes, not the sphere's smooth shade."""
+    import numpy as np
+    from scipy import ndimage
+
+    c = image[..., channel]
+    return float(np.abs(c - ndimage.uniform_filter(c, 5))[covered].mean())
+
+
 def gltf_json(path):
     """The JSON chunk of a GLB file."""
     data = Path(path).read_bytes()

@@ -34,8 +34,9 @@ import baker
 from baker import registry
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, ROOT, SPOT, assert_caustics_move, build_viewer, gltf_json, require_tools, serve,
-                     shoot, techniques_in, write_caustic_floor, write_label_and_groom)
+from browser import (BACKGROUND_RGB, ROOT, SPOT, assert_caustics_move, build_viewer, bump_detail, gltf_json,
+                     require_tools, serve, shoot, techniques_in, write_blurred_sphere, write_caustic_floor,
+                     write_label_and_groom)
 
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_babylon"
 W, H = 400, 300
@@ -295,3 +296,44 @@ def test_babylon_draws_moving_caustics_like_three(site, tmp_path):
         if ratio > DELTA_RATIO:
             raise AssertionError(f"{key}: change error {ratio:.2f} (artifacts: "
                                  f"{_keep(f'caustics-{key}', images[('three', key)], images[('babylon', key)])})")
+
+
+def test_babylon_shades_diffuse_with_the_blurred_normals_like_three(site, tmp_path):
+    """BAKER_normal_blur on the Babylon.js page with the three.js page's view: the bump's detail drops in red far
+    more than in blue (tests/test_viewer.py says why), and the change from the technique off is three.js's within
+    DELTA_RATIO."""
+    name = write_blurred_sphere(site["root"])
+    shots = {"on": "", "off": "&off=normalBlur"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+
+    def jobs(engine, views=None):
+        out = []
+        for i, (key, query) in enumerate(shots.items()):
+            url = base + query
+            if views is not None:
+                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
+        return out
+
+    three = shoot(jobs("three"), tmp_path / "three.json")
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    for info in three + babylon:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["normalBlur"], info
+    images = {(engine, key): _image(tmp_path / f"{engine}-{key}.png") for engine in ("three", "babylon") for key in shots}
+    on, off = images[("babylon", "on")], images[("babylon", "off")]
+    covered = ndimage.binary_erosion(np.abs(off - BACKGROUND).max(axis=2) > 0.03, iterations=4)
+    assert covered.mean() > 0.05
+    red = bump_detail(on, 0, covered), bump_detail(off, 0, covered)
+    blue = bump_detail(on, 2, covered), bump_detail(off, 2, covered)
+    print("babylon red", red, "blue", blue)
+    assert red[0] < 0.75 * red[1] and blue[0] > 0.85 * blue[1]
+    change_three = _blur(images[("three", "on")]) - _blur(images[("three", "off")])
+    change_babylon = _blur(on) - _blur(off)
+    changed = np.abs(change_three).max(axis=2) > 2 / 255
+    ratio = float(np.abs(change_babylon - change_three).max(axis=2)[changed].mean()
+                  / np.abs(change_three).max(axis=2)[changed].mean())
+    print("normal blur change error", round(ratio, 3))
+    if ratio > DELTA_RATIO:
+        raise AssertionError(f"change error {ratio:.2f} (artifacts: "
+                             f"{_keep('normal-blur', images[('three', 'on')], on)})")

@@ -16,8 +16,9 @@ import baker
 from baker.preview import core as pv
 from baker.gltf.images import read_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, DEFAULT_OFF, SPOT, VIEWER, assert_caustics_move, build_viewer, gltf_json,
-                     require_tools, serve, shoot, techniques_in, write_caustic_floor, write_label_and_groom)
+from browser import (BACKGROUND_RGB, DEFAULT_OFF, SPOT, VIEWER, assert_caustics_move, build_viewer, bump_detail, gltf_json,
+                     require_tools, serve, shoot, techniques_in, write_blurred_sphere, write_caustic_floor,
+                     write_label_and_groom)
 from conftest import assert_khronos_clean
 
 SIZE = 256
@@ -178,22 +179,6 @@ def test_viewer_draws_moving_caustics_on_a_floor(site, tmp_path):
         assert info["techniques"] == ["caustics"] and "caustics" in info["status"], info
     early, late, off = (dict(zip(shots, images))[key] for key in shots)
     assert_caustics_move(early, late, off)
-
-
-def write_blurred_sphere(root, bakes=("normal-blur",)):
-    """A 6 cm sphere with a 4 mm bump along the meridians (tests/techniques/test_normal_blur.py), baked."""
-    from tests.techniques.test_normal_blur import bump_sphere
-
-    source = bump_sphere(root / "bump.glb", "v", segments=128, rings=96, size=512)
-    options = {"skin": {"width": 64, "height": 64, "penumbra_size": 32}}
-    save(baker.bake(source, bakes=bakes, options=options), root / "blurred.glb")
-    return "blurred.glb"
-
-
-def bump_detail(image, channel, covered):
-    """Pixel-scale variation of one channel: the bump's stripes, not the sphere's smooth shade."""
-    c = image[..., channel]
-    return float(np.abs(c - ndimage.uniform_filter(c, 5))[covered].mean())
 
 
 def test_viewer_shades_diffuse_with_the_blurred_normals(site, tmp_path):

@@ -17,8 +17,8 @@
 // onReady, when the loader has built the whole scene, and reads custom attributes from their accessors.
 import { registerGLTFExtension, unregisterGLTFExtension } from '@babylonjs/loaders/glTF/2.0/glTFLoaderExtensionRegistry.js';
 import {
-	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_SKIN_LUT, BAKER_TEXT,
-	BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, controls,
+	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_NORMAL_BLUR,
+	BAKER_SKIN_LUT, BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, controls,
 } from './common.js';
 import { BakerThicknessExtension } from './thickness.js';
 import { BakerCurvatureExtension } from './curvature.js';
@@ -31,10 +31,12 @@ import { BakerHairExtension } from './hair.js';
 import { BakerGlyphAtlasExtension } from './glyph_atlas.js';
 import { BakerTextExtension } from './text.js';
 import { BakerCausticsExtension } from './caustics.js';
+import { BakerNormalBlurExtension } from './normal_blur.js';
 
 export {
-	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_SKIN_LUT, BAKER_TEXT,
-	BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, TECHNIQUES, BakerControls, readAccessor,
+	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_NORMAL_BLUR,
+	BAKER_SKIN_LUT, BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, TECHNIQUES,
+	BakerControls, readAccessor,
 } from './common.js';
 export { BakerSurfacePlugin } from './surface.js';
 export { thicknessParameters } from './thickness.js';
@@ -45,7 +47,7 @@ export { textStyle } from './text.js';
 export {
 	BakerThicknessExtension, BakerCurvatureExtension, BakerSkinLutExtension, BakerToonRampExtension,
 	BakerTonalArtMapExtension, BakerEdgesExtension, EdgeVisibilityExtension, BakerFurExtension, BakerHairExtension,
-	BakerGlyphAtlasExtension, BakerTextExtension, BakerCausticsExtension,
+	BakerGlyphAtlasExtension, BakerTextExtension, BakerCausticsExtension, BakerNormalBlurExtension,
 };
 
 /** extension name -> loader extension class (each a glTF extension: used only by files that list it). */
@@ -55,7 +57,7 @@ export const EXTENSIONS = {
 	[BAKER_TONAL_ART_MAP]: BakerTonalArtMapExtension, [BAKER_EDGES]: BakerEdgesExtension,
 	[EXT_EDGE_VISIBILITY]: EdgeVisibilityExtension, [BAKER_FUR]: BakerFurExtension, [BAKER_HAIR]: BakerHairExtension,
 	[BAKER_GLYPH_ATLAS]: BakerGlyphAtlasExtension, [BAKER_TEXT]: BakerTextExtension,
-	[BAKER_CAUSTICS]: BakerCausticsExtension,
+	[BAKER_CAUSTICS]: BakerCausticsExtension, [BAKER_NORMAL_BLUR]: BakerNormalBlurExtension,
 };
 
 const CONTROLS = 'BAKER_controls';
@@ -92,7 +94,8 @@ function named(extension) {
 
 /**
  * Register every baker loader extension with Babylon's glTF loader (global registry). `options.shaders` holds the
- * runtime-shaders/ modules as text: { translucency, skin, toon, hatching, edges, fur, hair, text, caustics }. Per technique:
+ * runtime-shaders/ modules as text: { translucency, skin, toon, hatching, edges, fur, hair, text, caustics,
+ * normalBlur }. Per technique:
  * options.thickness ({ power, scale, distortion, ambient, attenuationDistance, subsurfaceColor } overrides),
  * options.edges ({ color, finWidth, outlineWidth, wireframeWidth, wireframeColor, classes }), options.fur
  * ({ finThreshold }), options.hair ({ specular, exponent }), options.caustics ({ time }: seconds, or a function
