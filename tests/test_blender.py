@@ -517,20 +517,28 @@ def test_addon_shows_caustics_on_a_floor(blender_python, tmp_path):
     assert np.corrcoef(added.ravel(), ((expected - 1) * fade).ravel())[0, 1] > 0.95
 
 
-def test_blender_exported_head_bakes_normal_blur_curvature_and_skin(blender_python, tmp_path):
+@pytest.fixture(scope="session")
+def blurred_head(blender_python, tmp_path_factory):
+    """(Blender's export, its bake with normal-blur,curvature,skin): tests/blender/normal_mapped_head.py."""
+    folder = tmp_path_factory.mktemp("blender_head")
+    head = folder / "head.glb"
+    run_blender(blender_python, "normal_mapped_head.py", head, 256)
+    out = folder / "head_baked.glb"
+    bake("bake", head, "--bakes", "normal-blur,curvature,skin", "--skin-width", "64", "--skin-height", "64",
+         "-o", out)
+    return head, out
+
+
+def test_blender_exported_head_bakes_normal_blur_curvature_and_skin(blender_python, blurred_head, tmp_path):
     """A real normal-mapped asset: a subdivided Suzanne with a ridged normal map, exported by Blender's own glTF
     exporter with TANGENT (tests/blender/normal_mapped_head.py). normal-blur, curvature and skin bake together; both
     validators are clean (no Khronos warning the export lacked); stock Blender imports the result; the diffuse maps
     are softer than the input, red softest, and the input normal map (the specular term's) is untouched."""
     from baker.techniques.normal_blur.extension import NAME, read
 
-    head = tmp_path / "head.glb"
-    run_blender(blender_python, "normal_mapped_head.py", head, 256)
+    head, out = blurred_head
     source = GltfDocument.load(head)
     assert "TANGENT" in source.json["meshes"][0]["primitives"][0]["attributes"]
-    out = tmp_path / "head_baked.glb"
-    bake("bake", head, "--bakes", "normal-blur,curvature,skin", "--skin-width", "64", "--skin-height", "64",
-         "-o", out)
     before = assert_khronos_clean(head)["issues"]
     after = assert_khronos_clean(out)["issues"]
     assert after["numWarnings"] <= before["numWarnings"], after["messages"]
@@ -562,3 +570,21 @@ def test_blender_exported_head_bakes_normal_blur_curvature_and_skin(blender_pyth
     entry = json.loads(report_path.read_text())[str(out)]
     assert entry["error"] is None, entry["error"]
     assert any(o["type"] == "MESH" for o in entry["objects"])
+
+
+def test_addon_maps_the_diffuse_normals_and_keeps_them_on_export(blender_python, blurred_head, tmp_path):
+    """The add-on imports BAKER_normal_blur as a BAKER Diffuse Normals group (the three maps through tangent-space
+    Normal Map nodes, one Diffuse BSDF per channel) mixed in at factor 0, and exports the extension unchanged (its
+    textures compared by what they hold)."""
+    _, baked_head = blurred_head
+    exported, report_path = tmp_path / "head_blender.glb", tmp_path / "report.json"
+    run_blender(blender_python, "round_trip.py", ADDON, baked_head, exported, report_path)
+    report = json.loads(report_path.read_text())
+    material = next(m for m in report["materials"].values() if m["payload"])
+    assert "BAKER Diffuse Normals" in material["groups"]
+    assert material["mixes"].get("BAKER mix diffuse normals") == 0.0
+    assert baker_main(["validate", str(exported)]) == 0
+    before, after = canonical_extensions(baked_head), canonical_extensions(exported)
+    old = next(p for p in before["primitives"] if "BAKER_normal_blur" in json.dumps(p.get("material")))
+    new = next(p for p in after["primitives"] if "BAKER_normal_blur" in json.dumps(p.get("material")))
+    assert new["material"] == old["material"]

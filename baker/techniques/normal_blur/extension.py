@@ -78,7 +78,7 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, prof
         "channelBlendError": [float(x) for x in result.fit_error],
         "stretchTexture": _info(stretch_texture, texcoord),
         "stretchScale": float(stretch_scale),
-        "textureSize": int(size),
+        "mapSize": int(size),
         "textureSpaceDiffusion": {"gaussians": gaussians,
                                   "twelveTap": twelve_tap_kernel(variances, weights)},
     }
