@@ -73,13 +73,13 @@ class TexelSets:
                                          pt.texels.bary))
         return np.concatenate(parts) if parts else np.zeros(0)
 
-    def per_face(self, per_face: Callable[[PrimitiveTexels], np.ndarray]) -> np.ndarray:
-        """Per-texel values of the triangle each texel lies in: ``per_face(primitive texels)`` gives (faces, ...)
-        values of a primitive (a UV Jacobian, a face normal)."""
+    def per_face(self, per_face: Callable[[MaterialTarget, PrimitiveTexels], np.ndarray]) -> np.ndarray:
+        """Per-texel values of the triangle each texel lies in: ``per_face(target, primitive texels)`` gives
+        (faces, ...) values of a primitive of a texture set (a UV Jacobian in ``target.texcoord``, a face normal)."""
         parts = []
         for texel_set in self.sets:
             for pt in texel_set.target.primitives:
-                parts.append(per_face(pt)[pt.texels.triangle])
+                parts.append(per_face(texel_set.target, pt)[pt.texels.triangle])
         return np.concatenate(parts) if parts else np.zeros(0)
 
     def interpolate_welded(self, welded: dict) -> np.ndarray:

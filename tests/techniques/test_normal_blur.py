@@ -298,3 +298,22 @@ def test_cli_bake_inspect_and_bad_normal_map(tmp_path, capsys):
                  "--quiet"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "/materials/0/normalTexture" in err[0] and "Traceback" not in err[0], err
+
+
+def test_vertex_tangents_follow_du_and_the_layouts_handedness():
+    """A square in the xy plane facing +z: u along +x and v down the image (glTF) along -y gives T = +x, w = +1
+    (cross(N, T) = +y = -dP/dv); the mirrored layout (u along -x) gives T = -x and w = -1."""
+    from baker.geometry.tangents import uv_jacobians, vertex_tangents
+
+    positions = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+    faces = np.array([[0, 1, 2], [0, 2, 3]])
+    normals = np.tile([0.0, 0.0, 1.0], (4, 1))
+    uv = np.array([[0, 1], [1, 1], [1, 0], [0, 0]], float)  # v = 1 - y
+    tangents = vertex_tangents(positions, faces, normals, uv)
+    np.testing.assert_allclose(tangents, np.tile([1.0, 0.0, 0.0, 1.0], (4, 1)), atol=1e-12)
+    dpdu, dpdv = uv_jacobians(positions, faces, uv)
+    np.testing.assert_allclose(dpdu, [[1, 0, 0]] * 2, atol=1e-12)
+    np.testing.assert_allclose(dpdv, [[0, -1, 0]] * 2, atol=1e-12)
+    mirrored = uv * [-1.0, 1.0] + [1.0, 0.0]
+    np.testing.assert_allclose(vertex_tangents(positions, faces, normals, mirrored),
+                               np.tile([-1.0, 0.0, 0.0, -1.0], (4, 1)), atol=1e-12)

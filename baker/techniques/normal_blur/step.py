@@ -116,9 +116,8 @@ def run(asset: Asset, options: NormalBlurOptions, seed: int = 0, progress: Progr
     texels = gather_texels(asset, layouts=layouts, seed=seed)
     frames_all = TangentFrames.from_tangents(texels.normals,
                                              texels.interpolate(lambda g: tangents[(g.mesh, g.primitive)]))
-    jacobians = texels.per_face(lambda pt: np.concatenate(
-        uv_jacobians(pt.geometry.positions, pt.geometry.faces, pt.geometry.texcoords[pt_texcoord(pt, layouts)]),
-        axis=1))
+    jacobians = texels.per_face(lambda target, pt: np.concatenate(
+        uv_jacobians(pt.geometry.positions, pt.geometry.faces, pt.geometry.texcoords[target.texcoord]), axis=1))
     results = {}
     with progress.task(f"normal-blur texels ({texels.describe()})", len(texels)) as advance:
         for texel_set in texels.sets:
@@ -155,8 +154,3 @@ def run(asset: Asset, options: NormalBlurOptions, seed: int = 0, progress: Progr
                                       weights=weights, texcoord=texel_set.texcoord, diffuse_textures=textures,
                                       result=result, stretch_texture=stretch_texture, stretch_scale=stretch_scale,
                                       generated_tangents=generated[material], size=texel_set.size)
-
-
-def pt_texcoord(pt, layouts: dict) -> int:
-    """The UV set a primitive's texels were laid out in."""
-    return layouts[pt.geometry.material][0]
