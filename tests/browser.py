@@ -123,14 +123,21 @@ def assert_caustics_move(early, late, off):
     assert moved.mean() > 0.2, moved.mean()
 
 
-def write_blurred_sphere(root, bakes=("normal-blur",)):
-    """A 6 cm sphere with a 4 mm bump along the meridians (tests/techniques/test_normal_blur.py), baked."""
+def write_blurred_sphere(root, bakes=("normal-blur",), metallic: bool = False):
+    """A 6 cm sphere with a 4 mm bump along the meridians (tests/techniques/test_normal_blur.py), baked; ``metallic``:
+    a glossy metal (no diffuse term at all: what the blurred normals change must not show)."""
+    from baker.gltf.document import GltfDocument
     from tests.techniques.test_normal_blur import bump_sphere
 
-    source = bump_sphere(root / "bump.glb", "v", segments=128, rings=96, size=512)
+    stem = "blurred_metal" if metallic else "blurred"
+    source = bump_sphere(root / f"{stem}_bump.glb", "v", segments=128, rings=96, size=512)
+    if metallic:
+        doc = GltfDocument.load(source)
+        doc.json["materials"][0]["pbrMetallicRoughness"] = {"metallicFactor": 1.0, "roughnessFactor": 0.35}
+        doc.save(source)
     options = {"skin": {"width": 64, "height": 64, "penumbra_size": 32}}
-    save(baker.bake(source, bakes=bakes, options=options), root / "blurred.glb")
-    return "blurred.glb"
+    save(baker.bake(source, bakes=bakes, options=options), root / f"{stem}.glb")
+    return f"{stem}.glb"
 
 
 def bump_detail(image, channel, covered):

@@ -204,3 +204,20 @@ def test_viewer_shades_diffuse_with_the_blurred_normals(site, tmp_path):
     print("red", red_on, red_off, "blue", blue_on, blue_off)
     assert red_on < 0.75 * red_off and blue_on > 0.85 * blue_off
     assert np.abs(off - plain)[covered].max() <= 2 / 255
+
+
+def test_viewer_normal_blur_leaves_the_specular_term_alone(site, tmp_path):
+    """On a glossy metal (glTF: no diffuse term) the blurred diffuse normals change nothing: the specular term keeps
+    the material's own normal map, so the frames with the technique on and off are the same."""
+    name = write_blurred_sphere(site["root"], metallic=True)
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in (("on", ""), ("off", "&off=normalBlur"))]
+    infos, (on, off) = _shoot(jobs, tmp_path)
+    for info in infos:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["normalBlur"], info
+    background = np.array(BACKGROUND_RGB) / 255.0
+    covered = np.abs(off - background).max(axis=2) > 0.03
+    assert covered.mean() > 0.05 and bump_detail(off, 1, covered) > 0.002  # the bump shows in the highlights
+    assert np.abs(on - off).max() <= 1 / 255
