@@ -337,3 +337,19 @@ def test_babylon_shades_diffuse_with_the_blurred_normals_like_three(site, tmp_pa
     if ratio > DELTA_RATIO:
         raise AssertionError(f"change error {ratio:.2f} (artifacts: "
                              f"{_keep('normal-blur', images[('three', 'on')], on)})")
+
+
+def test_babylon_normal_blur_leaves_a_metal_alone(site, tmp_path):
+    """A glossy metal has no diffuse term: with the blurred diffuse normals on or off the Babylon.js frame is the
+    same (the specular term keeps the bump texture's normal)."""
+    name = write_blurred_sphere(site["root"], metallic=True)
+    base = f"{site['url']}/index.html?hud=0&engine=babylon&src={name}"
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in (("on", ""), ("off", "&off=normalBlur"))]
+    infos = shoot(jobs, tmp_path / "jobs.json")
+    for info in infos:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["normalBlur"], info
+    on, off = (_image(tmp_path / f"{key}.png") for key in ("on", "off"))
+    assert (np.abs(off - BACKGROUND).max(axis=2) > 0.03).mean() > 0.05
+    assert np.abs(on - off).max() <= 1 / 255

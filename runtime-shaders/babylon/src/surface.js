@@ -212,7 +212,7 @@ if (u_baker_normalBlur_on > 0.5) {
 	bool bakerReplaced = false;
 	${diffuse.join('\n\t')}
 	// like @baker/three: the change to Lambert's term, and the translucency, on the base colour (not metal-weighted)
-	if (bakerReplaced) bakerDirect += (f - vec3(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb;
+	if (bakerReplaced) bakerLambert += (f - vec3(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb;
 	${p.translucency ? `bakerDirect += u_baker_translucency_on * preInfo.attenuation * diffuse$1.rgb *
 		baker_translucency(${p.translucency.struct}, normalW, viewDirectionW, bakerL, ${p.translucency.thickness});` : ''}
 #ifdef DIRLIGHT$1
@@ -220,9 +220,13 @@ if (u_baker_normalBlur_on > 0.5) {
 #endif
 }`;
 		}
-		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);\nvec3 bakerSun = vec3(0.0);' +
+		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);\nvec3 bakerLambert = vec3(0.0);\nvec3 bakerSun = vec3(0.0);' +
 			(p.normalBlur ? NORMAL_BLUR : '');
+		// the change to Lambert's term on the base colour (skin, toon: as @baker/three does); with blurred diffuse
+		// normals on Babylon's diffuse albedo (surfaceAlbedo: metal-weighted), so a metal shows no change
+		const albedo = p.normalBlur ? 'surfaceAlbedo.rgb' : 'albedoOpacityOut.surfaceAlbedo';
 		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;' +
+			`\nfinalDiffuse += bakerLambert * ${albedo} * vLightingIntensity.x;` +
 			(p.caustics ? CAUSTICS : '');
 		let outgoing = '';
 		if (p.tam) outgoing += `

@@ -87,6 +87,10 @@ vBakerUv = uv;`)
 					? baker_xtoon_detail_depth(-vViewPosition.z, u_bakerToonDepthRange.x, u_bakerToonDepthRange.y)
 					: baker_xtoon_detail_orientation(normal, normalize(vViewPosition) * -1.0, u_bakerToonOrientationPower)));
 		}`);
+		// the change to Lambert's term goes on the base colour (skin, toon: as Babylon's plugin does); with blurred
+		// diffuse normals on the material's diffuse albedo (metal-weighted), so a metal, which has no diffuse term,
+		// shows no change
+		const albedo = p.normalBlur ? 'material.diffuseContribution' : 'diffuseColor.rgb';
 		let lights = '';
 		if (diffuse.length || p.translucency || p.caustics) {
 			lights = `${p.normalBlur ? NORMAL_BLUR : ''}
@@ -97,7 +101,7 @@ vec3 bakerSun = vec3(0.0);  // Lambert light of the directional lights (the sun)
 		float dotNL = dot(normal, L);
 		vec3 f = vec3(saturate(dotNL));
 		${diffuse.join('\n\t\t')}
-		reflectedLight.directDiffuse += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * (f - vec3(saturate(dotNL)));
+		reflectedLight.directDiffuse += directionalLights[i].color * BRDF_Lambert(${albedo}) * (f - vec3(saturate(dotNL)));
 		${p.translucency ? `reflectedLight.directDiffuse += u_baker_translucency_on * diffuseColor.rgb * directionalLights[i].color *
 			baker_translucency(u_bakerThickness, normal, normalize(vViewPosition), L, vBaker${p.translucency.attribute});` : ''}
 		bakerSun += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * saturate(dotNL);
