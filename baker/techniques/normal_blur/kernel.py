@@ -100,7 +100,6 @@ class NormalBlurResult:
     smoothed_channel: int  # which channel's map is the smoothed one
     channel_blend: np.ndarray  # (3,) t per channel: n_c ~ normalize(lerp(smoothed, (0, 0, 1), t))
     fit_error: np.ndarray  # (3,) RMS |normalize(lerp) - n_c| per channel
-    per_gaussian: np.ndarray  # (k, n, 3) each Gaussian's blurred mesh-space mean (not normalized)
 
 
 def blur_normals(positions: np.ndarray, areas: np.ndarray, frames: TangentFrames, local_normals: np.ndarray,
@@ -130,7 +129,7 @@ def blur_normals(positions: np.ndarray, areas: np.ndarray, frames: TangentFrames
     spread = (weights * np.asarray(variances)[None, :]).sum(axis=1)
     smoothed = int(np.argmin(spread))
     blend, error = fit_channel_blend(diffuse, smoothed)
-    return NormalBlurResult(diffuse, smoothed, blend, error, per_gaussian)
+    return NormalBlurResult(diffuse, smoothed, blend, error)
 
 
 def fit_channel_blend(diffuse: np.ndarray, smoothed: int) -> tuple[np.ndarray, np.ndarray]:
