@@ -317,3 +317,20 @@ def test_vertex_tangents_follow_du_and_the_layouts_handedness():
     mirrored = uv * [-1.0, 1.0] + [1.0, 0.0]
     np.testing.assert_allclose(vertex_tangents(positions, faces, normals, mirrored),
                                np.tile([-1.0, 0.0, 0.0, -1.0], (4, 1)), atol=1e-12)
+
+
+def test_mirrored_layout_is_baked_and_said(tmp_path):
+    """A sphere whose second half mirrors the first in u (as heads are often laid out): the bake runs, writes valid
+    maps, and says the layout overlaps."""
+    source = bump_sphere(tmp_path / "s.glb", "v", segments=32, rings=16, size=64)
+    doc = GltfDocument.load(source)
+    prim = doc.json["meshes"][0]["primitives"][0]
+    uv = doc.accessor(prim["attributes"]["TEXCOORD_0"]).copy()
+    uv[:, 0] = 1.0 - np.abs(2.0 * uv[:, 0] - 1.0)  # u: 0 -> 1 -> 0 around the sphere
+    prim["attributes"]["TEXCOORD_0"] = doc.add_accessor(uv.astype(np.float32))
+    doc.save(tmp_path / "mirrored.glb")
+    asset = baker.bake(tmp_path / "mirrored.glb", bakes=["normal-blur"])
+    assert any("overlaps itself" in note for note in asset.notes), asset.notes
+    save(asset, tmp_path / "out.glb")
+    report = validate.validate_file(tmp_path / "out.glb")
+    assert report["issues"]["numErrors"] == 0, report["issues"]["messages"]

@@ -92,6 +92,35 @@ def _tangents(asset: Asset, members: list, texcoord: int, generated: list) -> di
     return out
 
 
+def _note_layout(asset: Asset, texel_set, shape) -> None:
+    """Say so when the normal map's layout cannot pair one surface point with each texel: overlapping (mirrored or
+    stacked) charts share texels, which are then blurred at one of their surface points; a non-square map is
+    resampled to a square of its larger side."""
+    from baker.geometry.texture_target import material_label
+
+    # the triangles' UV area against the texels they cover: equal for a layout without overlaps (up to the texels
+    # along chart borders), twice as large where every chart is mirrored onto another
+    target = texel_set.target
+    uv_area = 0.0
+    for pt in target.primitives:
+        t = pt.geometry.texcoords[target.texcoord][pt.geometry.faces]
+        uv_area += 0.5 * float(np.abs((t[:, 1, 0] - t[:, 0, 0]) * (t[:, 2, 1] - t[:, 0, 1])
+                                      - (t[:, 2, 0] - t[:, 0, 0]) * (t[:, 1, 1] - t[:, 0, 1])).sum())
+    covered = int(target.mask.sum())
+    label = material_label(asset.doc, texel_set.material)
+    shared = uv_area * target.size ** 2 / covered - 1.0 if covered else 0.0
+    if shared > OVERLAP_TOLERANCE:
+        asset.note(f"normal-blur: material {label}: the normal map's UV layout overlaps itself (its triangles cover "
+                   f"{100 * shared:.0f}% more UV area than texels; mirrored or stacked charts); each shared texel is "
+                   "blurred at one of its surface points")
+    if shape[0] != shape[1]:
+        asset.note(f"normal-blur: material {label}: the {shape[1]}x{shape[0]} normal map is sampled into "
+                   f"{texel_set.size}x{texel_set.size} diffuse maps")
+
+
+OVERLAP_TOLERANCE = 0.05  # UV area over covered texels beyond 1: chart borders cover partial texels
+
+
 def run(asset: Asset, options: NormalBlurOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     from baker.geometry.tangents import uv_jacobians
     from baker.geometry.texels import gather_texels
@@ -114,6 +143,8 @@ def run(asset: Asset, options: NormalBlurOptions, seed: int = 0, progress: Progr
         generated[material] = []
         tangents.update(_tangents(asset, members, texcoord, generated[material]))
     texels = gather_texels(asset, layouts=layouts, seed=seed)
+    for texel_set in texels.sets:
+        _note_layout(asset, texel_set, inputs[texel_set.material][0].shape)
     frames_all = TangentFrames.from_tangents(texels.normals,
                                              texels.interpolate(lambda g: tangents[(g.mesh, g.primitive)]))
     jacobians = texels.per_face(lambda target, pt: np.concatenate(
