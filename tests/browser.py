@@ -140,6 +140,25 @@ def write_blurred_sphere(root, bakes=("normal-blur",), metallic: bool = False):
     return f"{stem}.glb"
 
 
+def write_blender_head(root):
+    """A real normal-mapped asset (tests/blender/normal_mapped_head.py: Suzanne exported by Blender's own glTF exporter
+    with TANGENT) baked with normal-blur, curvature and skin: root/head.glb. Blender is the bpy venv of
+    scripts/install-bpy ($BAKER_BPY_PYTHON, as tests/test_blender.py finds it)."""
+    python = os.environ.get("BAKER_BPY_PYTHON")
+    if not python:
+        done = subprocess.run([str(ROOT / "scripts" / "install-bpy")], capture_output=True, text=True)
+        assert done.returncode == 0, f"scripts/install-bpy failed:\n{done.stderr[-2000:]}"
+        python = done.stdout.strip().splitlines()[-1]
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    exported = root / "head_blender.glb"
+    made = subprocess.run([python, str(ROOT / "tests" / "blender" / "normal_mapped_head.py"), str(exported), "256"],
+                          capture_output=True, text=True, timeout=600, env=env)
+    assert made.returncode == 0, made.stderr[-3000:]
+    options = {"skin": {"width": 64, "height": 64, "penumbra_size": 32}}
+    save(baker.bake(exported, bakes=("normal-blur", "curvature", "skin"), options=options), root / "head.glb")
+    return "head.glb"
+
+
 def bump_detail(image, channel, covered):
     """Pixel-scale variation of one channel: the bump's stripes, not the sphere's smooth shade."""
     import numpy as np

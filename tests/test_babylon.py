@@ -35,8 +35,8 @@ from baker import registry
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
 from browser import (BACKGROUND_RGB, ROOT, SPOT, assert_caustics_move, build_viewer, bump_detail, gltf_json,
-                     require_tools, serve, shoot, techniques_in, write_blurred_sphere, write_caustic_floor,
-                     write_label_and_groom)
+                     require_tools, serve, shoot, techniques_in, write_blender_head, write_blurred_sphere,
+                     write_caustic_floor, write_label_and_groom)
 
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_babylon"
 W, H = 400, 300
@@ -353,3 +353,33 @@ def test_babylon_normal_blur_leaves_a_metal_alone(site, tmp_path):
     on, off = (_image(tmp_path / f"{key}.png") for key in ("on", "off"))
     assert (np.abs(off - BACKGROUND).max(axis=2) > 0.03).mean() > 0.05
     assert np.abs(on - off).max() <= 1 / 255
+
+
+def test_babylon_softens_the_blender_heads_diffuse(site, tmp_path):
+    """The real asset (tests/browser.py write_blender_head: Blender's export, baked with normal-blur, curvature and
+    skin) on the Babylon.js page with the three.js page's view: all three techniques found, and the ridges' red
+    detail drops with the blurred normals on."""
+    name = write_blender_head(site["root"])
+    shots = {"on": "", "off": "&off=normalBlur"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+
+    def jobs(engine, views=None):
+        out = []
+        for i, (key, query) in enumerate(shots.items()):
+            url = base + query
+            if views is not None:
+                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
+        return out
+
+    three = shoot(jobs("three"), tmp_path / "three.json")
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    for info in three + babylon:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert set(info["techniques"]) == {"normalBlur", "skin", "curvature"}, info
+    on, off = _image(tmp_path / "babylon-on.png"), _image(tmp_path / "babylon-off.png")
+    covered = ndimage.binary_erosion(np.abs(off - BACKGROUND).max(axis=2) > 0.03, iterations=4)
+    assert covered.mean() > 0.05
+    red = bump_detail(on, 0, covered), bump_detail(off, 0, covered)
+    print("babylon head red detail on/off", red)
+    assert red[0] < 0.85 * red[1]
