@@ -588,3 +588,27 @@ def test_addon_maps_the_diffuse_normals_and_keeps_them_on_export(blender_python,
     old = next(p for p in before["primitives"] if "BAKER_normal_blur" in json.dumps(p.get("material")))
     new = next(p for p in after["primitives"] if "BAKER_normal_blur" in json.dumps(p.get("material")))
     assert new["material"] == old["material"]
+
+
+def test_diffuse_normals_group_renders_softer_red(blender_python, blurred_head, tmp_path):
+    """Cycles CPU, 128 x 128: the head through BAKER Diffuse Normals, with the baked maps and (control) with the
+    material's own sharp normal map in every channel. The ridges' pixel-scale detail drops in red far more than in
+    blue, as the profile says (d'Eon's red is the widest)."""
+    from scipy import ndimage
+
+    _, baked_head = blurred_head
+    out = tmp_path / "render.npz"
+    run_blender(blender_python, "render_diffuse_normals.py", ADDON, baked_head, out)
+    data = np.load(out)
+    blurred, sharp = data["blurred"], data["sharp"]
+    inside = ndimage.binary_erosion((sharp[..., 3] > 0.99) & (sharp[..., :3].max(-1) > 0.02), iterations=2)
+    assert inside.sum() > 500, "the head covers too few pixels"
+
+    def detail(image, channel):
+        c = image[..., channel]
+        return float(np.abs(c - ndimage.uniform_filter(c, 3))[inside].mean())
+
+    ratios = [detail(blurred, c) / detail(sharp, c) for c in range(3)]
+    print("detail blurred / sharp per channel", ratios)
+    # the frame's detail also holds the head's own shape and the path-tracing noise, which both renders share
+    assert ratios[0] < 0.9 and ratios[0] < min(ratios[1:]) - 0.08
