@@ -217,3 +217,24 @@ def test_normal_blur_panel_is_softest_in_red(tmp_path):
     red, green, blue = detail(0), detail(1), detail(2)
     print("detail", red, green, blue)
     assert inside.sum() > 500 and red < 0.7 * green and green <= blue * 1.05
+
+
+def test_skin_panel_reads_the_diffuse_normals(tmp_path):
+    """The same bumped sphere baked with skin alone and with normal-blur + skin. The preview's skin panel shades with
+    the interpolated normal, so skin alone shows no bump; with normal-blur it reads the LUT with the per-channel
+    blurred normals: the bump shows, softest in red."""
+    from tests.techniques.test_normal_blur import bump_sphere
+
+    source = bump_sphere(tmp_path / "sphere.glb", "v", segments=128, rings=64, size=256)
+    options = {"skin": {"width": 64, "height": 64, "penumbra": False}}
+    details = {}
+    for label, bakes in (("skin", ["skin"]), ("blurred", ["normal-blur", "skin"])):
+        out = tmp_path / f"{label}.glb"
+        save(baker.bake(source, bakes=bakes, options=options), out)
+        image = _panel(preview(out, size=SIZE, panels=["skin"]), "skin")
+        inside = ndimage.binary_erosion(_covered(image), iterations=4)
+        details[label] = [np.abs(image[..., c] - ndimage.uniform_filter(image[..., c], 5))[inside].mean()
+                          for c in range(3)]
+    print("skin panel detail (R, G, B)", details)
+    assert details["skin"][0] < 0.5 * details["blurred"][0]
+    assert details["blurred"][0] < 0.75 * details["blurred"][2]
