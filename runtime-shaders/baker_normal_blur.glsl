@@ -88,4 +88,17 @@ vec3 baker_normal_blur_tsd_step(sampler2D irradiance, sampler2D stretchTexture, 
     return sum;
 }
 
+// Texture-space diffusion, pass 1: rasterize the mesh into its UV layout (Borshukov & Lewis 2003): the clip-space
+// position of a vertex at uv, so texel (u, v) of the render target is the texel (u, v) of the textures (row 0 at
+// v = 0, as GL reads a render target back). Shade irradiance there with the real position and normal as varyings.
+vec4 baker_normal_blur_uv_position(vec2 uv) {
+    return vec4(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// Texture-space diffusion, last pass: add one Gaussian's blurred irradiance with its RGB weights
+// (textureSpaceDiffusion.gaussians[i].weights) to the sum of the ones before (d'Eon & Luebke's recombination).
+vec3 baker_normal_blur_tsd_accumulate(vec3 total, vec3 blurred, vec3 weights) {
+    return total + weights * blurred;
+}
+
 #endif // BAKER_NORMAL_BLUR_GLSL

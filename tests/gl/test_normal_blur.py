@@ -33,17 +33,19 @@ TBN = (np.cos(ANGLE) * np.eye(3) + np.sin(ANGLE) * np.array([[0, -AXIS[2], AXIS[
        + (1 - np.cos(ANGLE)) * np.outer(AXIS, AXIS))
 SIGMA = 0.0015  # m, one of the TSD passes
 
+# the quad is drawn as a TSD pass draws a mesh: its corners' UVs through baker_normal_blur_uv_position (a wrong
+# mapping moves every pixel and fails every variant)
 VS = """
 in vec2 a_position;
 out vec2 v_uv;
 void main() {
     v_uv = a_position * 0.5 + 0.5;
-    gl_Position = vec4(a_position, 0.0, 1.0);
+    gl_Position = baker_normal_blur_uv_position(v_uv);
 }
 """
 
 # u_variant: 0 per-channel Lambert from the three maps, 1 Penner's blend (N.L remapped to 0..1), 2 TSD step along u,
-# 3 TSD step along v
+# 3 TSD step along v, 4 the two steps' results accumulated with RGB weights
 FS = """
 in vec2 v_uv;
 uniform sampler2D u_red;
@@ -68,6 +70,11 @@ void main() {
     } else if (u_variant == 1) {
         rgb = baker_normal_blur_blend_ndotl(u_tbn, texture(u_smoothed, v_uv).rgb, u_channelBlend, u_light, u_flipY)
             * 0.5 + 0.5;
+    } else if (u_variant == 4) {
+        vec3 along_u = baker_normal_blur_tsd_step(u_irradiance, u_stretch, v_uv, vec2(1.0, 0.0), u_sigma, u_stretchScale);
+        vec3 along_v = baker_normal_blur_tsd_step(u_irradiance, u_stretch, v_uv, vec2(0.0, 1.0), u_sigma, u_stretchScale);
+        rgb = baker_normal_blur_tsd_accumulate(baker_normal_blur_tsd_accumulate(vec3(0.0), along_u, vec3(0.6, 0.3, 0.1)),
+                                               along_v, vec3(0.4, 0.7, 0.9));
     } else {
         vec2 direction = u_variant == 2 ? vec2(1.0, 0.0) : vec2(0.0, 1.0);
         rgb = baker_normal_blur_tsd_step(u_irradiance, u_stretch, v_uv, direction, u_sigma, u_stretchScale);
@@ -75,7 +82,7 @@ void main() {
     o_color = vec4(rgb, 1.0);
 }
 """
-VARIANTS = {"lambert": 0, "blend": 1, "tsd_u": 2, "tsd_v": 3}
+VARIANTS = {"lambert": 0, "blend": 1, "tsd_u": 2, "tsd_v": 3, "tsd_sum": 4}
 
 
 def source(version: str, body: str) -> str:
@@ -164,6 +171,11 @@ def twin_image(baked, variant):
     if variant == "blend":
         return twins.baker_normal_blur_blend_ndotl(TBN, f(baked["smoothed"])[..., :3], ext["channelBlend"], LIGHT,
                                                    1.0) * np.float32(0.5) + np.float32(0.5)
+    if variant == "tsd_sum":
+        steps = [twins.baker_normal_blur_tsd_step(f(baked["irradiance"]), f(baked["stretch"]), uv, d, SIGMA,
+                                                  ext["stretchScale"]) for d in ((1.0, 0.0), (0.0, 1.0))]
+        total = twins.baker_normal_blur_tsd_accumulate(np.zeros_like(steps[0]), steps[0], (0.6, 0.3, 0.1))
+        return twins.baker_normal_blur_tsd_accumulate(total, steps[1], (0.4, 0.7, 0.9))
     direction = (1.0, 0.0) if variant == "tsd_u" else (0.0, 1.0)
     return twins.baker_normal_blur_tsd_step(f(baked["irradiance"]), f(baked["stretch"]), uv, direction, SIGMA,
                                             ext["stretchScale"])

@@ -56,6 +56,16 @@ def baker_normal_blur_stretch(stretch_texture, uv, stretch_scale):
     return texture_linear(stretch_texture, uv)[..., :2] * F32(stretch_scale)
 
 
+def baker_normal_blur_uv_position(uv):
+    uv = _f(uv)
+    return np.concatenate([uv * F32(2.0) - F32(1.0), np.zeros(uv.shape[:-1] + (1,), F32),
+                           np.ones(uv.shape[:-1] + (1,), F32)], axis=-1)
+
+
+def baker_normal_blur_tsd_accumulate(total, blurred, weights):
+    return _f(total) + _f(weights) * _f(blurred)
+
+
 TAPS7 = (0.006, 0.061, 0.242, 0.382, 0.242, 0.061, 0.006)
 
 
