@@ -30,13 +30,18 @@ MIB = 1 << 20
 # fin corners unless fins are written, one compiled pass per primitive): 96 B/triangle above the load on Spot (UVs
 # and normals), 450 B/triangle for the whole process on the 4.4M-triangle bunny PLY (benchmarks/scale.py), load
 # included; 400 covers both.
-PER_TRIANGLE = {"thickness": 250, "curvature": 400, "edges": 400, "skin": 160, "tam": 180, "toon": 8, "fur": 2000}
+PER_TRIANGLE = {"thickness": 250, "curvature": 400, "edges": 400, "skin": 160, "tam": 180, "toon": 8, "fur": 2000,
+                "normal-blur": 200}
 # fixed cost per bake (kernels, tables, default-size textures), bytes
 FIXED = {"thickness": 110 * MIB, "curvature": 16 * MIB, "edges": 8 * MIB, "skin": 8 * MIB, "tam": 8 * MIB,
-         "toon": 4 * MIB, "fur": 16 * MIB}
+         "toon": 4 * MIB, "fur": 16 * MIB, "normal-blur": 16 * MIB}
 # bytes per texel of the bake's texture (option ``texture_size`` squared) beyond the texels counted in FIXED
-PER_TEXEL = {"thickness": 100, "curvature": 100}
-DEFAULT_TEXELS = {"thickness": 1024 * 1024, "curvature": 0}  # curvature measured without its texture (off by default)
+# normal-blur: 1.2 GB peak for the 1M texels of a 1024^2 normal map on a sphere (about 900 B/texel above the process:
+# frames, the per-Gaussian blurred normals, the lattice), rounded up; its maps take the input normal map's size, which
+# the estimate does not read: the automatic texture size stands in for it
+PER_TEXEL = {"thickness": 100, "curvature": 100, "normal-blur": 1200}
+DEFAULT_TEXELS = {"thickness": 1024 * 1024, "curvature": 0,  # curvature measured without its texture (off by default)
+                  "normal-blur": 0}
 # automatic texture sizes (texel density, baker/geometry/texture_space.py): 8 texels along the mean edge puts about
 # 28 texels on a triangle's area, over the UV coverage (about half) and rounded to a power of two per side (up to 2x
 # the texels): 128 per triangle bounds it; each material's texture stays within [64^2, 2048^2]

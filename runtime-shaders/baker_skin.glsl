@@ -4,7 +4,8 @@
 // the diffuse light of skin is read from a 2D LUT indexed by N.L and the curvature 1/r, pre-integrated over a
 // diffusion profile (baker skin-lut / --bakes skin). Shadow edges get the same treatment from a penumbra LUT indexed
 // by the filtered shadow value and 1 / penumbra width. Small-scale detail uses Penner's normal blending: one smooth
-// normal mixed per channel with the detail (normal-mapped) normal, red smoothest.
+// normal mixed per channel with the detail (normal-mapped) normal, red smoothest; or, where BAKER_normal_blur baked
+// them, one diffuse normal per channel (baker_skin_diffuse_normals).
 // Wrap lighting with a color shift (RTR4 14.6.1; Green, GPU Gems ch. 16) is the cheap alternative.
 //
 // Data written by baker (schemas/BAKER_skin_lut/README.md):
@@ -104,6 +105,14 @@ vec3 baker_skin_wrap(float NdotL, float wrap, float scatterWidth, vec3 scatterCo
 // curvature (1 / mesh units, e.g. the interpolated _CURVATURE). Multiply by albedo, light color and shadow/penumbra.
 vec3 baker_skin_diffuse(BakerSkin params, sampler2D lut, vec3 Nsmooth, vec3 Ndetail, vec3 L, float meshCurvature) {
     vec3 NdotL = baker_skin_blended_ndotl(Nsmooth, Ndetail, L, params.normalBlend);
+    float curvature = baker_skin_curvature(meshCurvature, params.curvatureScale);
+    return baker_skin_lut_rgb(lut, NdotL, curvature, params.curvatureRange);
+}
+
+// Pre-integrated diffuse with BAKER_normal_blur's per-channel diffuse normals (RTR4 14.6.2; Penner 2011 bakes them by
+// blurring the normal map with the profile): NdotL = baker_normal_blur_ndotl(nRed, nGreen, nBlue, L) replaces
+// Penner's normal blending; the specular term keeps the original normal map.
+vec3 baker_skin_diffuse_normals(BakerSkin params, sampler2D lut, vec3 NdotL, float meshCurvature) {
     float curvature = baker_skin_curvature(meshCurvature, params.curvatureScale);
     return baker_skin_lut_rgb(lut, NdotL, curvature, params.curvatureRange);
 }

@@ -163,6 +163,51 @@ def assert_cards_alpha_tested(frames, off):
     return counts
 
 
+def write_blurred_sphere(root, bakes=("normal-blur",), metallic: bool = False):
+    """A 6 cm sphere with a 4 mm bump along the meridians (tests/techniques/test_normal_blur.py), baked; ``metallic``:
+    a glossy metal (no diffuse term at all: what the blurred normals change must not show)."""
+    from baker.gltf.document import GltfDocument
+    from tests.techniques.test_normal_blur import bump_sphere
+
+    stem = "blurred_metal" if metallic else "blurred"
+    source = bump_sphere(root / f"{stem}_bump.glb", "v", segments=128, rings=96, size=512)
+    if metallic:
+        doc = GltfDocument.load(source)
+        doc.json["materials"][0]["pbrMetallicRoughness"] = {"metallicFactor": 1.0, "roughnessFactor": 0.35}
+        doc.save(source)
+    options = {"skin": {"width": 64, "height": 64, "penumbra_size": 32}}
+    save(baker.bake(source, bakes=bakes, options=options), root / f"{stem}.glb")
+    return f"{stem}.glb"
+
+
+def write_blender_head(root):
+    """A real normal-mapped asset (tests/blender/normal_mapped_head.py: Suzanne exported by Blender's own glTF exporter
+    with TANGENT) baked with normal-blur, curvature and skin: root/head.glb. Blender is the bpy venv of
+    scripts/install-bpy ($BAKER_BPY_PYTHON, as tests/test_blender.py finds it)."""
+    python = os.environ.get("BAKER_BPY_PYTHON")
+    if not python:
+        done = subprocess.run([str(ROOT / "scripts" / "install-bpy")], capture_output=True, text=True)
+        assert done.returncode == 0, f"scripts/install-bpy failed:\n{done.stderr[-2000:]}"
+        python = done.stdout.strip().splitlines()[-1]
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    exported = root / "head_blender.glb"
+    made = subprocess.run([python, str(ROOT / "tests" / "blender" / "normal_mapped_head.py"), str(exported), "256"],
+                          capture_output=True, text=True, timeout=600, env=env)
+    assert made.returncode == 0, made.stderr[-3000:]
+    options = {"skin": {"width": 64, "height": 64, "penumbra_size": 32}}
+    save(baker.bake(exported, bakes=("normal-blur", "curvature", "skin"), options=options), root / "head.glb")
+    return "head.glb"
+
+
+def bump_detail(image, channel, covered):
+    """Pixel-scale variation of one channel: the bump's stripes, not the sphere's smooth shade."""
+    import numpy as np
+    from scipy import ndimage
+
+    c = image[..., channel]
+    return float(np.abs(c - ndimage.uniform_filter(c, 5))[covered].mean())
+
+
 def gltf_json(path):
     """The JSON chunk of a GLB file."""
     data = Path(path).read_bytes()
@@ -176,7 +221,7 @@ def techniques_in(doc):
     found = set()
     per_material = {"BAKER_thickness": "translucency", "BAKER_skin_lut": "skin", "BAKER_toon_ramp": "toon",
                     "BAKER_tonal_art_map": "tam", "BAKER_fur": "fur", "BAKER_curvature": "curvature",
-                    "BAKER_caustics": "caustics", "BAKER_hair_cards": "cards"}
+                    "BAKER_caustics": "caustics", "BAKER_hair_cards": "cards", "BAKER_normal_blur": "normalBlur"}
     for material in doc.get("materials", []):
         found |= {per_material[name] for name in material.get("extensions", {}) if name in per_material}
     for mesh in doc.get("meshes", []):

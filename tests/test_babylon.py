@@ -35,8 +35,9 @@ from baker import registry
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
 from browser import (BACKGROUND_RGB, CARD_DISTANCES, ROOT, SPOT, assert_cards_alpha_tested, assert_caustics_move,
-                     build_viewer, gltf_json, require_tools, serve, shoot, techniques_in, write_caustic_floor,
-                     write_hair_cards, write_label_and_groom)
+                     build_viewer, bump_detail, gltf_json, require_tools, serve, shoot, techniques_in,
+                     write_blender_head, write_blurred_sphere, write_caustic_floor, write_hair_cards,
+                     write_label_and_groom)
 
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_babylon"
 W, H = 400, 300
@@ -329,3 +330,90 @@ def test_babylon_draws_alpha_tested_hair_cards_like_three(site, tmp_path):
     if iou < 0.8:
         raise AssertionError(f"coverage IoU {iou:.2f} (artifacts: "
                              f"{_keep('cards', images[('three', 'near')], images[('babylon', 'near')])})")
+
+
+def test_babylon_shades_diffuse_with_the_blurred_normals_like_three(site, tmp_path):
+    """BAKER_normal_blur on the Babylon.js page with the three.js page's view: the bump's detail drops in red far
+    more than in blue (tests/test_viewer.py says why), and the change from the technique off is three.js's within
+    DELTA_RATIO."""
+    name = write_blurred_sphere(site["root"])
+    shots = {"on": "", "off": "&off=normalBlur"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+
+    def jobs(engine, views=None):
+        out = []
+        for i, (key, query) in enumerate(shots.items()):
+            url = base + query
+            if views is not None:
+                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
+        return out
+
+    three = shoot(jobs("three"), tmp_path / "three.json")
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    for info in three + babylon:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["normalBlur"], info
+    images = {(engine, key): _image(tmp_path / f"{engine}-{key}.png") for engine in ("three", "babylon") for key in shots}
+    on, off = images[("babylon", "on")], images[("babylon", "off")]
+    covered = ndimage.binary_erosion(np.abs(off - BACKGROUND).max(axis=2) > 0.03, iterations=4)
+    assert covered.mean() > 0.05
+    red = bump_detail(on, 0, covered), bump_detail(off, 0, covered)
+    blue = bump_detail(on, 2, covered), bump_detail(off, 2, covered)
+    print("babylon red", red, "blue", blue)
+    assert red[0] < 0.75 * red[1] and blue[0] > 0.85 * blue[1]
+    change_three = _blur(images[("three", "on")]) - _blur(images[("three", "off")])
+    change_babylon = _blur(on) - _blur(off)
+    changed = np.abs(change_three).max(axis=2) > 2 / 255
+    ratio = float(np.abs(change_babylon - change_three).max(axis=2)[changed].mean()
+                  / np.abs(change_three).max(axis=2)[changed].mean())
+    print("normal blur change error", round(ratio, 3))
+    if ratio > DELTA_RATIO:
+        raise AssertionError(f"change error {ratio:.2f} (artifacts: "
+                             f"{_keep('normal-blur', images[('three', 'on')], on)})")
+
+
+def test_babylon_normal_blur_leaves_a_metal_alone(site, tmp_path):
+    """A glossy metal has no diffuse term: with the blurred diffuse normals on or off the Babylon.js frame is the
+    same (the specular term keeps the bump texture's normal)."""
+    name = write_blurred_sphere(site["root"], metallic=True)
+    base = f"{site['url']}/index.html?hud=0&engine=babylon&src={name}"
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in (("on", ""), ("off", "&off=normalBlur"))]
+    infos = shoot(jobs, tmp_path / "jobs.json")
+    for info in infos:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["normalBlur"], info
+    on, off = (_image(tmp_path / f"{key}.png") for key in ("on", "off"))
+    assert (np.abs(off - BACKGROUND).max(axis=2) > 0.03).mean() > 0.05
+    assert np.abs(on - off).max() <= 1 / 255
+
+
+def test_babylon_softens_the_blender_heads_diffuse(site, tmp_path):
+    """The real asset (tests/browser.py write_blender_head: Blender's export, baked with normal-blur, curvature and
+    skin) on the Babylon.js page with the three.js page's view: all three techniques found, and the ridges' red
+    detail drops with the blurred normals on."""
+    name = write_blender_head(site["root"])
+    shots = {"on": "", "off": "&off=normalBlur"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+
+    def jobs(engine, views=None):
+        out = []
+        for i, (key, query) in enumerate(shots.items()):
+            url = base + query
+            if views is not None:
+                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
+        return out
+
+    three = shoot(jobs("three"), tmp_path / "three.json")
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    for info in three + babylon:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert set(info["techniques"]) == {"normalBlur", "skin", "curvature"}, info
+    on, off = _image(tmp_path / "babylon-on.png"), _image(tmp_path / "babylon-off.png")
+    covered = ndimage.binary_erosion(np.abs(off - BACKGROUND).max(axis=2) > 0.03, iterations=4)
+    assert covered.mean() > 0.05
+    red = bump_detail(on, 0, covered), bump_detail(off, 0, covered)
+    print("babylon head red detail on/off", red)
+    assert red[0] < 0.85 * red[1]

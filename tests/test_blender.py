@@ -589,3 +589,100 @@ def test_blender_round_trip_keeps_the_cards_coverage_mips(blender_python, tmp_pa
 
     before, after = chains(glb), chains(exported)
     assert len(before) == 1 and before[0][1] and after == before
+
+
+@pytest.fixture(scope="session")
+def blurred_head(blender_python, tmp_path_factory):
+    """(Blender's export, its bake with normal-blur,curvature,skin): tests/blender/normal_mapped_head.py."""
+    folder = tmp_path_factory.mktemp("blender_head")
+    head = folder / "head.glb"
+    run_blender(blender_python, "normal_mapped_head.py", head, 256)
+    out = folder / "head_baked.glb"
+    bake("bake", head, "--bakes", "normal-blur,curvature,skin", "--skin-width", "64", "--skin-height", "64",
+         "-o", out)
+    return head, out
+
+
+def test_blender_exported_head_bakes_normal_blur_curvature_and_skin(blender_python, blurred_head, tmp_path):
+    """A real normal-mapped asset: a subdivided Suzanne with a ridged normal map, exported by Blender's own glTF
+    exporter with TANGENT (tests/blender/normal_mapped_head.py). normal-blur, curvature and skin bake together; both
+    validators are clean (no Khronos warning the export lacked); stock Blender imports the result; the diffuse maps
+    are softer than the input, red softest, and the input normal map (the specular term's) is untouched."""
+    from baker.techniques.normal_blur.extension import NAME, read
+
+    head, out = blurred_head
+    source = GltfDocument.load(head)
+    assert "TANGENT" in source.json["meshes"][0]["primitives"][0]["attributes"]
+    before = assert_khronos_clean(head)["issues"]
+    after = assert_khronos_clean(out)["issues"]
+    assert after["numWarnings"] <= before["numWarnings"], after["messages"]
+    from baker import validate
+
+    report = validate.validate_file(out)
+    assert report["issues"]["numErrors"] == 0, [m for m in report["issues"]["messages"] if m["severity"] == 0]
+    doc = GltfDocument.load(out)
+    material = doc.json["materials"][0]
+    assert {NAME, "BAKER_curvature", "BAKER_skin_lut"} <= set(material["extensions"])
+    assert "generatedTangents" not in material["extensions"][NAME]  # Blender's TANGENT was used
+    assert material["normalTexture"] == source.json["materials"][0]["normalTexture"]
+
+    def detail(texture):  # mean squared tangent-plane part of the normals: the bump's energy
+        from baker.gltf.images import decode_image
+
+        pixels = decode_image(doc.image_bytes(doc.json["textures"][texture]["source"]), ".png")
+        n = pixels[..., :3].astype(np.float64) / np.iinfo(pixels.dtype).max * 2 - 1
+        return float((n[..., :2] ** 2).sum(-1).mean())
+
+    blur = read(doc, 0)
+    energies = [detail(t) for t in blur.diffuse_textures]
+    original = detail(material["normalTexture"]["index"])
+    assert energies[0] < energies[1] <= energies[2] <= original * 1.01 and energies[0] < 0.8 * original, \
+        (energies, original)
+
+    report_path = tmp_path / "report.json"
+    run_blender(blender_python, "import_report.py", "--out", report_path, "--", out)
+    entry = json.loads(report_path.read_text())[str(out)]
+    assert entry["error"] is None, entry["error"]
+    assert any(o["type"] == "MESH" for o in entry["objects"])
+
+
+def test_addon_maps_the_diffuse_normals_and_keeps_them_on_export(blender_python, blurred_head, tmp_path):
+    """The add-on imports BAKER_normal_blur as a BAKER Diffuse Normals group (the three maps through tangent-space
+    Normal Map nodes, one Diffuse BSDF per channel) mixed in at factor 0, and exports the extension unchanged (its
+    textures compared by what they hold)."""
+    _, baked_head = blurred_head
+    exported, report_path = tmp_path / "head_blender.glb", tmp_path / "report.json"
+    run_blender(blender_python, "round_trip.py", ADDON, baked_head, exported, report_path)
+    report = json.loads(report_path.read_text())
+    material = next(m for m in report["materials"].values() if m["payload"])
+    assert "BAKER Diffuse Normals" in material["groups"]
+    assert material["mixes"].get("BAKER mix diffuse normals") == 0.0
+    assert baker_main(["validate", str(exported)]) == 0
+    before, after = canonical_extensions(baked_head), canonical_extensions(exported)
+    old = next(p for p in before["primitives"] if "BAKER_normal_blur" in json.dumps(p.get("material")))
+    new = next(p for p in after["primitives"] if "BAKER_normal_blur" in json.dumps(p.get("material")))
+    assert new["material"] == old["material"]
+
+
+def test_diffuse_normals_group_renders_softer_red(blender_python, blurred_head, tmp_path):
+    """Cycles CPU, 128 x 128: the head through BAKER Diffuse Normals, with the baked maps and (control) with the
+    material's own sharp normal map in every channel. The ridges' pixel-scale detail drops in red far more than in
+    blue, as the profile says (d'Eon's red is the widest)."""
+    from scipy import ndimage
+
+    _, baked_head = blurred_head
+    out = tmp_path / "render.npz"
+    run_blender(blender_python, "render_diffuse_normals.py", ADDON, baked_head, out)
+    data = np.load(out)
+    blurred, sharp = data["blurred"], data["sharp"]
+    inside = ndimage.binary_erosion((sharp[..., 3] > 0.99) & (sharp[..., :3].max(-1) > 0.02), iterations=2)
+    assert inside.sum() > 500, "the head covers too few pixels"
+
+    def detail(image, channel):
+        c = image[..., channel]
+        return float(np.abs(c - ndimage.uniform_filter(c, 3))[inside].mean())
+
+    ratios = [detail(blurred, c) / detail(sharp, c) for c in range(3)]
+    print("detail blurred / sharp per channel", ratios)
+    # the frame's detail also holds the head's own shape and the path-tracing noise, which both renders share
+    assert ratios[0] < 0.9 and ratios[0] < min(ratios[1:]) - 0.08

@@ -45,6 +45,8 @@ REFS = {
     "BAKER_hair_cards": {"dataTexture": "texture", "flowTexture": "texture", "regions": "accessor",
                          "cardFirstIndex": "accessor", "coverageMips/*/texture": "texture-index",
                          "coverageMips/*/accessor": "accessor"},
+    "BAKER_normal_blur": {"diffuseNormalTextures/*": "texture", "smoothedNormalTexture": "texture",
+                          "stretchTexture": "texture"},
     "BAKER_edges": {"edges": "accessor", "oppositeVertices": "accessor", "flags": "accessor",
                     "dihedralAngles": "accessor", "wireframeMask": "accessor", "fins": "primitive",
                     "finsOf": "primitive"},
@@ -129,7 +131,12 @@ def assets(tmp_path_factory):
         "caustics": {"size": 16, "frames": 2, "waves": 8},
         "fur": {"shells": 3, "texture_size": 16, "hairs": 50},
     }), fins)
-    out = {"spot": spot, "spot_fins": fins}
+    from tests.techniques.test_normal_blur import bump_sphere
+
+    bumped = folder / "sphere_blur.glb"
+    save(baker.bake(bump_sphere(folder / "sphere_bump.glb", "v", segments=32, rings=16, size=64),
+                    bakes=["normal-blur"]), bumped)
+    out = {"spot": spot, "spot_fins": fins, "sphere_blur": bumped}
     if FONT.is_file():
         text = folder / "text.glb"
         assert baker_main(["text", "Hi AV", "--font", str(FONT), "-o", str(text), "-q"]) == 0
@@ -282,7 +289,7 @@ def test_every_extension_survives_the_pipeline(assets, tmp_path):
                 _texture(before, vol_before["thicknessTexture"]["index"])
     expected = {"BAKER_thickness", "BAKER_curvature", "BAKER_skin_lut", "BAKER_edges", EDGE_VISIBILITY,
                 "BAKER_tonal_art_map", "BAKER_toon_ramp", "BAKER_fur", "BAKER_hair", "BAKER_caustics",
-                "BAKER_hair_cards"}
+                "BAKER_hair_cards", "BAKER_normal_blur"}
     if "text" in assets:
         expected |= {"BAKER_glyph_atlas", "BAKER_text"}
     assert expected <= seen, f"not covered: {expected - seen}"

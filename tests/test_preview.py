@@ -246,3 +246,46 @@ def test_hair_cards_panel_keeps_coverage_when_small(tmp_path):
     assert 0.1 < near < 0.9
     assert kept["chain", 128] >= 0.8 * near and kept["chain", 64] >= 0.75 * near
     assert kept["box", 64] < 0.4 * near
+
+
+def test_normal_blur_panel_is_softest_in_red(tmp_path):
+    """A bumped sphere baked with normal-blur: the panel shades each channel with its diffuse normal map, so the
+    bump's pixel-scale detail is weakest in red and strongest in blue (d'Eon's skin profile)."""
+    from tests.techniques.test_normal_blur import bump_sphere
+
+    source = bump_sphere(tmp_path / "sphere.glb", "v", segments=128, rings=64, size=256)
+    out = tmp_path / "blurred.glb"
+    save(baker.bake(source, bakes=["normal-blur"]), out)
+    result = preview(out, size=SIZE, panels=["normal-blur"])
+    assert [n for n, _, _ in result.panels] == ["normal-blur"]
+    image = _panel(result, "normal-blur")
+    inside = ndimage.binary_erosion(_covered(image), iterations=4)
+
+    def detail(channel):  # pixel-scale variation: the bump, not the sphere's smooth shade
+        c = image[..., channel]
+        return np.abs(c - ndimage.uniform_filter(c, 5))[inside].mean()
+
+    red, green, blue = detail(0), detail(1), detail(2)
+    print("detail", red, green, blue)
+    assert inside.sum() > 500 and red < 0.7 * green and green <= blue * 1.05
+
+
+def test_skin_panel_reads_the_diffuse_normals(tmp_path):
+    """The same bumped sphere baked with skin alone and with normal-blur + skin. The preview's skin panel shades with
+    the interpolated normal, so skin alone shows no bump; with normal-blur it reads the LUT with the per-channel
+    blurred normals: the bump shows, softest in red."""
+    from tests.techniques.test_normal_blur import bump_sphere
+
+    source = bump_sphere(tmp_path / "sphere.glb", "v", segments=128, rings=64, size=256)
+    options = {"skin": {"width": 64, "height": 64, "penumbra": False}}
+    details = {}
+    for label, bakes in (("skin", ["skin"]), ("blurred", ["normal-blur", "skin"])):
+        out = tmp_path / f"{label}.glb"
+        save(baker.bake(source, bakes=bakes, options=options), out)
+        image = _panel(preview(out, size=SIZE, panels=["skin"]), "skin")
+        inside = ndimage.binary_erosion(_covered(image), iterations=4)
+        details[label] = [np.abs(image[..., c] - ndimage.uniform_filter(image[..., c], 5))[inside].mean()
+                          for c in range(3)]
+    print("skin panel detail (R, G, B)", details)
+    assert details["skin"][0] < 0.5 * details["blurred"][0]
+    assert details["blurred"][0] < 0.75 * details["blurred"][2]

@@ -17,8 +17,9 @@ from baker.preview import core as pv
 from baker.gltf.images import read_image
 from baker.pipeline import save
 from browser import (BACKGROUND_RGB, CARD_DISTANCES, DEFAULT_OFF, SPOT, VIEWER, assert_cards_alpha_tested,
-                     assert_caustics_move, build_viewer, gltf_json, require_tools, serve, shoot, techniques_in,
-                     write_caustic_floor, write_hair_cards, write_label_and_groom)
+                     assert_caustics_move, build_viewer, bump_detail, gltf_json, require_tools, serve, shoot,
+                     techniques_in, write_blender_head, write_blurred_sphere, write_caustic_floor, write_hair_cards,
+                     write_label_and_groom)
 from conftest import assert_khronos_clean
 
 SIZE = 256
@@ -199,3 +200,66 @@ def test_viewer_draws_alpha_tested_hair_cards_at_three_distances(site, tmp_path)
         assert info["techniques"] == ["cards"] and "cards" in info["status"], info
     frames = dict(zip(shots, images))
     assert_cards_alpha_tested([frames["near"], frames["middle"], frames["far"]], frames["off"])
+
+
+def test_viewer_shades_diffuse_with_the_blurred_normals(site, tmp_path):
+    """BAKER_normal_blur in three.js: with the technique on, the bump's detail drops in red (d'Eon's widest
+    channel: gain 0.5 at 4 mm) far more than in blue (gain 0.97); switched off, the picture is the plain
+    normal-mapped material's; without baker (?baker=0) it is the same as off."""
+    name = write_blurred_sphere(site["root"])
+    assert techniques_in(gltf_json(site["root"] / name)) == {"normalBlur"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+    shots = {"on": "", "off": "&off=normalBlur", "plain": "&baker=0"}
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in shots.items()]
+    infos, images = _shoot(jobs, tmp_path)
+    for key, info in zip(shots, infos):
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+    on, off, plain = images
+    assert infos[0]["techniques"] == ["normalBlur"]
+    background = np.array(BACKGROUND_RGB) / 255.0
+    covered = ndimage.binary_erosion(np.abs(off - background).max(axis=2) > 0.03, iterations=4)
+    assert covered.mean() > 0.05
+    red_on, red_off = bump_detail(on, 0, covered), bump_detail(off, 0, covered)
+    blue_on, blue_off = bump_detail(on, 2, covered), bump_detail(off, 2, covered)
+    print("red", red_on, red_off, "blue", blue_on, blue_off)
+    assert red_on < 0.75 * red_off and blue_on > 0.85 * blue_off
+    assert np.abs(off - plain)[covered].max() <= 2 / 255
+
+
+def test_viewer_normal_blur_leaves_the_specular_term_alone(site, tmp_path):
+    """On a glossy metal (glTF: no diffuse term) the blurred diffuse normals change nothing: the specular term keeps
+    the material's own normal map, so the frames with the technique on and off are the same."""
+    name = write_blurred_sphere(site["root"], metallic=True)
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in (("on", ""), ("off", "&off=normalBlur"))]
+    infos, (on, off) = _shoot(jobs, tmp_path)
+    for info in infos:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["techniques"] == ["normalBlur"], info
+    background = np.array(BACKGROUND_RGB) / 255.0
+    covered = np.abs(off - background).max(axis=2) > 0.03
+    assert covered.mean() > 0.05 and bump_detail(off, 1, covered) > 0.002  # the bump shows in the highlights
+    assert np.abs(on - off).max() <= 1 / 255
+
+
+def test_viewer_softens_the_blender_heads_diffuse(site, tmp_path):
+    """The real asset: Blender's normal-mapped head baked with normal-blur, curvature and skin. three.js finds all
+    three; with the blurred normals on, the ridges' pixel-scale detail in red drops against the frame with them off
+    (skin stays on in both: its LUT then reads the per-channel N.L)."""
+    name = write_blender_head(site["root"])
+    assert techniques_in(gltf_json(site["root"] / name)) == {"normalBlur", "skin", "curvature"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+    jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
+            for key, query in (("on", ""), ("off", "&off=normalBlur"))]
+    infos, (on, off) = _shoot(jobs, tmp_path)
+    for info in infos:
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert set(info["techniques"]) == {"normalBlur", "skin", "curvature"}, info
+    background = np.array(BACKGROUND_RGB) / 255.0
+    covered = ndimage.binary_erosion(np.abs(off - background).max(axis=2) > 0.03, iterations=4)
+    assert covered.mean() > 0.05
+    red = bump_detail(on, 0, covered), bump_detail(off, 0, covered)
+    print("head red detail on/off", red)
+    assert red[0] < 0.85 * red[1]

@@ -134,6 +134,11 @@ def material_textures(doc, material: dict) -> list[dict]:
                 if key.endswith("Texture") and isinstance(item, dict) and isinstance(item.get("index"), int):
                     found.append({"slot": ".".join(path + [key]), "texture": item["index"],
                                   "size": _texture_size(doc, item["index"])})
+                elif key.endswith("Textures") and isinstance(item, list):  # a list of textureInfos (frames, channels)
+                    for i, entry in enumerate(item):
+                        if isinstance(entry, dict) and isinstance(entry.get("index"), int):
+                            found.append({"slot": ".".join(path + [f"{key}[{i}]"]), "texture": entry["index"],
+                                          "size": _texture_size(doc, entry["index"])})
                 else:
                     walk(item, path + [key] if key not in ("extensions",) else path)
 

@@ -73,6 +73,15 @@ class TexelSets:
                                          pt.texels.bary))
         return np.concatenate(parts) if parts else np.zeros(0)
 
+    def per_face(self, per_face: Callable[[MaterialTarget, PrimitiveTexels], np.ndarray]) -> np.ndarray:
+        """Per-texel values of the triangle each texel lies in: ``per_face(target, primitive texels)`` gives
+        (faces, ...) values of a primitive of a texture set (a UV Jacobian in ``target.texcoord``, a face normal)."""
+        parts = []
+        for texel_set in self.sets:
+            for pt in texel_set.target.primitives:
+                parts.append(per_face(texel_set.target, pt)[pt.texels.triangle])
+        return np.concatenate(parts) if parts else np.zeros(0)
+
     def interpolate_welded(self, welded: dict) -> np.ndarray:
         """Per-texel values interpolated from per-welded-vertex ones: ``welded`` maps a mesh index to (its
         :class:`~baker.geometry.asset.WeldedMesh`, one value per welded vertex). Each primitive vertex takes the value
@@ -115,13 +124,15 @@ class TexelSets:
         return ", ".join(f"material {s.material} {s.size}²" for s in self.sets)
 
 
-def gather_texels(asset: Asset, size: int | None = None, density: float | None = None, seed: int = 0) -> TexelSets:
+def gather_texels(asset: Asset, size: int | None = None, density: float | None = None, seed: int = 0,
+                  layouts: dict | None = None) -> TexelSets:
     """Texels of every material's texture (layouts chosen or unwrapped by
     :func:`baker.geometry.texture_target.material_targets`): ``size`` forces the width and height, else ``density``
-    texels per mesh unit, else the automatic density."""
+    texels per mesh unit, else the automatic density. ``layouts`` ({material: (texcoord, size)}) bakes only those
+    materials, in the UV set and size given."""
     sets, positions, normals, mesh, material, rows, cols = [], [], [], [], [], [], []
     start = 0
-    for target in material_targets(asset, size, seed, density=density):
+    for target in material_targets(asset, size, seed, density=density, layouts=layouts):
         for pt in target.primitives:
             g, t = pt.geometry, pt.texels
             positions.append(interpolate(g.positions, g.faces, t.triangle, t.bary))

@@ -96,15 +96,29 @@ def smooth_normals(geometry: PrimitiveGeometry) -> np.ndarray:
 
 
 def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
-                     density: float | None = None) -> list[MaterialTarget]:
+                     density: float | None = None, layouts: dict | None = None) -> list[MaterialTarget]:
     """One target per material with triangles. ``size`` forces every texture's width and height; None sizes each
     from its surface (:func:`baker.geometry.texture_space.size_for_density`, ``density`` texels per mesh unit or,
-    when None, the automatic density)."""
+    when None, the automatic density).
+
+    ``layouts`` ({material: (texcoord, size)}) instead bakes only those materials, each into the UV set and size
+    given, as it is (no overlap test, no unwrap): a bake whose output pairs texel for texel with an existing
+    texture (a normal map) must use that texture's layout."""
     targets = []
     for material, members in material_groups(asset).items():
+        if layouts is not None and material not in layouts:
+            continue
         geoms = [asset.primitive(m, p) for m, p in members]
         geoms = [g for g in geoms if len(g.faces)]
         if not geoms:
+            continue
+        if layouts is not None:
+            texcoord, chosen = layouts[material]
+            geoms = [g for g in geoms if texcoord in g.texcoords]
+            if geoms:
+                prims = [PrimitiveTexels(g, smooth_normals(g), rasterize_uv(g.texcoords[texcoord], g.faces, chosen,
+                                                                            chosen)) for g in geoms]
+                targets.append(MaterialTarget(material, texcoord, chosen, prims, False))
             continue
         # the overlap test at 256^2 when the size is not forced: overlapping charts show at any resolution
         tested = _existing_uv_texels(geoms, size or 256)

@@ -66,7 +66,8 @@ void main() {
 """
 
 # u_variant: 0 LUT with the baked curvature, 1 normal blending + penumbra (struct path), 2 wrap lighting,
-# 3 LUT with the per-pixel derivative curvature
+# 3 LUT with the per-pixel derivative curvature, 4 per-channel diffuse normals (BAKER_normal_blur's maps, here three
+# detail normals of decreasing amplitude, red smoothest)
 SHADE_FS = """
 in vec3 v_position;
 in vec3 v_normal;
@@ -92,6 +93,11 @@ void main() {
             * baker_skin_penumbra(u_penumbra, shadow, u_penumbraWidth, u_skin.penumbraWidthRange);
     } else if (u_variant == 2) {
         rgb = baker_skin_wrap(dot(N, L), u_skin.wrap, u_skin.scatterWidth, u_skin.scatterColor);
+    } else if (u_variant == 4) {
+        vec3 bump = sin(v_position * 300.0);
+        vec3 NdotL = vec3(dot(normalize(N + 0.1 * bump), L), dot(normalize(N + 0.25 * bump), L),
+                          dot(normalize(N + 0.35 * bump), L));
+        rgb = baker_skin_diffuse_normals(u_skin, u_lut, NdotL, v_curvature);
     } else {
         float k = baker_skin_curvature_from_derivatives(fwidth(v_normal), fwidth(v_position));
         rgb = baker_skin_lut(u_lut, dot(N, L), baker_skin_curvature(k, u_skin.curvatureScale), u_skin.curvatureRange);
@@ -101,7 +107,7 @@ void main() {
 """
 
 PROGRAMS = {"inputs": (VS, INPUTS_FS), "shade": (VS, SHADE_FS)}
-VARIANTS = {"lut": 0, "blend_penumbra": 1, "wrap": 2, "derivatives": 3}
+VARIANTS = {"lut": 0, "blend_penumbra": 1, "wrap": 2, "derivatives": 3, "diffuse_normals": 4}
 
 
 def source(version: str, body: str) -> str:
@@ -254,6 +260,11 @@ def twin_image(renders, baked, variant):
             shadow = np.clip(position[..., 0] * np.float32(60.0) + np.float32(0.5), 0, 1)
             rgb = twins.baker_skin_diffuse(p, lut, N, detail, L, nc[..., 3]) * twins.baker_skin_penumbra(
                 penumbra, shadow, PENUMBRA_WIDTH, p["penumbraWidthRange"])
+        elif variant == "diffuse_normals":
+            bump = np.sin(pc[..., :3] * np.float32(300.0))
+            ndotl3 = np.stack([twins._dot(twins.normalize(N + np.float32(a) * bump), L) for a in (0.1, 0.25, 0.35)],
+                              axis=-1)
+            rgb = twins.baker_skin_diffuse_normals(p, lut, ndotl3, nc[..., 3])
         elif variant == "wrap":
             rgb = twins.baker_skin_wrap(ndotl, p["wrap"], p["scatterWidth"], p["scatterColor"])
         else:

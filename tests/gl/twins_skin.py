@@ -102,3 +102,8 @@ def baker_skin_diffuse(params: dict, lut, n_smooth, n_detail, L, mesh_curvature)
     ndotl = baker_skin_blended_ndotl(n_smooth, n_detail, L, params["normalBlend"])
     curvature = baker_skin_curvature(mesh_curvature, params["curvatureScale"])
     return baker_skin_lut_rgb(lut, ndotl, curvature, params["curvatureRange"])
+
+
+def baker_skin_diffuse_normals(params: dict, lut, ndotl, mesh_curvature):
+    curvature = baker_skin_curvature(mesh_curvature, params["curvatureScale"])
+    return baker_skin_lut_rgb(lut, ndotl, curvature, params["curvatureRange"])

@@ -1,8 +1,11 @@
 """Preview panel of BAKER_skin_lut: Penner's pre-integrated skin (``runtime-shaders/baker_skin.glsl``), the LUT by
-N.L and the baked curvature (or the curvature estimated from screen-space derivatives when there is none)."""
+N.L and the baked curvature (or the curvature estimated from screen-space derivatives when there is none); where the
+material also has BAKER_normal_blur, the LUT is read with its per-channel diffuse normals (``baker_normal_blur.glsl``,
+tangent frame from screen-space derivatives), as the three.js and Babylon.js hosts do."""
 from __future__ import annotations
 
 from baker.preview.core import DrawItem, Panel
+from baker.techniques.normal_blur.extension import read as read_normal_blur
 from baker.techniques.skin.extension import read
 
 
@@ -12,12 +15,22 @@ class SkinPanel(Panel):
     def read_item(self, doc, item: DrawItem) -> None:
         if item.material_index is not None:
             item.data["skin"] = read(doc, item.material_index)
+            item.data["normal_blur"] = read_normal_blur(doc, item.material_index)
 
     def applies(self, item):
         return super().applies(item) and item.data.get("skin") is not None
 
     def attribute_of(self, item):
         return item.data["skin"].curvature_attribute
+
+    def diffuse_normals(self, item):
+        """The material's BAKER_normal_blur when its UV set is on the primitive, else None."""
+        blur = item.data.get("normal_blur")
+        return blur if blur is not None and blur.texcoord in item.texcoords else None
+
+    def texcoord(self, item):
+        blur = self.diffuse_normals(item)
+        return blur.texcoord if blur is not None else 0
 
     def uniforms(self, item):
         skin = item.data["skin"]
@@ -30,17 +43,34 @@ class SkinPanel(Panel):
             "u_skin.scatterWidth": skin.scatter_width,
             "u_skin.scatterColor": skin.scatter_color,
             "u_hasCurvature": int(self.attribute_of(item) in item.attributes),
+            "u_hasDiffuseNormals": int(self.diffuse_normals(item) is not None),
         }
 
     def textures(self, scene, ctx, item):
         skin = item.data["skin"]
-        return {"u_lut": scene.texture(ctx, skin.lut_texture, srgb=skin.encoding == "srgb")}
+        out = {"u_lut": scene.texture(ctx, skin.lut_texture, srgb=skin.encoding == "srgb")}
+        blur = self.diffuse_normals(item)
+        if blur is not None:
+            for name, texture in zip(("u_diffuseRed", "u_diffuseGreen", "u_diffuseBlue"), blur.diffuse_textures):
+                out[name] = scene.texture(ctx, texture, repeat=True)
+        return out
 
 
 PANELS = [
-    SkinPanel("skin", "pre-integrated skin (LUT x curvature)", ("baker_skin.glsl",),
-              "uniform BakerSkin u_skin;\nuniform sampler2D u_lut;\nuniform int u_hasCurvature;",
+    SkinPanel("skin", "pre-integrated skin (LUT x curvature)", ("baker_skin.glsl", "baker_normal_blur.glsl"),
+              "uniform BakerSkin u_skin;\nuniform sampler2D u_lut;\nuniform int u_hasCurvature;\n"
+              "uniform int u_hasDiffuseNormals;\nuniform sampler2D u_diffuseRed;\nuniform sampler2D u_diffuseGreen;\n"
+              "uniform sampler2D u_diffuseBlue;",
               "float k = u_hasCurvature != 0 ? scalar : baker_skin_curvature_from_derivatives(fwidth(N), fwidth(P));\n"
-              "    color = vec3(0.8) * (0.15 + 0.85 * baker_skin_diffuse(u_skin, u_lut, N, N, u_light, k));",
-              attribute="_CURVATURE", order=30),
+              "    // derivatives outside the branch: they are undefined in non-uniform control flow\n"
+              "    mat3 tbn = baker_normal_blur_derivative_frame(N, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
+              "    vec3 ndotl = vec3(dot(N, u_light));\n"
+              "    if (u_hasDiffuseNormals != 0) {\n"
+              "        ndotl = baker_normal_blur_ndotl(\n"
+              "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseRed, v_uv).rgb, 1.0)),\n"
+              "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseGreen, v_uv).rgb, 1.0)),\n"
+              "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseBlue, v_uv).rgb, 1.0)), u_light);\n"
+              "    }\n"
+              "    color = vec3(0.8) * (0.15 + 0.85 * baker_skin_diffuse_normals(u_skin, u_lut, ndotl, k));",
+              attribute="_CURVATURE", inputs="in vec2 v_uv;", order=30),
 ]

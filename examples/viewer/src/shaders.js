@@ -9,5 +9,6 @@ import hair from '../../../runtime-shaders/baker_hair.glsl';
 import text from '../../../runtime-shaders/baker_text.glsl';
 import caustics from '../../../runtime-shaders/baker_caustics.glsl';
 import cards from '../../../runtime-shaders/baker_hair_cards.glsl';
+import normalBlur from '../../../runtime-shaders/baker_normal_blur.glsl';
 
-export const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text, caustics, cards };
+export const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text, caustics, cards, normalBlur };

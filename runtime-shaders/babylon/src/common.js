@@ -12,7 +12,8 @@ import { parseKtx2Rgba8, shaderText } from '@baker/shared';
 // engine-neutral: @baker/shared, re-exported here
 export {
 	BAKER_THICKNESS, BAKER_CURVATURE, BAKER_SKIN_LUT, BAKER_EDGES, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
-	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, TECHNIQUES, BakerControls,
+	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, BAKER_NORMAL_BLUR, TECHNIQUES,
+	BakerControls,
 	controls,
 } from '@baker/shared';
 export const EXT_EDGE_VISIBILITY = 'EXT_mesh_primitive_edge_visibility';

@@ -17,8 +17,9 @@
 // onReady, when the loader has built the whole scene, and reads custom attributes from their accessors.
 import { registerGLTFExtension, unregisterGLTFExtension } from '@babylonjs/loaders/glTF/2.0/glTFLoaderExtensionRegistry.js';
 import {
-	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_HAIR_CARDS, BAKER_SKIN_LUT,
-	BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, controls,
+	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_HAIR_CARDS,
+	BAKER_NORMAL_BLUR, BAKER_SKIN_LUT, BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
+	EXT_EDGE_VISIBILITY, controls,
 } from './common.js';
 import { BakerThicknessExtension } from './thickness.js';
 import { BakerCurvatureExtension } from './curvature.js';
@@ -32,11 +33,12 @@ import { BakerGlyphAtlasExtension } from './glyph_atlas.js';
 import { BakerTextExtension } from './text.js';
 import { BakerCausticsExtension } from './caustics.js';
 import { BakerHairCardsExtension } from './hair_cards.js';
+import { BakerNormalBlurExtension } from './normal_blur.js';
 
 export {
-	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_HAIR_CARDS, BAKER_SKIN_LUT,
-	BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP, EXT_EDGE_VISIBILITY, TECHNIQUES, BakerControls,
-	readAccessor,
+	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_HAIR_CARDS,
+	BAKER_NORMAL_BLUR, BAKER_SKIN_LUT, BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
+	EXT_EDGE_VISIBILITY, TECHNIQUES, BakerControls, readAccessor,
 } from './common.js';
 export { BakerSurfacePlugin } from './surface.js';
 export { thicknessParameters } from './thickness.js';
@@ -48,6 +50,7 @@ export {
 	BakerThicknessExtension, BakerCurvatureExtension, BakerSkinLutExtension, BakerToonRampExtension,
 	BakerTonalArtMapExtension, BakerEdgesExtension, EdgeVisibilityExtension, BakerFurExtension, BakerHairExtension,
 	BakerGlyphAtlasExtension, BakerTextExtension, BakerCausticsExtension, BakerHairCardsExtension,
+	BakerNormalBlurExtension,
 };
 
 /** extension name -> loader extension class (each a glTF extension: used only by files that list it). */
@@ -58,6 +61,7 @@ export const EXTENSIONS = {
 	[EXT_EDGE_VISIBILITY]: EdgeVisibilityExtension, [BAKER_FUR]: BakerFurExtension, [BAKER_HAIR]: BakerHairExtension,
 	[BAKER_GLYPH_ATLAS]: BakerGlyphAtlasExtension, [BAKER_TEXT]: BakerTextExtension,
 	[BAKER_CAUSTICS]: BakerCausticsExtension, [BAKER_HAIR_CARDS]: BakerHairCardsExtension,
+	[BAKER_NORMAL_BLUR]: BakerNormalBlurExtension,
 };
 
 const CONTROLS = 'BAKER_controls';
@@ -94,7 +98,8 @@ function named(extension) {
 
 /**
  * Register every baker loader extension with Babylon's glTF loader (global registry). `options.shaders` holds the
- * runtime-shaders/ modules as text: { translucency, skin, toon, hatching, edges, fur, hair, text, caustics }. Per technique:
+ * runtime-shaders/ modules as text: { translucency, skin, toon, hatching, edges, fur, hair, text, caustics,
+ * normalBlur }. Per technique:
  * options.thickness ({ power, scale, distortion, ambient, attenuationDistance, subsurfaceColor } overrides),
  * options.edges ({ color, finWidth, outlineWidth, wireframeWidth, wireframeColor, classes }), options.fur
  * ({ finThreshold }), options.hair ({ specular, exponent }), options.caustics ({ time }: seconds, or a function

@@ -1,8 +1,9 @@
 // The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature,
-// BAKER_caustics, BAKER_hair_cards):
+// BAKER_caustics, BAKER_hair_cards, BAKER_normal_blur):
 // each extension builds one part (GLSL module, uniforms, samplers, attributes); one MaterialPluginBase per PBR
 // material composes the parts of that material. Per punctual light, after Babylon's own diffuse
-// (computeDiffuseLighting), the clamped N.L of Lambert's term becomes f (vec3): the skin LUT (Penner) and/or the
+// (computeDiffuseLighting), the clamped N.L of Lambert's term becomes f (vec3): per-channel N.L of the blurred
+// diffuse normals, the skin LUT (Penner) and/or the
 // toon ramp of it, and the translucency is added, both on the base colour as @baker/three does; caustics
 // redistribute the directional lights' Lambert light (on the base colour too); hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
 // curvature view replaces it. Each part is gated by a uniform, so a switch costs no recompile.
@@ -10,7 +11,7 @@ import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase
 import { controls, glslType, loadedPrimitives } from './common.js';
 
 const PLUGIN_NAME = 'BakerSurface';
-const PART_DEFINES = ['translucency', 'skin', 'toon', 'tam', 'curvature', 'caustics', 'cards'];
+const PART_DEFINES = ['translucency', 'skin', 'toon', 'tam', 'curvature', 'caustics', 'cards', 'normalBlur'];
 const define = (name) => `BAKER_${name.toUpperCase()}`;
 // regular expressions (Babylon's "!" points) matched in the PBR fragment shader after its includes are expanded
 const LIGHT_POINT = '!info\\.diffuse=computeDiffuseLighting\\(preInfo,diffuse(\\d+)\\.rgb\\);';
@@ -58,6 +59,13 @@ const CARDS_FRAME = `
 vec3 bakerCardsData = texture(u_bakerCardsData, v_bakerUv).rgb;
 vec3 bakerCardsT = baker_hair_cards_flow(texture(u_bakerCardsFlow, v_bakerUv).rgb, normalW,
 	baker_hair_cards_frame(normalW, dFdx(vPositionW), dFdy(vPositionW), dFdx(v_bakerUv), dFdy(v_bakerUv)));`;
+// normal blur: the three diffuse normals in world space, through the bump texture's frame at its UV (the frame's
+// normal column normalized: Babylon scales it by the bump level, the maps have the glTF scale applied already)
+const NORMAL_BLUR = `
+mat3 bakerTBN = mat3(TBN[0], TBN[1], normalize(TBN[2]));
+vec3 bakerNormalRed = normalize(bakerTBN * baker_normal_blur_decode(texture(u_bakerNormalBlurRed, vBumpUV).rgb, 1.0));
+vec3 bakerNormalGreen = normalize(bakerTBN * baker_normal_blur_decode(texture(u_bakerNormalBlurGreen, vBumpUV).rgb, 1.0));
+vec3 bakerNormalBlue = normalize(bakerTBN * baker_normal_blur_decode(texture(u_bakerNormalBlurBlue, vBumpUV).rgb, 1.0));`;
 
 // every texture a part holds (all its frames when it swaps them), not only those bound now
 const partTextures = (p) => p.textures || Object.values(p.samplers || {});
@@ -175,8 +183,18 @@ v_bakerUv = vec2(0.0);
 		const modules = [...new Set(Object.values(p).map((x) => x.glsl).filter(Boolean))].join('\n');
 		const structs = Object.values(p).map((x) => x.structs || '').join('\n');
 		const diffuse = [];
+		// BAKER_normal_blur: one N.L per channel from the blurred maps (the specular term keeps the bump's normal)
+		if (p.normalBlur) diffuse.push(`vec3 bakerNdotL = vec3(dotNL);
+if (u_baker_normalBlur_on > 0.5) {
+	bakerNdotL = baker_normal_blur_ndotl(bakerNormalRed, bakerNormalGreen, bakerNormalBlue, bakerL);
+	f = clamp(bakerNdotL, 0.0, 1.0);
+	bakerReplaced = true;
+}`);
+		const skin = (normals) => `baker_skin_diffuse(${p.skin.struct}, u_bakerSkinLut, ${normals}, bakerL, ${p.skin.curvature})`;
 		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
-	f = baker_skin_diffuse(${p.skin.struct}, u_bakerSkinLut, normalW, normalW, bakerL, ${p.skin.curvature});
+	f = ${p.normalBlur ? `u_baker_normalBlur_on > 0.5
+		? baker_skin_diffuse_normals(${p.skin.struct}, u_bakerSkinLut, bakerNdotL, ${p.skin.curvature})
+		: ${skin('normalW, normalW')}` : skin('normalW, normalW')};
 	bakerReplaced = true;
 }`);
 		if (p.toon) diffuse.push(`if (u_baker_toon_on > 0.5) {
@@ -201,7 +219,7 @@ v_bakerUv = vec2(0.0);
 	bool bakerReplaced = false;
 	${diffuse.join('\n\t')}
 	// like @baker/three: the change to Lambert's term, and the translucency, on the base colour (not metal-weighted)
-	if (bakerReplaced) bakerDirect += (f - vec3(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb;
+	if (bakerReplaced) bakerLambert += (f - vec3(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb;
 	${p.translucency ? `bakerDirect += u_baker_translucency_on * preInfo.attenuation * diffuse$1.rgb *
 		baker_translucency(${p.translucency.struct}, normalW, viewDirectionW, bakerL, ${p.translucency.thickness});` : ''}
 	${p.cards ? `if (u_baker_cards_on > 0.5) bakerCards += (preInfo.attenuation / PI) * (baker_hair_cards_shade(
@@ -212,10 +230,14 @@ v_bakerUv = vec2(0.0);
 #endif
 }`;
 		}
-		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);\nvec3 bakerSun = vec3(0.0);\nvec3 bakerCards = vec3(0.0);' +
-			(p.cards ? CARDS_FRAME : '');
+		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = 'vec3 bakerDirect = vec3(0.0);\nvec3 bakerLambert = vec3(0.0);\nvec3 bakerSun = vec3(0.0);' +
+			'\nvec3 bakerCards = vec3(0.0);' + (p.cards ? CARDS_FRAME : '') + (p.normalBlur ? NORMAL_BLUR : '');
+		// the change to Lambert's term on the base colour (skin, toon: as @baker/three does); with blurred diffuse
+		// normals on Babylon's diffuse albedo (surfaceAlbedo: metal-weighted), so a metal shows no change
+		const albedo = p.normalBlur ? 'surfaceAlbedo.rgb' : 'albedoOpacityOut.surfaceAlbedo';
 		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;' +
-			'finalDiffuse += bakerCards * vLightingIntensity.x;' +
+			`\nfinalDiffuse += bakerLambert * ${albedo} * vLightingIntensity.x;` +
+			'\nfinalDiffuse += bakerCards * vLightingIntensity.x;' +
 			(p.caustics ? CAUSTICS : '');
 		let outgoing = '';
 		if (p.tam) outgoing += `

@@ -12,6 +12,8 @@ so the untouched material renders exactly as before; raise the factor to see the
   first texture as emission (the tones are in the material's ``baker_tam_tones``).
 - ``BAKER Fur Shell`` (baker_fur.glsl, Lengyel et al. 2001): the innermost shell texture tiled over TEXCOORD_0,
   its coverage as alpha over a transparent BSDF.
+- ``BAKER Diffuse Normals`` (baker_normal_blur.glsl, RTR4 14.6.2): the three diffuse normal maps of BAKER_normal_blur
+  through tangent-space Normal Map nodes, one Diffuse BSDF per colour channel of the base colour, summed.
 - ``BAKER Caustics Coordinates`` + ``BAKER Caustics`` (baker_caustics.glsl, RTR4 14.5.3): the first caustic frame
   projected from the world position along the refracted sun direction onto the baked depth (baker_caustics_uv in
   Blender's Z-up axes) and the depth fade; its irradiance E = texel x intensityScale and an emission of
@@ -84,6 +86,73 @@ def translucency_group():
     tree.links.new(add.outputs[0], gout.inputs["Shader"])
     tree.links.new(transmittance, gout.inputs["Transmittance"])
     return group
+
+
+def diffuse_normals_group():
+    """Per-channel diffuse (BAKER_normal_blur, baker_normal_blur.glsl): three Diffuse BSDFs, one per colour channel
+    of the base colour, each shaded with its own blurred normal; their sum is the diffuse term of skin whose red
+    light scatters furthest (RTR4 14.6.2). Specular stays with the material's own BSDF and normal map."""
+    group, io = new_group("BAKER Diffuse Normals", [
+        ("Base Color", "NodeSocketColor", (0.8, 0.8, 0.8, 1.0)), ("Normal Red", "NodeSocketVector", None),
+        ("Normal Green", "NodeSocketVector", None), ("Normal Blue", "NodeSocketVector", None)],
+        [("Shader", "NodeSocketShader")])
+    if io is None:
+        return group
+    tree, (gin, gout) = group, io
+    separate = tree.nodes.new("ShaderNodeSeparateColor")
+    tree.links.new(gin.outputs["Base Color"], separate.inputs[0])
+    shaders = []
+    for channel, socket in (("Red", "Normal Red"), ("Green", "Normal Green"), ("Blue", "Normal Blue")):
+        combine = tree.nodes.new("ShaderNodeCombineColor")
+        tree.links.new(separate.outputs[channel], combine.inputs[channel])
+        bsdf = tree.nodes.new("ShaderNodeBsdfDiffuse")
+        tree.links.new(combine.outputs[0], bsdf.inputs["Color"])
+        tree.links.new(gin.outputs[socket], bsdf.inputs["Normal"])
+        shaders.append(bsdf.outputs[0])
+    first = tree.nodes.new("ShaderNodeAddShader")
+    tree.links.new(shaders[0], first.inputs[0])
+    tree.links.new(shaders[1], first.inputs[1])
+    second = tree.nodes.new("ShaderNodeAddShader")
+    tree.links.new(first.outputs[0], second.inputs[0])
+    tree.links.new(shaders[2], second.inputs[1])
+    tree.links.new(second.outputs[0], gout.inputs["Shader"])
+    return group
+
+
+def add_diffuse_normals(mat, blur: dict, textures: dict, location) -> None:
+    """The three diffuse maps (Non-Color) through tangent-space Normal Map nodes on the normal texture's UV set into
+    ``BAKER Diffuse Normals``, mixed in after the surface at factor 0 (raise it to see the blurred diffuse)."""
+    tree = mat.node_tree
+    x, y = location
+    node = tree.nodes.new("ShaderNodeGroup")
+    node.node_tree = diffuse_normals_group()
+    node.name = node.label = "BAKER Diffuse Normals"
+    node.location = (x + 300, y)
+    principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    if principled is not None:
+        base = principled.inputs["Base Color"]
+        if base.links:
+            tree.links.new(base.links[0].from_socket, node.inputs["Base Color"])
+        else:
+            node.inputs["Base Color"].default_value = base.default_value
+    texcoord = int(blur["diffuseNormalTextures"][0].get("texCoord", 0))
+    users = [obj for obj in bpy.data.objects
+             if obj.type == "MESH" and any(m is not None and m.name == mat.name for m in obj.data.materials)]
+    uv_maps = [layer.name for layer in users[0].data.uv_layers] if users else []
+    for i, (info, socket) in enumerate(zip(blur["diffuseNormalTextures"], ("Normal Red", "Normal Green", "Normal Blue"))):
+        image = image_node(tree, textures, info, (x - 500, y - 260 * i))
+        if image is None:
+            continue
+        image.extension = "REPEAT"
+        normal_map = tree.nodes.new("ShaderNodeNormalMap")
+        normal_map.name = normal_map.label = f"BAKER diffuse normal {socket.split()[-1].lower()}"
+        normal_map.space = "TANGENT"
+        if texcoord < len(uv_maps):
+            normal_map.uv_map = uv_maps[texcoord]
+        normal_map.location = (x - 200, y - 260 * i)
+        tree.links.new(image.outputs["Color"], normal_map.inputs["Color"])
+        tree.links.new(normal_map.outputs["Normal"], node.inputs[socket])
+    mix_in(mat, "diffuse normals", node.outputs["Shader"], (x + 550, y))
 
 
 def lookup_uv_group(name: str):
@@ -452,6 +521,10 @@ def add_material_groups(mat, exts: dict, textures: dict) -> None:
         mix_in(mat, "hatching", emission.outputs[0], (x + 500, y))
         mat["baker_tam_tones"] = tones
         y -= 400
+    blur = exts.get("BAKER_normal_blur")
+    if isinstance(blur, dict) and len(blur.get("diffuseNormalTextures") or []) == 3:
+        add_diffuse_normals(mat, blur, textures, (x, y))
+        y -= 800
     caustics = exts.get("BAKER_caustics")
     if isinstance(caustics, dict):
         add_caustics(mat, caustics, textures, (x, y))

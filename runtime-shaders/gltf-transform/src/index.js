@@ -39,6 +39,7 @@ import { BakerGlyphAtlas } from './glyph_atlas.js';
 import { BakerText } from './text.js';
 import { BakerCaustics } from './caustics.js';
 import { BakerHairCards } from './hair_cards.js';
+import { BakerNormalBlur } from './normal_blur.js';
 export { Thickness, BakerThickness } from './thickness.js';
 export { Curvature, BakerCurvature } from './curvature.js';
 export { SkinLut, BakerSkinLut } from './skin_lut.js';
@@ -52,6 +53,7 @@ export { GlyphAtlas, BakerGlyphAtlas } from './glyph_atlas.js';
 export { Text, BakerText } from './text.js';
 export { Caustics, BakerCaustics } from './caustics.js';
 export { HairCardsMaterial, HairCards, BakerHairCards } from './hair_cards.js';
+export { NormalBlur, BakerNormalBlur } from './normal_blur.js';
 
 /** Every class, for `io.registerExtensions([...KHRONOS_EXTENSIONS, ...BAKER_EXTENSIONS])`. */
 export const BAKER_EXTENSIONS = [
@@ -68,4 +70,5 @@ export const BAKER_EXTENSIONS = [
 	BakerText,
 	BakerCaustics,
 	BakerHairCards,
+	BakerNormalBlur,
 ];

@@ -76,6 +76,13 @@ export const REFERENCES = {
 			["cardFirstIndex", "accessor"],
 		],
 	},
+	"BAKER_normal_blur": {
+		"material": [
+			["diffuseNormalTextures/*", "texture"],
+			["smoothedNormalTexture", "texture"],
+			["stretchTexture", "texture"],
+		],
+	},
 	"BAKER_skin_lut": {
 		"material": [
 			["lutTexture", "texture"],

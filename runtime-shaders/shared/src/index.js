@@ -14,6 +14,7 @@ export const BAKER_HAIR = 'BAKER_hair';
 export const BAKER_FUR = 'BAKER_fur';
 export const BAKER_CAUSTICS = 'BAKER_caustics';
 export const BAKER_HAIR_CARDS = 'BAKER_hair_cards';
+export const BAKER_NORMAL_BLUR = 'BAKER_normal_blur';
 
 /** Techniques (switch names) and the extension each comes from. Techniques off by default are debug views. */
 export const TECHNIQUES = {
@@ -29,6 +30,7 @@ export const TECHNIQUES = {
 	text: { extension: BAKER_TEXT, label: 'MSDF text' },
 	caustics: { extension: BAKER_CAUSTICS, label: 'caustics' },
 	cards: { extension: BAKER_HAIR_CARDS, label: 'hair cards (Kajiya-Kay)' },
+	normalBlur: { extension: BAKER_NORMAL_BLUR, label: 'blurred diffuse normals' },
 	curvature: { extension: BAKER_CURVATURE, label: 'curvature view', defaultOff: true },
 };
 
@@ -36,6 +38,7 @@ const GLSL_NAMES = {
 	translucency: 'baker_translucency.glsl', skin: 'baker_skin.glsl', toon: 'baker_toon.glsl',
 	hatching: 'baker_hatching.glsl', edges: 'baker_edges.glsl', fur: 'baker_fur.glsl', hair: 'baker_hair.glsl',
 	text: 'baker_text.glsl', caustics: 'baker_caustics.glsl', cards: 'baker_hair_cards.glsl',
+	normalBlur: 'baker_normal_blur.glsl',
 };
 
 /** The runtime-shaders module `key` of options.shaders, as given; throws a message naming the file when missing. */

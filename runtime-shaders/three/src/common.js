@@ -8,7 +8,8 @@ import { parseKtx2Rgba8, shaderText } from '@baker/shared';
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: @baker/shared, re-exported here
 export {
 	BAKER_THICKNESS, BAKER_CURVATURE, BAKER_SKIN_LUT, BAKER_EDGES, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
-	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, TECHNIQUES, BakerControls,
+	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, BAKER_NORMAL_BLUR, TECHNIQUES,
+	BakerControls,
 	controls,
 } from '@baker/shared';
 

@@ -10,17 +10,17 @@
 // The GLSL comes from runtime-shaders/ as text: the plugins inject the very modules the reference renders use, they
 // do not carry a copy. One plugin per extension, each in its own module (BAKER_<name> -> <name>.js: thickness.js,
 // skin_lut.js, toon_ramp.js, tonal_art_map.js, curvature.js, edges.js, fur.js, hair.js, glyph_atlas.js, text.js,
-// caustics.js, hair_cards.js);
+// caustics.js, hair_cards.js, normal_blur.js);
 // common.js holds what several use and surface.js the material composition. This module re-exports them and
 // registers them. Surface techniques (translucency, pre-integrated skin, toon ramp, hatching, curvature view, caustics,
-// hair cards)
+// hair cards, blurred diffuse normals)
 // augment the material GLTFLoader made (MeshStandardMaterial / MeshPhysicalMaterial) through onBeforeCompile, so
 // PBR, lights and tone mapping stay; each is gated by a uniform, so a switch costs no recompile. Geometry
 // techniques (fins, shell outline, wireframe, fur shells and fins, hair ribbons, MSDF text) add or replace meshes
 // with ShaderMaterials that include the matching module, lit by the scene's lights (lights: true).
 export {
 	BAKER_THICKNESS, BAKER_CURVATURE, BAKER_SKIN_LUT, BAKER_EDGES, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
-	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, TECHNIQUES,
+	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, BAKER_NORMAL_BLUR, TECHNIQUES,
 } from './common.js';
 import { controls } from './common.js';
 import { BakerThicknessPlugin } from './thickness.js';
@@ -34,6 +34,7 @@ import { BakerHairPlugin } from './hair.js';
 import { BakerTextPlugin } from './text.js';
 import { BakerCausticsPlugin } from './caustics.js';
 import { BakerHairCardsPlugin } from './hair_cards.js';
+import { BakerNormalBlurPlugin } from './normal_blur.js';
 export { thicknessParameters } from './thickness.js';
 export { tamTextures } from './tonal_art_map.js';
 export { wireframeGeometry } from './edges.js';
@@ -42,6 +43,7 @@ export { BakerGlyphAtlasPlugin } from './glyph_atlas.js';
 export {
 	BakerThicknessPlugin, BakerCurvaturePlugin, BakerSkinLutPlugin, BakerToonRampPlugin, BakerTonalArtMapPlugin,
 	BakerEdgesPlugin, BakerFurPlugin, BakerHairPlugin, BakerTextPlugin, BakerCausticsPlugin, BakerHairCardsPlugin,
+	BakerNormalBlurPlugin,
 };
 
 // ------------------------------------------------------------------------------------------------ registration
@@ -62,12 +64,12 @@ class BakerControlsPlugin {
 
 export const PLUGINS = [BakerThicknessPlugin, BakerCurvaturePlugin, BakerSkinLutPlugin, BakerToonRampPlugin,
 	BakerTonalArtMapPlugin, BakerEdgesPlugin, BakerFurPlugin, BakerHairPlugin, BakerTextPlugin, BakerCausticsPlugin,
-	BakerHairCardsPlugin];
+	BakerHairCardsPlugin, BakerNormalBlurPlugin];
 
 /**
  * Register every baker plugin on a GLTFLoader. `options.shaders` holds the runtime-shaders/ modules as text:
- * { translucency, skin, toon, hatching, edges, fur, hair, text, caustics, cards } (baker_<name>.glsl;
- * cards: baker_hair_cards.glsl). `options.edges` overrides
+ * { translucency, skin, toon, hatching, edges, fur, hair, text, caustics, cards, normalBlur } (baker_<name>.glsl;
+ * cards: baker_hair_cards.glsl, normalBlur: baker_normal_blur.glsl). `options.edges` overrides
  * the line style ({ color, finWidth, outlineWidth, wireframeWidth, wireframeColor } in pixels / linear RGB);
  * `options.caustics.time` fixes the caustic animation's clock (seconds, or a function returning seconds).
  */

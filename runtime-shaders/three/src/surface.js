@@ -1,12 +1,13 @@
 // The surface techniques (BAKER_thickness, BAKER_skin_lut, BAKER_toon_ramp, BAKER_tonal_art_map, BAKER_curvature,
-// BAKER_caustics, BAKER_hair_cards):
+// BAKER_caustics, BAKER_hair_cards, BAKER_normal_blur):
 // the plugins of those extensions each build one part (GLSL module, uniforms, attributes); BakerSurface composes
 // the parts of one material in a single onBeforeCompile.
 import { DIRECTIONAL_DIFFUSE, TECHNIQUES, controls, sceneMaterials } from './common.js';
 
 // ------------------------------------------------------------------------------------------------ surface
 // The surface techniques of one material, composed in one onBeforeCompile: per directional light the Lambert term
-// max(N.L, 0) is replaced by f (vec3): skin LUT (Penner) and/or toon ramp of it; translucency is added; caustics
+// max(N.L, 0) is replaced by f (vec3): per-channel N.L of the blurred diffuse normals, skin LUT (Penner) and/or toon
+// ramp of it; translucency is added; caustics
 // redistribute the directional lights' Lambert light; hatching multiplies the outgoing light by the TAM brightness;
 // the curvature view replaces it.
 export class BakerSurface {
@@ -66,8 +67,17 @@ vBakerUv = uv;`)
 			.replace('#include <worldpos_vertex>', `#include <worldpos_vertex>\n${world ? WORLD_POSITION : ''}`);
 
 		const diffuse = [];
+		// BAKER_normal_blur: one N.L per channel from the blurred maps (the specular term keeps normalMap's normal)
+		if (p.normalBlur) diffuse.push(`vec3 bakerNdotL = vec3(dotNL);
+		if (u_baker_normalBlur_on > 0.5) {
+			bakerNdotL = baker_normal_blur_ndotl(bakerNormalRed, bakerNormalGreen, bakerNormalBlue, L);
+			f = clamp(bakerNdotL, 0.0, 1.0);
+		}`);
 		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
-			f = baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, ${p.skin.curvature});
+			${p.normalBlur ? `f = u_baker_normalBlur_on > 0.5
+				? baker_skin_diffuse_normals(u_bakerSkin, u_bakerSkinLut, bakerNdotL, ${p.skin.curvature})
+				: baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, ${p.skin.curvature});`
+		: `f = baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, ${p.skin.curvature});`}
 		}`);
 		if (p.toon) diffuse.push(`if (u_baker_toon_on > 0.5) {
 			// the ramp indexed by the lit shade so far (N.L, or the skin LUT's luminance mapped back to -1..1)
@@ -77,9 +87,13 @@ vBakerUv = uv;`)
 					? baker_xtoon_detail_depth(-vViewPosition.z, u_bakerToonDepthRange.x, u_bakerToonDepthRange.y)
 					: baker_xtoon_detail_orientation(normal, normalize(vViewPosition) * -1.0, u_bakerToonOrientationPower)));
 		}`);
+		// the change to Lambert's term goes on the base colour (skin, toon: as Babylon's plugin does); with blurred
+		// diffuse normals on the material's diffuse albedo (metal-weighted), so a metal, which has no diffuse term,
+		// shows no change
+		const albedo = p.normalBlur ? 'material.diffuseContribution' : 'diffuseColor.rgb';
 		let lights = '';
-		if (diffuse.length || p.translucency || p.caustics || p.cards) {
-			lights = `
+		if (diffuse.length || p.translucency || p.caustics || p.cards) {  // normal blur: one of `diffuse`
+			lights = `${p.normalBlur ? NORMAL_BLUR : ''}
 vec3 bakerSun = vec3(0.0);  // Lambert light of the directional lights (the sun) on the base colour
 ${p.cards ? CARDS_FRAME : ''}
 #if NUM_DIR_LIGHTS > 0
@@ -88,7 +102,7 @@ ${p.cards ? CARDS_FRAME : ''}
 		float dotNL = dot(normal, L);
 		vec3 f = vec3(saturate(dotNL));
 		${diffuse.join('\n\t\t')}
-		reflectedLight.directDiffuse += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * (f - vec3(saturate(dotNL)));
+		reflectedLight.directDiffuse += directionalLights[i].color * BRDF_Lambert(${albedo}) * (f - vec3(saturate(dotNL)));
 		${p.translucency ? `reflectedLight.directDiffuse += u_baker_translucency_on * diffuseColor.rgb * directionalLights[i].color *
 			baker_translucency(u_bakerThickness, normal, normalize(vViewPosition), L, vBaker${p.translucency.attribute});` : ''}
 		${p.cards ? CARDS_LIGHT : ''}
@@ -129,6 +143,15 @@ bakerWorld = batchingMatrix * bakerWorld;
 bakerWorld = instanceMatrix * bakerWorld;
 #endif
 vBakerWorldPosition = (modelMatrix * bakerWorld).xyz;`;
+
+// normal blur: the three diffuse normals in view space, through the normal map's frame (tbn) at its UV
+const NORMAL_BLUR = `
+vec3 bakerNormalRed = normalize(tbn * baker_normal_blur_decode(texture2D(u_bakerNormalBlurRed, vNormalMapUv).rgb,
+	u_bakerNormalBlurFlipY));
+vec3 bakerNormalGreen = normalize(tbn * baker_normal_blur_decode(texture2D(u_bakerNormalBlurGreen, vNormalMapUv).rgb,
+	u_bakerNormalBlurFlipY));
+vec3 bakerNormalBlue = normalize(tbn * baker_normal_blur_decode(texture2D(u_bakerNormalBlurBlue, vNormalMapUv).rgb,
+	u_bakerNormalBlurFlipY));`;
 
 // caustics: the sun's Lambert light scaled by the irradiance of the two current frames (baker_caustics.glsl);
 // browsers decode a gray PNG to equal RGB channels, so the frames are read as RGB whatever their colour type
