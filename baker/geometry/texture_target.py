@@ -129,9 +129,10 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
             # xatlas pads charts by texels of `resolution`: a forced size, or the size the surface gets at the
             # coverage xatlas typically reaches (the final size follows the coverage it really reached)
             resolution = size or size_for_density(_statistics(geoms, None, UNWRAP_COVERAGE), density)
-            layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
+            # not named `layouts`: that is the argument, tested again for the next material
+            charts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
             vmaps = {}
-            for g, (vmap, faces, uv) in zip(geoms, layouts):
+            for g, (vmap, faces, uv) in zip(geoms, charts):
                 reindex_primitive(asset, g.mesh, g.primitive, vmap, faces, uv, texcoord)
                 vmaps[(g.mesh, g.primitive)] = (vmap, g.positions.shape)
             geoms = [asset.primitive(m, p) for m, p in vmaps]

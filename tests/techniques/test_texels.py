@@ -215,3 +215,23 @@ def test_dilation_takes_the_nearest_covered_texel():
         brute = np.sqrt(((grid_y[..., None] - ys) ** 2 + (grid_x[..., None] - xs) ** 2).min(-1))
         chosen = np.sqrt((rows - grid_y) ** 2 + (cols - grid_x) ** 2)
         assert np.allclose(chosen, brute)
+
+
+def test_every_material_without_usable_uvs_is_unwrapped(tmp_path):
+    """Two meshes, two materials, no TEXCOORD_0: each material gets its own unwrapped texture set (the first
+    unwrap must not stop the materials after it from being gathered)."""
+    scene = trimesh.Scene()
+    for k in range(2):
+        mesh = trimesh.creation.icosphere(subdivisions=2)
+        mesh.visual = trimesh.visual.TextureVisuals(material=trimesh.visual.material.PBRMaterial(
+            name=f"material{k}", baseColorFactor=[0.2 + 0.5 * k, 0.5, 0.5, 1.0]))
+        scene.add_geometry(mesh, node_name=f"sphere{k}",
+                           transform=trimesh.transformations.translation_matrix([3.0 * k, 0.0, 0.0]))
+    path = tmp_path / "two.glb"
+    scene.export(str(path))
+    asset = Asset.load(path)
+    assert all("TEXCOORD_0" not in p["attributes"] for m in asset.doc.json["meshes"] for p in m["primitives"])
+    texels = gather_texels(asset)
+    assert sorted(s.material for s in texels.sets) == [0, 1]
+    assert all(s.target.unwrapped for s in texels.sets)
+    assert np.array_equal(np.unique(texels.material), [0, 1])
