@@ -65,11 +65,11 @@ def decode_image(data: bytes, suffix: str = ".png") -> np.ndarray:
 
 # ---------------------------------------------------------------------------------------------------------- validate
 def decoded_texture(doc, texture: int):
-    """The pixels of texture ``texture`` of a document decoded as PNG, or None when it has no image or cannot be decoded."""
-    from baker.gltf.images import decode_image
-
-    source = doc.json["textures"][texture].get("source")
-    if source is None:
+    """The pixels of texture ``texture`` of a document decoded as PNG, or None when it has no image (or names one
+    that does not exist) or the image cannot be decoded."""
+    source = (doc.json.get("textures") or [])[texture].get("source")
+    images = doc.json.get("images") or []
+    if not isinstance(source, int) or not 0 <= source < len(images):
         return None
     try:
         return decode_image(doc.image_bytes(source), ".png")

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from baker.gltf.document import GltfDocument
-from baker.gltf.images import encode_image
+from baker.gltf.images import decoded_texture, encode_image
 
 NAME = "BAKER_normal_blur"
 CHANNELS = ("red", "green", "blue")
@@ -89,19 +89,6 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, prof
     return ext
 
 
-def _decode_texture(doc: GltfDocument, texture: int) -> np.ndarray | None:
-    from baker.gltf.images import decode_image
-
-    source = (doc.json.get("textures") or [])[texture].get("source")
-    images = doc.json.get("images") or []
-    if not isinstance(source, int) or not 0 <= source < len(images):
-        return None
-    try:
-        return decode_image(doc.image_bytes(source), ".png")
-    except Exception:  # a broken image is reported by Khronos' validator; here it only ends our checks
-        return None
-
-
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_normal_blur: three diffuse maps, each an RGB image of unit-ish tangent-space normals
     (z >= 0) of one size; the kernels' weights sum to 1 per channel with positive variances; the UV set every
@@ -138,7 +125,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                 if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
                     issues.error("BAKER_NORMAL_BLUR_TEXCOORD_MISSING", f"{where[1:]} reads TEXCOORD_{texcoord} but "
                                  "this primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
-            pixels = _decode_texture(doc, info["index"])
+            pixels = decoded_texture(doc, info["index"])
             if pixels is None:
                 issues.warning("BAKER_NORMAL_BLUR_IMAGE_UNREADABLE", "the image cannot be decoded as PNG",
                                ext_ptr + where)

@@ -16,7 +16,7 @@ import numpy as np
 
 from baker.techniques.skin.options import SkinOptions
 from baker.gltf.document import GltfDocument
-from baker.gltf.images import encode_image
+from baker.gltf.images import decoded_texture, encode_image
 
 if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
     from baker.techniques.skin.kernel import SkinTables
@@ -69,19 +69,6 @@ def write_material_parameters(doc: GltfDocument, material: int, *, tables: SkinT
     return ext
 
 
-def _decode_texture(doc: GltfDocument, texture: int) -> np.ndarray | None:
-    from baker.gltf.images import decode_image
-
-    source = (doc.json.get("textures") or [])[texture].get("source")
-    images = doc.json.get("images") or []
-    if not isinstance(source, int) or not 0 <= source < len(images):
-        return None
-    try:
-        return decode_image(doc.image_bytes(source), ".png")
-    except Exception:  # a broken image is reported by Khronos' validator; here it only ends our checks
-        return None
-
-
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_skin_lut: ranges ordered, textures resolve to RGB images whose rows do not decrease
     along N.L (u) / the shadow value, and the curvature attribute or texture it names exists."""
@@ -102,7 +89,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             info = ext.get(key)
             if not isinstance(info, dict) or not is_index(info.get("index"), textures):
                 continue  # schema or UNRESOLVED_REFERENCE
-            pixels = _decode_texture(doc, info["index"])
+            pixels = decoded_texture(doc, info["index"])
             tex_ptr = ext_ptr + "/" + key
             if pixels is None:
                 issues.warning("BAKER_SKIN_LUT_IMAGE_UNREADABLE", "the LUT image cannot be decoded as PNG", tex_ptr)
