@@ -631,13 +631,7 @@ class _Writer:
             image = self._image(textures[texture]["source"])
             key = ("coverageMips", entry["accessor"])
             if key not in self.image_paths:
-                stem = Path(image).stem + "_mips"
-                taken = {name for name, _ in self.image_files}
-                name, k = f"{stem}.ktx2", 1
-                while name in taken:
-                    name, k = f"{stem}_{k}.ktx2", k + 1
-                self.image_files.append((name, data))
-                self.image_paths[key] = f"./{self.texture_folder}/{name}"
+                self.image_paths[key] = self._add_file(Path(image).stem + "_mips", ".ktx2", data)
             at = f"{namespace}:_{i}"
             prim.CreateAttribute(f"{at}:file", Sdf.ValueTypeNames.Asset, custom=True).Set(
                 Sdf.AssetPath(self.image_paths[key]))
@@ -692,13 +686,17 @@ class _Writer:
         ext = IMAGE_EXTENSIONS.get(mime) or mimetypes.guess_extension(mime) or ".bin"
         stem = Tf.MakeValidIdentifier(Path(image.get("name") or image.get("uri", "") or f"image{index}").stem
                                       or f"image{index}")
+        self.image_paths[index] = self._add_file(stem, ext, data)
+        return self.image_paths[index]
+
+    def _add_file(self, stem: str, ext: str, data: bytes) -> str:
+        """Queue ``data`` as a file of the texture folder under a name no other file has; its asset path."""
         taken = {name for name, _ in self.image_files}
         name, k = f"{stem}{ext}", 1
         while name in taken:
             name, k = f"{stem}_{k}{ext}", k + 1
         self.image_files.append((name, data))
-        self.image_paths[index] = f"./{self.texture_folder}/{name}"
-        return self.image_paths[index]
+        return f"./{self.texture_folder}/{name}"
 
 
 def _valid_name(name: str) -> str:
