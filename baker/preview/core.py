@@ -108,28 +108,16 @@ class Scene:
 
     def mip_chain(self, ctx, texture_indices: list):
         """One texture whose mip level i is the image of texture_indices[i] (a TAM's custom mip chain)."""
-        import moderngl
-
         key = ("chain", id(ctx), tuple(texture_indices))
         if key not in self.cache:
             levels = [self.image(t) for t in texture_indices]
-            c = levels[0].shape[2]
-            h, w = levels[0].shape[:2]
-            tex = ctx.texture((w, h), c, levels[0].tobytes(), dtype="f4")
-            tex.build_mipmaps(0, len(levels) - 1)  # allocates the levels; their contents are replaced below
-            for i, level in enumerate(levels):
-                tex.write(np.ascontiguousarray(level).tobytes(), level=i)
-            tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
-            tex.repeat_x = tex.repeat_y = True
-            self.cache[key] = tex
+            self.cache[key] = mip_chain_texture(ctx, levels, "f4", repeat=True)
         return self.cache[key]
 
     def coverage_mips(self, ctx, entry: dict, repeat: bool = True, srgb: bool = False):
         """A texture whose levels are a coverage-preserving mip chain (``coverageMips`` entry,
         :mod:`baker.gltf.alpha_mips`), uploaded as given, sampled trilinear; None when the chain cannot be read.
         ``srgb``: colour decoded to linear like :meth:`texture` (float levels; alpha as stored)."""
-        import moderngl
-
         from baker.gltf.alpha_mips import read_coverage_mips
 
         key = ("coverage", id(ctx), entry.get("accessor"), repeat, srgb)
@@ -142,15 +130,7 @@ class Scene:
                 levels = [np.concatenate([srgb_to_linear(lv[..., :3].astype(np.float32) / np.float32(255.0)),
                                           lv[..., 3:].astype(np.float32) / np.float32(255.0)], axis=2)
                           for lv in levels]
-            h, w = levels[0].shape[:2]
-            dtype = "f4" if srgb else "f1"
-            tex = ctx.texture((w, h), 4, np.ascontiguousarray(levels[0]).tobytes(), dtype=dtype)
-            tex.build_mipmaps(0, len(levels) - 1)  # allocates the levels; their contents are replaced below
-            for i, level in enumerate(levels):
-                tex.write(np.ascontiguousarray(level).tobytes(), level=i)
-            tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
-            tex.repeat_x = tex.repeat_y = repeat
-            self.cache[key] = tex
+            self.cache[key] = mip_chain_texture(ctx, levels, "f4" if srgb else "f1", repeat=repeat)
         return self.cache[key]
 
     def release(self) -> None:
@@ -592,3 +572,16 @@ def main(args) -> int:
     return 0
 
 
+def mip_chain_texture(ctx, levels: list, dtype: str, repeat: bool):
+    """A trilinear-sampled texture whose mip levels are ``levels`` (H, W, C arrays, level 0 first) as given, not
+    regenerated from level 0."""
+    import moderngl
+
+    h, w, c = levels[0].shape
+    tex = ctx.texture((w, h), c, np.ascontiguousarray(levels[0]).tobytes(), dtype=dtype)
+    tex.build_mipmaps(0, len(levels) - 1)  # allocates the levels; their contents are replaced below
+    for i, level in enumerate(levels):
+        tex.write(np.ascontiguousarray(level).tobytes(), level=i)
+    tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+    tex.repeat_x = tex.repeat_y = repeat
+    return tex
