@@ -2,7 +2,7 @@
 the default bake of a many-material prop against its per-vertex-only bake.
 
     python benchmarks/texel.py [--mesh examples/spot/spot.obj] [--sizes 512,1024,2048] [--rays 64] [--repeat 2]
-                               [--error-size 512] [--markdown]
+                               [--error-sizes 512,1024] [--markdown]
 
 Rows:
 - baker: ``baker bake MESH -o out.glb --bakes thickness --thickness-texture-size S --thickness-rays R`` (the command a
@@ -11,10 +11,12 @@ Rows:
   material whose Ambient Occlusion node has ``inside`` and ``only_local`` on and ``samples`` = R, feeding an Emission
   shader, render samples 1, ``bpy.ops.object.bake(type="EMIT")`` into an S x S float image on the CPU, saved as .npy.
   Cycles computes occlusion, baker the mean chord; the rays per texel, the work, are the same.
-- Error: relative RMS over the texels the UV layout covers, at ``--error-size``, each bake against its own converged
+- Error: relative RMS over the texels the UV layout covers, at each of ``--error-sizes``, each bake against its own converged
   reference of 1024 rays per texel (baker: ``--thickness-rays 1024 --thickness-tolerance 0``, every ray traced;
   Cycles: 128 AO samples x 8 render samples, the node's maximum). baker's default takes its per-vertex prior where
-  a texel's first rays agree with it; the error with every texel tracing all its rays is printed beside it. The error is measured at one size: a texel's estimate does not depend on the texture's size.
+  a texel's first rays agree with it and adds its neighbours' deviation from it (a window of texels: the error
+  depends on the texture's size, so it is measured at each size asked); the error with every texel tracing all its
+  rays is printed beside it.
 - Many materials: 7 UV spheres of radius 1 (960 triangles each, 7 materials) in one GLB; the default
   ``--bakes thickness`` (texture sizes chosen by baker) against ``--thickness-per-texel false`` (per vertex only);
   the texels the default wrote, in total.
@@ -143,7 +145,7 @@ def main(argv=None) -> int:
     ap.add_argument("--sizes", default="512,1024,2048")
     ap.add_argument("--rays", type=int, default=64)
     ap.add_argument("--repeat", type=int, default=2)
-    ap.add_argument("--error-size", type=int, default=512)
+    ap.add_argument("--error-sizes", default="512,1024")
     ap.add_argument("--markdown", action="store_true")
     args = ap.parse_args(argv)
     mesh, sizes = Path(args.mesh), [int(s) for s in args.sizes.split(",")]
@@ -161,20 +163,21 @@ def main(argv=None) -> int:
                 times["cycles", size].append(bake_cycles(python, mesh, size, args.rays, 1, distance,
                                                          tmp / f"c{size}.npy"))
 
-        e = args.error_size
-        mask = uv_mask(mesh, e)
-        if ("baker", e) not in times:
-            bake_baker(mesh, e, args.rays, tmp / f"b{e}.glb")
-            bake_cycles(python, mesh, e, args.rays, 1, distance, tmp / f"c{e}.npy")
-        # the reference traces every ray of every texel (tolerance 0: no per-vertex prior)
-        bake_baker(mesh, e, REFERENCE_RAYS, tmp / "b_ref.glb", "--thickness-tolerance", "0")
-        bake_baker(mesh, e, args.rays, tmp / f"b{e}_fixed.glb", "--thickness-tolerance", "0")
-        bake_cycles(python, mesh, e, 128, REFERENCE_RAYS // 128, distance, tmp / "c_ref.npy")
-        [baker_test], [baker_ref] = baker_thickness_images(tmp / f"b{e}.glb"), baker_thickness_images(tmp / "b_ref.glb")
-        error_baker = relative_rms(baker_test, baker_ref, mask)
-        [baker_fixed] = baker_thickness_images(tmp / f"b{e}_fixed.glb")
-        error_fixed = relative_rms(baker_fixed, baker_ref, mask)
-        error_cycles = relative_rms(np.load(tmp / f"c{e}.npy"), np.load(tmp / "c_ref.npy"), mask)
+        errors = {}
+        for e in [int(s) for s in args.error_sizes.split(",")]:
+            mask = uv_mask(mesh, e)
+            if ("baker", e) not in times:
+                bake_baker(mesh, e, args.rays, tmp / f"b{e}.glb")
+                bake_cycles(python, mesh, e, args.rays, 1, distance, tmp / f"c{e}.npy")
+            # the reference traces every ray of every texel (tolerance 0: no per-vertex prior)
+            bake_baker(mesh, e, REFERENCE_RAYS, tmp / "b_ref.glb", "--thickness-tolerance", "0")
+            bake_baker(mesh, e, args.rays, tmp / f"b{e}_fixed.glb", "--thickness-tolerance", "0")
+            bake_cycles(python, mesh, e, 128, REFERENCE_RAYS // 128, distance, tmp / "c_ref.npy")
+            [baker_test] = baker_thickness_images(tmp / f"b{e}.glb")
+            [baker_ref] = baker_thickness_images(tmp / "b_ref.glb")
+            [baker_fixed] = baker_thickness_images(tmp / f"b{e}_fixed.glb")
+            errors[e] = (relative_rms(baker_test, baker_ref, mask), relative_rms(baker_fixed, baker_ref, mask),
+                         relative_rms(np.load(tmp / f"c{e}.npy"), np.load(tmp / "c_ref.npy"), mask))
 
         scene = tmp / "spheres.glb"
         sphere_scene(scene)
@@ -200,8 +203,11 @@ def main(argv=None) -> int:
         tc, mc = best(times["cycles", size])
         print(f"| {size}² | {tb:.2f} | {mb / 2**20:.0f} | {tc:.2f} | {mc / 2**20:.0f} | **{tb / tc:.2f}x** |")
     print()
-    print(f"relative RMS error at {e}², against each one's {REFERENCE_RAYS}-ray reference: baker {error_baker:.4f} "
-          f"(every texel's {args.rays} rays, `--thickness-tolerance 0`: {error_fixed:.4f}), Cycles {error_cycles:.4f}")
+    print(f"| texture | relative RMS error vs {REFERENCE_RAYS} rays: baker default | baker, every texel "
+          f"{args.rays} rays (`--thickness-tolerance 0`) | Cycles, {args.rays} samples |")
+    print("|---|---:|---:|---:|")
+    for e, (error_baker, error_fixed, error_cycles) in errors.items():
+        print(f"| {e}² | {error_baker:.4f} | {error_fixed:.4f} | {error_cycles:.4f} |")
     print()
     td, _ = best(multi["default"])
     tv, _ = best(multi["per-vertex only"])

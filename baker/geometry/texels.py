@@ -17,7 +17,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from baker.geometry.asset import Asset, PrimitiveGeometry
-from baker.geometry.texture_space import dilate, interpolate
+from baker.geometry.texture_space import dilate, interpolate, window_mean
 from baker.geometry.texture_target import MaterialTarget, PrimitiveTexels, material_targets
 
 
@@ -108,6 +108,17 @@ class TexelSets:
         parts = [interpolate(per_vertex(pt), pt.geometry.faces, pt.texels.triangle, pt.texels.bary)
                  for texel_set in self.sets for pt in texel_set.target.primitives]
         return np.concatenate(parts) if parts else np.zeros(0)
+
+    def window_mean(self, values: np.ndarray, include: np.ndarray, radius: int) -> tuple[np.ndarray, np.ndarray]:
+        """Per texel, the mean of ``values`` over the ``include``-d texels of its own texture within ``radius``
+        texels in the image that are also its neighbours on the surface, and that mean's squared standard error
+        (:func:`~baker.geometry.texture_space.window_mean`); NaN where there is none."""
+        mean, error = np.empty(len(self), np.float64), np.empty(len(self), np.float64)
+        for s in self.sets:
+            part = slice(s.start, s.stop)
+            mean[part], error[part] = window_mean(s.size, self.rows[part], self.cols[part], values[part],
+                                                  include[part], self.positions[part], self.normals[part], radius)
+        return mean, error
 
     def images(self, values: np.ndarray) -> Iterator[tuple[TexelSet, np.ndarray, np.ndarray]]:
         """(texel set, image dilated past its charts, coverage mask) per material from per-texel ``values``."""

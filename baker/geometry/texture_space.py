@@ -11,6 +11,7 @@ u in [x/W, (x+1)/W], v in [y/H, (y+1)/H]; arrays are indexed [row, column].
 """
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numba
@@ -228,6 +229,87 @@ def _interpolate_rows(values, faces, triangle, bary, out):
         w0, w1, w2 = bary[k, 0], bary[k, 1], bary[k, 2]
         for j in range(values.shape[1]):
             out[k, j] = w0 * values[a, j] + w1 * values[b, j] + w2 * values[c, j]
+
+
+def window_mean(size: int, rows: np.ndarray, cols: np.ndarray, values: np.ndarray, include: np.ndarray,
+                positions: np.ndarray, normals: np.ndarray, radius: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per texel, the mean of ``values`` and its squared standard error (the values' variance over the window
+    divided by their count) over the included texels of one size x size texture within ``radius``
+    texels (a square window) that also lie near it on the surface: within the window's reach in 3D (the texture's
+    median texel spacing times (radius + 1) x 2 sqrt 2) and facing the same side (normals at less than 60 degrees).
+    The 3D test keeps charts that are neighbours in the image but not on the surface apart, and lets charts that
+    meet at a seam share. A texel with no included texel near it gets NaN (both)."""
+    # the texels' data laid out as an image of 64-byte records: a window reads 7 short runs of cache lines
+    # (1.5x faster at 1024^2 than gathering 49 scattered texels)
+    planes = np.zeros((size, size, 8), np.float64)  # per texel x, y, z, nx, ny, nz, value, weight (0: left out)
+    rows = np.ascontiguousarray(rows, np.int64)
+    cols = np.ascontiguousarray(cols, np.int64)
+    _scatter_planes(rows, cols, np.ascontiguousarray(positions, np.float64),
+                    np.ascontiguousarray(normals, np.float64), np.ascontiguousarray(values, np.float64),
+                    np.ascontiguousarray(include, np.bool_), planes)
+    reach = 2.0 * np.sqrt(2.0) * (radius + 1) * _median_texel_spacing(rows, cols, planes)
+    mean, error = np.empty(len(rows), np.float64), np.empty(len(rows), np.float64)
+    half = len(rows) // 2
+    with ThreadPoolExecutor(2) as pool:  # GIL-free halves
+        list(pool.map(lambda part: _window_mean(planes, rows[part], cols[part], int(radius), reach * reach,
+                                                mean[part], error[part]), (slice(0, half), slice(half, None))))
+    return mean, error
+
+
+@numba.njit(cache=True, nogil=True)
+def _scatter_planes(rows, cols, positions, normals, values, include, planes):
+    for i in range(rows.shape[0]):
+        y, x = rows[i], cols[i]
+        for k in range(3):
+            planes[y, x, k] = positions[i, k]
+            planes[y, x, 3 + k] = normals[i, k]
+        planes[y, x, 6] = values[i]
+        planes[y, x, 7] = 1.0 if include[i] else 0.0
+
+
+@numba.njit(cache=True, nogil=True)
+def _median_texel_spacing(rows, cols, planes):
+    """The median 3D distance from each texel to its right-hand neighbour in the image, where that is a texel too
+    (normals of unit length mark texels; 0: no such pair)."""
+    width = planes.shape[1]
+    gaps = np.empty(rows.shape[0], np.float64)
+    count = 0
+    for i in range(rows.shape[0]):
+        y, x = rows[i], cols[i]
+        if x + 1 < width and planes[y, x + 1, 3] ** 2 + planes[y, x + 1, 4] ** 2 + planes[y, x + 1, 5] ** 2 > 0.5:
+            dx = planes[y, x, 0] - planes[y, x + 1, 0]
+            dy = planes[y, x, 1] - planes[y, x + 1, 1]
+            dz = planes[y, x, 2] - planes[y, x + 1, 2]
+            gaps[count] = np.sqrt(dx * dx + dy * dy + dz * dz)
+            count += 1
+    return np.median(gaps[:count]) if count else 0.0
+
+
+@numba.njit(cache=True, nogil=True)
+def _window_mean(planes, rows, cols, radius, reach2, mean, error):
+    height, width = planes.shape[0], planes.shape[1]
+    for i in range(rows.shape[0]):
+        y0, x0 = rows[i], cols[i]
+        px, py, pz = planes[y0, x0, 0], planes[y0, x0, 1], planes[y0, x0, 2]
+        nx, ny, nz = planes[y0, x0, 3], planes[y0, x0, 4], planes[y0, x0, 5]
+        total, squares, count = 0.0, 0.0, 0
+        for y in range(max(0, y0 - radius), min(height, y0 + radius + 1)):
+            for x in range(max(0, x0 - radius), min(width, x0 + radius + 1)):
+                if planes[y, x, 7] == 0.0:
+                    continue
+                dx, dy, dz = planes[y, x, 0] - px, planes[y, x, 1] - py, planes[y, x, 2] - pz
+                if dx * dx + dy * dy + dz * dz > reach2:
+                    continue
+                if planes[y, x, 3] * nx + planes[y, x, 4] * ny + planes[y, x, 5] * nz < 0.5:
+                    continue
+                total += planes[y, x, 6]
+                squares += planes[y, x, 6] * planes[y, x, 6]
+                count += 1
+        if count:
+            mean[i] = total / count
+            error[i] = max(0.0, squares / count - mean[i] * mean[i]) / count
+        else:
+            mean[i] = error[i] = np.nan
 
 
 # ---------------------------------------------------------------------------------------------------- texel density

@@ -74,9 +74,11 @@ def write_thickness_texture(doc: GltfDocument, material: int, png: bytes, factor
 
 
 def write_material_parameters(doc: GltfDocument, material: int, *, options, max_distance: float, bias: float,
-                              mean_thickness: float, per_vertex: bool, texture: dict | None) -> dict:
+                              mean_thickness: float, per_vertex: bool, texture: dict | None,
+                              texel_rule: dict | None = None) -> dict:
     """Write ``BAKER_thickness`` on ``material``: bake settings, eq. 14.30 parameters and the thickness texture
-    (``texture``: what :func:`write_thickness_texture` returned, or None)."""
+    (``texture``: what :func:`write_thickness_texture` returned, or None); ``texel_rule`` (``texelTolerance``,
+    ``texelFirstRays``, ``texelWindow``) when texels stopped on the per-vertex prior."""
     ext = {
         "rays": int(options.rays),
         "distribution": options.distribution,
@@ -95,9 +97,8 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, max_
     if texture is not None:
         ext["thicknessTexture"] = dict(texture["texture"])
         ext["thicknessFactor"] = float(texture["factor"])
-        tolerance = float(getattr(options, "tolerance", 0.0) or 0.0)
-        if tolerance > 0:  # texels may have stopped early on the per-vertex prior: say how (the kernel's rule)
-            ext["texelTolerance"] = tolerance
+        if texel_rule:  # texels stopped early on the per-vertex prior: say how (the kernel's and the step's rule)
+            ext.update(texel_rule)
     if per_vertex:
         ext["attribute"] = ATTRIBUTE
     doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext

@@ -11,7 +11,7 @@ weighted rays average 4r/3, uniform (solid-angle) rays average r. The tests chec
 
 Rays are generated, traced by Embree and averaged in one compiled, GIL-free loop per batch of points, run from
 two threads (see :mod:`baker.geometry.embree_trace`); there is no per-ray Python. One call can trace points of
-several meshes (one ray stream over all texture sets), and points with a ``prior`` stop after 16 rays that agree
+several meshes (one ray stream over all texture sets), and points with a ``prior`` stop after 12 rays that agree
 with it (``local_thickness``; the texture bake's prior is a finer per-vertex solution interpolated).
 
 Sample patterns (``sampler``), all mapped through the same cosine-weighted (or uniform) warp, so every one estimates
@@ -186,13 +186,14 @@ def _trace_chords(scene, rayhit, sampler, samples, shifts, seeds, i, k0, k1, ox,
 
 @numba.njit(cache=True, nogil=True)  # cacheable: Embree is called by symbol name (baker.geometry.embree_trace)
 def _thickness_direct(scenes, scene_of, points, axes, sampler, samples, first_samples, prefix, tolerance, prior,
-                      shifts, seeds, cosine, sin_max, cos_max, biases, max_distances, out, used):
+                      shifts, seeds, cosine, sin_max, cos_max, biases, max_distances, out, used, first_means):
     """Generate, trace and average each point's rays in one GIL-free loop (Embree called directly).
 
     Point i traces into ``scenes[scene_of[i]]``. With ``tolerance`` > 0 and a ``prior`` estimate (>= 0) it first
     traces the rays of ``first_samples`` (the first of ``samples`` when ``prefix``, else a pattern of their own);
     when their mean is within +-tolerance x prior of the prior it takes the prior, else it traces all of
-    ``samples`` (continuing after the prefix). ``used[i]``: rays traced."""
+    ``samples`` (continuing after the prefix). ``used[i]``: rays traced; ``first_means[i]``: the mean chord of the
+    first rays (NaN for a point that traced no test)."""
     rayhit = np.zeros(48, np.uint32)
     offset = (-rayhit.ctypes.data % 16) // 4
     rayhit = rayhit[offset: offset + 32]
@@ -205,10 +206,12 @@ def _thickness_direct(scenes, scene_of, points, axes, sampler, samples, first_sa
         tx, ty, tz, bx, by, bz = _frame(nx, ny, nz)
         ox, oy, oz = points[i, 0] + nx * bias, points[i, 1] + ny * bias, points[i, 2] + nz * bias
         acc, start, traced = 0.0, 0, 0
+        first_means[i] = np.nan
         if tolerance > 0.0 and prior[i] >= 0.0:
             acc = _trace_chords(scene, rayhit, sampler, first_samples, shifts, seeds, i, 0, first, ox, oy, oz, nx,
                                 ny, nz, tx, ty, tz, bx, by, bz, cosine, sin_max, cos_max, bias, max_distance)
             traced = first
+            first_means[i] = acc / first
             if abs(acc / first - prior[i]) <= tolerance * prior[i]:
                 out[i] = prior[i]
                 used[i] = traced
@@ -289,14 +292,15 @@ def default_max_distance(vertices: np.ndarray) -> float:
     return diagonal if diagonal > 0 else 1.0
 
 
-FIRST_RAYS = 16  # rays a point traces before it may stop on its prior (a quarter of the default 64)
+FIRST_RAYS = 12  # rays a point traces before it may stop on its prior (3/16 of the default 64; see step.corrected_by_neighbours)
 
 
 def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int = 64,
                     distribution: str = "cosine", spread: float = 180.0, max_distance=1.0,
                     bias=1e-5, seed: int = 0, sampler: str = "fibonacci", progress=None,
                     threads: int | None = None, scene_of: np.ndarray | None = None, prior: np.ndarray | None = None,
-                    tolerance: float = 0.0, rays_used: np.ndarray | None = None) -> np.ndarray:
+                    tolerance: float = 0.0, rays_used: np.ndarray | None = None,
+                    first_means: np.ndarray | None = None) -> np.ndarray:
     """Mean distance from each point to the first surface hit along rays around ``-normals``.
 
     Parameters
@@ -336,6 +340,9 @@ def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int
         point traces ``rays`` rays.
     rays_used : (n,) int array or None
         Filled with the rays traced per point.
+    first_means : (n,) float array or None
+        Filled with the mean chord of each point's first :data:`FIRST_RAYS` rays (NaN where none were traced first),
+        whether or not the point then stopped on its prior.
 
     Returns
     -------
@@ -351,6 +358,7 @@ def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int
     code, samples, shifts, seeds = _sampler_inputs(sampler, rays, n, seed)
     out = np.empty(n, np.float64)
     used = np.full(n, rays, np.int64)
+    firsts = np.full(n, np.nan)
     if n == 0:
         return out
     batch = max(1, (1 << 19) // rays)  # ~0.5 M rays per Embree call: large enough to amortize, small for memory
@@ -384,7 +392,7 @@ def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int
                               samples, first_samples, prefix, tolerance, prior[start:stop],
                               shifts[start:stop],
                               seeds[start:stop], distribution == "cosine", sin_max, cos_max, biases, max_distances,
-                              out[start:stop], used[start:stop])
+                              out[start:stop], used[start:stop], firsts[start:stop])
             return stop - start
         for s in np.unique(sorted_scene_of[start:stop]):
             # one scene at a time (the batch is sorted by scene: each is one run of points)
@@ -411,6 +419,8 @@ def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int
     result[order] = out
     if rays_used is not None:
         rays_used[order] = used
+    if first_means is not None:
+        first_means[order] = firsts
     return result
 
 
