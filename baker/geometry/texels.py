@@ -111,13 +111,15 @@ class TexelSets:
 
     def window_mean(self, values: np.ndarray, include: np.ndarray, radius: int) -> tuple[np.ndarray, np.ndarray]:
         """Per texel, the mean of ``values`` over the ``include``-d texels of its own texture within ``radius``
-        texels in the image that are also its neighbours on the surface, and that mean's squared standard error
+        texels in the image that are also its neighbours on the surface of the same mesh, and that mean's squared
+        standard error
         (:func:`~baker.geometry.texture_space.window_mean`); NaN where there is none."""
         mean, error = np.empty(len(self), np.float64), np.empty(len(self), np.float64)
         for s in self.sets:
             part = slice(s.start, s.stop)
             mean[part], error[part] = window_mean(s.size, self.rows[part], self.cols[part], values[part],
-                                                  include[part], self.positions[part], self.normals[part], radius)
+                                                  include[part], self.positions[part], self.normals[part], radius,
+                                                  self.mesh[part])
         return mean, error
 
     def images(self, values: np.ndarray) -> Iterator[tuple[TexelSet, np.ndarray, np.ndarray]]:

@@ -210,10 +210,12 @@ def test_window_mean_matches_brute_force():
     normals[rows % 5 == 0] = [1.0, 0.0, 0.0]  # some texels face sideways: no neighbours of the others
     values = rng.random(len(rows))
     include = rng.random(len(rows)) < 0.7
-    got, error = window_mean(size, rows, cols, values, include, positions, normals, radius)
+    groups = (rows * 7 + cols) % 11 == 0  # a few texels of a second mesh, in its own space: no neighbours of the rest
+    got, error = window_mean(size, rows, cols, values, include, positions, normals, radius, groups)
     reach = 2.0 * np.sqrt(2.0) * (radius + 1) * 0.1  # the median spacing of horizontal neighbours is 0.1
     for i in range(len(rows)):
-        near = (include & (np.abs(rows - rows[i]) <= radius) & (np.abs(cols - cols[i]) <= radius)
+        near = (include & (groups == groups[i])
+                & (np.abs(rows - rows[i]) <= radius) & (np.abs(cols - cols[i]) <= radius)
                 & (np.linalg.norm(positions - positions[i], axis=1) <= reach + 1e-12)
                 & (normals @ normals[i] >= 0.5))
         if near.any():

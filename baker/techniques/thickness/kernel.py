@@ -292,7 +292,8 @@ def default_max_distance(vertices: np.ndarray) -> float:
     return diagonal if diagonal > 0 else 1.0
 
 
-FIRST_RAYS = 12  # rays a point traces before it may stop on its prior (3/16 of the default 64; see step.corrected_by_neighbours)
+# rays a point traces before it may stop on its prior: 3/16 of the default 64 (step.corrected_by_neighbours pools them)
+FIRST_RAYS = 12
 
 
 def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int = 64,
