@@ -467,22 +467,25 @@ def _morton_codes(points, lo, extent, bits):
 @numba.njit(cache=True, nogil=True)
 def _stable_argsort_codes(codes, bits):
     """``np.argsort(codes, kind="stable")`` for codes in [0, 2^bits): LSD radix sort, 15-bit digits (a stable sort,
-    so the same permutation)."""
+    so the same permutation). The keys travel with the indices, so each pass reads both in order."""
     n = codes.shape[0]
-    order = np.arange(n)
-    scratch = np.empty(n, np.int64)
+    order, keys = np.arange(n), codes.copy()
+    order_out, keys_out = np.empty(n, np.int64), np.empty(n, np.int64)
     shift = 0
     while shift < bits:
         counts = np.zeros((1 << 15) + 1, np.int64)
         for i in range(n):
-            counts[((codes[order[i]] >> shift) & 0x7FFF) + 1] += 1
+            counts[((keys[i] >> shift) & 0x7FFF) + 1] += 1
         for d in range(1 << 15):
             counts[d + 1] += counts[d]
         for i in range(n):
-            d = (codes[order[i]] >> shift) & 0x7FFF
-            scratch[counts[d]] = order[i]
-            counts[d] += 1
-        order, scratch = scratch, order
+            d = (keys[i] >> shift) & 0x7FFF
+            slot = counts[d]
+            order_out[slot] = order[i]
+            keys_out[slot] = keys[i]
+            counts[d] = slot + 1
+        order, order_out = order_out, order
+        keys, keys_out = keys_out, keys
         shift += 15
     return order
 
