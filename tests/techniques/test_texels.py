@@ -219,8 +219,8 @@ def test_window_mean_matches_brute_force():
                 & (np.linalg.norm(positions - positions[i], axis=1) <= reach + 1e-12)
                 & (normals @ normals[i] >= 0.5))
         if near.any():
-            assert got[i] == pytest.approx(values[near].mean(), rel=1e-12)
-            assert error[i] == pytest.approx(values[near].var() / near.sum(), rel=1e-9, abs=1e-15)
+            assert got[i] == pytest.approx(values[near].mean(), rel=1e-6)  # the image holds float32
+            assert error[i] == pytest.approx(values[near].var() / near.sum(), rel=1e-4, abs=1e-7)
         else:
             assert np.isnan(got[i]) and np.isnan(error[i])
 
