@@ -31,7 +31,18 @@ def _rasterize(uv_px, width, height, tri_of_texel, bary_of_texel, hits):
             continue  # a triangle spanning many tiles is a broken layout; the overlap test rejects it anyway
         for ty in range(ty0, ty1 + 1):
             for tx in range(tx0, tx1 + 1):
-                _rasterize_one(uv_px, t, tx * width, ty * height, width, height, tri_of_texel, bary_of_texel, hits)
+                _rasterize_one(uv_px, t, tx * width, ty * height, width, height, tri_of_texel, bary_of_texel,
+                               hits)
+
+
+@numba.njit(cache=True, inline="always")
+def _edge(ax, ay, bx, by, px, py):
+    """Twice the signed area of (lesser, greater, p) for the edge's endpoints in one fixed order (lexicographic),
+    whichever way the triangle runs along it: the two triangles sharing an edge compute the same floating-point
+    number for a point (positive: left of the edge from its lesser endpoint)."""
+    if ax > bx or (ax == bx and ay > by):
+        return (ax - bx) * (py - by) - (ay - by) * (px - bx)
+    return (bx - ax) * (py - ay) - (by - ay) * (px - ax)
 
 
 @numba.njit(cache=True)
@@ -42,6 +53,12 @@ def _rasterize_one(uv_px, t, ox, oy, width, height, tri_of_texel, bary_of_texel,
     area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
     if area == 0.0:
         return
+    # which side of each edge the triangle lies on (the opposite vertex's edge value: never 0 when area != 0)
+    side0 = _edge(x1, y1, x2, y2, x0, y0)
+    side1 = _edge(x2, y2, x0, y0, x1, y1)
+    side2 = _edge(x0, y0, x1, y1, x2, y2)
+    if side0 == 0.0 or side1 == 0.0 or side2 == 0.0:
+        return  # collinear in floating point: covers no texel centre
     xmin = max(int(np.floor(min(x0, min(x1, x2)) - 0.5)), 0)
     xmax = min(int(np.ceil(max(x0, max(x1, x2)) - 0.5)), width - 1)
     ymin = max(int(np.floor(min(y0, min(y1, y2)) - 0.5)), 0)
@@ -51,16 +68,24 @@ def _rasterize_one(uv_px, t, ox, oy, width, height, tri_of_texel, bary_of_texel,
         py = y + 0.5
         for x in range(xmin, xmax + 1):
             px = x + 0.5
+            # exact edge tests: the triangles on either side of a shared edge compute the same edge value (of
+            # opposite meaning), so no centre is strictly inside both; a centre exactly on an edge or vertex goes to
+            # the first triangle that has it (grid-aligned layouts otherwise read as overlapping)
+            e0 = _edge(x1, y1, x2, y2, px, py)
+            e1 = _edge(x2, y2, x0, y0, px, py)
+            e2 = _edge(x0, y0, x1, y1, px, py)
+            if (e0 != 0.0 and (e0 > 0.0) != (side0 > 0.0)) or (e1 != 0.0 and (e1 > 0.0) != (side1 > 0.0)) \
+                    or (e2 != 0.0 and (e2 > 0.0) != (side2 > 0.0)):
+                continue
+            if (e0 == 0.0 or e1 == 0.0 or e2 == 0.0) and hits[y, x] > 0:
+                continue
             w0 = ((x1 - px) * (y2 - py) - (x2 - px) * (y1 - py)) * inv
             w1 = ((x2 - px) * (y0 - py) - (x0 - px) * (y2 - py)) * inv
-            w2 = 1.0 - w0 - w1
-            # half-open test: a texel centre on a shared edge belongs to one triangle only
-            if (w0 >= 0.0 and w1 >= 0.0 and w2 > 0.0) or (w0 > 0.0 and w1 > 0.0 and w2 >= 0.0):
-                hits[y, x] += 1
-                tri_of_texel[y, x] = t
-                bary_of_texel[y, x, 0] = w0
-                bary_of_texel[y, x, 1] = w1
-                bary_of_texel[y, x, 2] = w2
+            hits[y, x] += 1
+            tri_of_texel[y, x] = t
+            bary_of_texel[y, x, 0] = min(max(w0, 0.0), 1.0)
+            bary_of_texel[y, x, 1] = min(max(w1, 0.0), 1.0)
+            bary_of_texel[y, x, 2] = max(1.0 - bary_of_texel[y, x, 0] - bary_of_texel[y, x, 1], 0.0)
 
 
 @dataclass
@@ -106,7 +131,7 @@ def usable_layout_texels(uv: np.ndarray, faces: np.ndarray, size: int = 512,
                          max_overlap: float = 0.002) -> TexelSamples | None:
     """The size x size texels of the UV set when it can hold a bake, else None: when the UV set, wrapped into
     [0, 1)^2 as a repeating sampler sees it, has overlapping triangles (mirrored or stacked charts, tiling).
-    ``max_overlap`` tolerates the few texels that land on edges shared by two triangles of one chart. A bake at
+    ``max_overlap`` tolerates a few texels covered twice (triangles of one chart that overlap by rounding). A bake at
     ``size`` keeps the rasterization the test made."""
     if len(faces) == 0:
         return None

@@ -301,3 +301,38 @@ def test_every_material_without_usable_uvs_is_unwrapped(tmp_path):
     assert sorted(s.material for s in texels.sets) == [0, 1]
     assert all(s.target.unwrapped for s in texels.sets)
     assert np.array_equal(np.unique(texels.material), [0, 1])
+
+
+@pytest.mark.parametrize("mirrored", [False, True])
+def test_grid_aligned_layout_covers_each_texel_once(mirrored):
+    """A UV grid whose vertices sit exactly on texel centres (every shared edge and vertex runs through centres),
+    with both diagonal directions and, mirrored, the other winding: each texel centre in the grid's closed square
+    belongs to exactly one triangle, so the layout does not read as overlapping and keeps its UVs."""
+    from baker.geometry.texture_space import rasterize_uv, usable_layout_texels
+
+    size, cells = 64, 12
+    ticks = (np.arange(cells + 1) * 4 + 8 + 0.5) / size  # texel centres 8.5, 12.5, ... 56.5
+    u, v = np.meshgrid(ticks, ticks)
+    uv = np.stack([u.ravel(), v.ravel()], 1)
+    if mirrored:
+        uv[:, 0] = 1.0 - uv[:, 0]
+    index = np.arange((cells + 1) ** 2).reshape(cells + 1, cells + 1)
+    faces = []
+    for r in range(cells):
+        for c in range(cells):
+            a, b, d, e = index[r, c], index[r, c + 1], index[r + 1, c], index[r + 1, c + 1]
+            faces += [(a, b, e), (a, e, d)] if (r + c) % 2 else [(a, b, d), (b, e, d)]
+    faces = np.array(faces)
+    texels = rasterize_uv(uv, faces, size, size)
+    assert texels.overlap_fraction == 0.0
+    # brute force: the texel centres inside the closed square the grid covers
+    lo, hi = uv.min(0) * size, uv.max(0) * size
+    ys, xs = np.mgrid[0:size, 0:size] + 0.5
+    inside = (xs >= lo[0]) & (xs <= hi[0]) & (ys >= lo[1]) & (ys <= hi[1])
+    got = np.zeros((size, size), bool)
+    got[texels.rows, texels.cols] = True
+    np.testing.assert_array_equal(got, inside)
+    assert usable_layout_texels(uv, faces, size) is not None
+    # each texel's barycentrics rebuild its centre
+    centre = np.einsum("kj,kjd->kd", texels.bary, uv[faces[texels.triangle]] * size)
+    np.testing.assert_allclose(centre, np.stack([texels.cols + 0.5, texels.rows + 0.5], 1), atol=1e-9)
