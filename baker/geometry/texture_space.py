@@ -258,7 +258,7 @@ def _interpolate_rows(values, faces, triangle, bary, out):
 
 def window_mean(size: int, rows: np.ndarray, cols: np.ndarray, values: np.ndarray, include: np.ndarray,
                 positions: np.ndarray, normals: np.ndarray, radius: int,
-                groups: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+                groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Per texel, the mean of ``values`` and its squared standard error (the values' variance over the window
     divided by their count) over the included texels of one size x size texture within ``radius``
     texels (a square window) that also lie near it on the surface: within the window's reach in 3D (the texture's
@@ -272,7 +272,7 @@ def window_mean(size: int, rows: np.ndarray, cols: np.ndarray, values: np.ndarra
     planes = np.zeros((size, size, 8), np.float32)  # per texel x, y, z, nx, ny, nz, value, group + 1 (0: left out)
     rows = np.ascontiguousarray(rows, np.int64)
     cols = np.ascontiguousarray(cols, np.int64)
-    groups = np.zeros(len(rows), np.int64) if groups is None else np.ascontiguousarray(groups, np.int64)
+    groups = np.ascontiguousarray(groups, np.int64)
     _scatter_planes(rows, cols, np.ascontiguousarray(positions, np.float64),
                     np.ascontiguousarray(normals, np.float64), np.ascontiguousarray(values, np.float64),
                     np.ascontiguousarray(include, np.bool_), groups, planes)

@@ -12,7 +12,7 @@ weighted rays average 4r/3, uniform (solid-angle) rays average r. The tests chec
 Rays are generated, traced by Embree and averaged in one compiled, GIL-free loop per batch of points, run from
 two threads (see :mod:`baker.geometry.embree_trace`); there is no per-ray Python. One call can trace points of
 several meshes (one ray stream over all texture sets), and points with a ``prior`` stop after 12 rays that agree
-with it (``local_thickness``; the texture bake's prior is a finer per-vertex solution interpolated).
+with it (``local_thickness``; the texture bake's prior is its per-vertex solution interpolated).
 
 Sample patterns (``sampler``), all mapped through the same cosine-weighted (or uniform) warp, so every one estimates
 the same integral and only the error differs:

@@ -89,9 +89,8 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
             texel_rule = {"texelTolerance": float(options.tolerance), "texelFirstRays": FIRST_RAYS}
             if options.texel_window > 0:
                 texel_rule["texelWindow"] = int(options.texel_window)
-        if stopped.any() and options.texel_window > 0:
-            values = corrected_by_neighbours(texels, values, prior, first_means, stopped, options.texel_window,
-                                             np.array([limits[m][0] for m in meshes])[scene_of])
+                values = corrected_by_neighbours(texels, values, prior, first_means, stopped, options.texel_window,
+                                                 np.array([limits[m][0] for m in meshes])[scene_of])
         for texel_set, image, mask in texels.images(values):
             if not options.per_vertex:
                 sums[texel_set.material][0] += float(image[mask].sum())
