@@ -250,7 +250,7 @@ def _read_obj(path: Path, allow_outside=None) -> GltfDocument | None:
     arrays share a bufferView or an accessor), vertex normals made unit by :func:`unit_normals`, then as trimesh's
     exporter does."""
     from baker.geometry.mtl import read_obj_materials
-    from baker.geometry.obj_files import check_finite, read_obj_groups, unitize, vertex_normals
+    from baker.geometry.obj_files import check_finite, read_obj_groups, seamless_vertex_normals, unitize
 
     materials, _ = read_obj_materials(path, allow_outside)
     groups = read_obj_groups(path, materials)
@@ -282,13 +282,17 @@ def _read_obj(path: Path, allow_outside=None) -> GltfDocument | None:
             accessors[data, role] = len(doc.json["accessors"]) - 1
         return accessors[data, role]
 
-    meshes, by_mesh = [], {}
     for group in groups:
         check_finite(path, group)
-        normals = group.normals
-        if normals is None:
-            with np.errstate(all="ignore"):
-                normals = vertex_normals(group.positions, group.faces)
+    computed = {}
+    without_normals = [i for i, group in enumerate(groups) if group.normals is None]
+    if without_normals:  # the file has no normals: one smooth surface across its material groups and UV seams
+        with np.errstate(all="ignore"):
+            parts = [(groups[i].positions, groups[i].faces, groups[i].smoothing) for i in without_normals]
+            computed = dict(zip(without_normals, seamless_vertex_normals(parts)))
+    meshes, by_mesh = [], {}
+    for index, group in enumerate(groups):
+        normals = group.normals if group.normals is not None else computed[index]
         primitive = {"attributes": {}, "indices": add(group.faces.astype(np.uint32).reshape(-1), "indices"),
                      "mode": MODE_TRIANGLES}
         primitive["attributes"]["POSITION"] = add(group.positions.astype(np.float32), "position")
@@ -418,8 +422,19 @@ def _doc_from_trimesh_scene(path: Path, loaded, materials: dict | None = None) -
         _check_finite(path, meshes)
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            for g in meshes:
-                g.vertex_normals = unit_normals(g.vertex_normals)
+            computed = {}
+            if path.suffix.lower() in (".obj", ".ply"):  # an STL's facets carry their normals: it stays faceted
+                from baker.geometry.obj_files import seamless_vertex_normals
+
+                # meshes the file gave no normals: smooth across UV and material seams, as the direct OBJ reader
+                without_normals = [i for i, g in enumerate(meshes)
+                                   if "vertex_normals" not in getattr(getattr(g, "_cache", None), "cache", {})]
+                if without_normals:
+                    parts = [(np.asarray(meshes[i].vertices), np.asarray(meshes[i].faces), None)
+                             for i in without_normals]
+                    computed = dict(zip(without_normals, seamless_vertex_normals(parts)))
+            for i, g in enumerate(meshes):
+                g.vertex_normals = unit_normals(computed[i] if i in computed else g.vertex_normals)
             glb.write_bytes(trimesh.exchange.gltf.export_glb(scene, include_normals=True))
         try:
             doc = GltfDocument.load(glb)

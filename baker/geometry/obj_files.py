@@ -56,6 +56,9 @@ class ObjGroup:
     faces: np.ndarray  # (m, 3) int64
     texcoords: np.ndarray | None  # (n, 2) float64, OBJ's v (up)
     normals: np.ndarray | None  # (n, 3) float64: the file's (as written), or None when the faces reference none
+    # (n,) int64 smoothing set of each vertex when the faces reference no normals and the file's ``s`` lines make
+    # more than one set (faces under ``s off`` / ``s 0`` each make their own); None: one set, smooth everywhere
+    smoothing: np.ndarray | None = None
 
 
 def read_obj_groups(path, material_names) -> list[ObjGroup] | None:
@@ -87,7 +90,12 @@ def read_obj_groups(path, material_names) -> list[ObjGroup] | None:
     names = lines.names()
     if names is None:
         return None
-    return _groups(path, lines, v, vt, vn, corners, names, set(material_names))
+    smoothing = None
+    if vn is None:
+        smoothing = lines.smoothing_sets()
+        if smoothing is False:
+            return None
+    return _groups(path, lines, v, vt, vn, corners, names, set(material_names), smoothing)
 
 
 class _Lines:
@@ -194,6 +202,31 @@ class _Lines:
         return found
 
 
+    def smoothing_sets(self):
+        """The smoothing set of every face line (``s N`` lines, OBJ spec B1.5): faces after ``s N`` (N > 0) share
+        set N, faces after ``s off`` / ``s 0`` are each a set of their own (flat), faces before any ``s`` line share
+        one set. Dense int64 ids per face line; None when that makes one set (no ``s`` lines, or one group
+        throughout); False for an ``s`` line that is not one non-negative integer or ``off`` (trimesh reads it)."""
+        rows = self.rows(SMOOTH)
+        if not len(rows):
+            return None
+        values = [-1]  # before any s line
+        for row in rows:
+            word = self.data[self.starts[row] + 2:self.ends[row]].strip(b" \t")
+            if word == b"off":
+                values.append(0)
+            elif word.isdigit() and len(word) < 19:
+                values.append(int(word))
+            else:
+                return False
+        faces = self.rows(F)
+        key = np.asarray(values, np.int64)[np.searchsorted(rows, faces, side="right")]
+        flat = key == 0
+        key[flat] = -2 - np.flatnonzero(flat)  # each flat face its own set
+        ids, dense = np.unique(key, return_inverse=True)
+        return None if len(ids) == 1 else dense.reshape(-1)
+
+
 def _tokens_per_line(picked: np.ndarray, count: int) -> np.ndarray:
     """Whitespace-separated words in each of the ``count`` newline-terminated lines of ``picked``."""
     space = (picked == SPACE) | (picked == TAB) | (picked == NEWLINE)
@@ -215,10 +248,13 @@ def _resolve(path: Path, raw: np.ndarray, defined_before: np.ndarray, total: int
     return index
 
 
-def _groups(path: Path, lines: _Lines, v, vt, vn, corners: dict, names: dict, materials: set) -> list[ObjGroup]:
+def _groups(path: Path, lines: _Lines, v, vt, vn, corners: dict, names: dict, materials: set,
+            smoothing: np.ndarray | None) -> list[ObjGroup]:
     sizes, rows = corners["sizes"], corners["rows"]
     corner_line = np.repeat(rows, sizes)  # the file line of each corner, for errors and relative indices
     columns = {}
+    if smoothing is not None:  # a vertex used by faces of two smoothing sets needs a normal for each
+        columns["s"] = np.repeat(smoothing, sizes)
     for key, values, code in (("v", v, V), ("vt", vt, VT), ("vn", vn, VN)):
         if key in corners:
             before = np.searchsorted(lines.rows(code), corner_line)  # lines of that kind above each corner
@@ -250,7 +286,7 @@ def _groups(path: Path, lines: _Lines, v, vt, vn, corners: dict, names: dict, ma
         local_start = np.concatenate([[0], np.cumsum(group_sizes)[:-1]])
         within = np.arange(int(group_sizes.sum())) - np.repeat(local_start, group_sizes)
         group_corners = np.repeat(corner_start[faces_here], group_sizes) + within
-        keys = [k for k in ("v", "vt", "vn") if k in columns]
+        keys = [k for k in ("v", "vt", "vn", "s") if k in columns]
         faces, picked = _split_vertices([columns[k][group_corners] for k in keys],
                                         _triangulate(local_start, group_sizes))
         picked = dict(zip(keys, picked))
@@ -264,7 +300,7 @@ def _groups(path: Path, lines: _Lines, v, vt, vn, corners: dict, names: dict, ma
         taken.add(name)
         groups.append(ObjGroup(name, material, v[picked["v"]], faces,
                                vt[picked["vt"], :2] if "vt" in picked else None,
-                               vn[picked["vn"]] if "vn" in picked else None))
+                               vn[picked["vn"]] if "vn" in picked else None, picked.get("s")))
     return groups
 
 
@@ -334,6 +370,30 @@ def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
     for axis in range(3):
         summed[:, axis] = np.bincount(corner, weights * np.repeat(normals_ok[:, axis], 3), minlength=len(positions))
     return unitize(summed)
+
+
+def seamless_vertex_normals(parts: list) -> list:
+    """Vertex normals of several meshes of one space (an OBJ's material groups, the vertices it splits at UV
+    seams) computed as one mesh: vertices are welded by position (:func:`baker.geometry.edge_codes.weld_positions`,
+    the grid of :mod:`baker.geometry.welding`) and each welded vertex gets the angle-weighted normal of every face
+    around it (:func:`vertex_normals`), so split copies of a vertex agree and UV or material seams do not shade.
+    Vertices stay apart only where their smoothing sets differ. ``parts``: (positions, faces, smoothing ids or
+    None) per mesh; returns the (n, 3) normals of each mesh's vertices, in order."""
+    from baker.geometry.edge_codes import weld_positions
+
+    counts = [len(p[0]) for p in parts]
+    offsets = np.cumsum([0] + counts)
+    positions = np.concatenate([p[0] for p in parts]) if len(parts) > 1 else np.asarray(parts[0][0])
+    faces = np.concatenate([np.asarray(p[1], np.int64) + offsets[i] for i, p in enumerate(parts)])
+    welded, vertex = weld_positions(positions)
+    if any(p[2] is not None for p in parts):
+        smoothing = np.concatenate([np.zeros(len(p[0]), np.int64) if p[2] is None else p[2] for p in parts])
+        sets = int(smoothing.max()) + 1
+        split, vertex = np.unique(vertex * sets + smoothing, return_inverse=True)
+        vertex = vertex.reshape(-1)
+        welded = welded[split // sets]
+    normals = vertex_normals(welded, vertex[faces])[vertex]
+    return [normals[offsets[i]:offsets[i + 1]] for i in range(len(parts))]
 
 
 def unitize(vectors: np.ndarray, with_valid: bool = False):
