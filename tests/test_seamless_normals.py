@@ -145,3 +145,28 @@ def test_obj_smoothing_groups_are_the_only_creases(tmp_path, layout):
         expected = np.where(side[:, None], centred * [1, 1, 0], centred * [0, 0, 1])
         expected /= np.linalg.norm(expected, axis=1, keepdims=True)
     assert np.abs(normals - expected).max() < 1e-6
+
+
+def test_trimesh_path_gives_the_direct_readers_normals_across_materials(tmp_path):
+    """A file without normals in two materials: trimesh's reading gets the same welded normals, bit for bit."""
+    from test_obj_reader import assert_same_document
+
+    lines = (ROOT / "examples" / "spot" / "spot.obj").read_text().splitlines()
+    faces = [i for i, line in enumerate(lines) if line.startswith("f ")]
+    half = faces[len(faces) // 3]
+    (tmp_path / "m.mtl").write_text("newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n")
+    path = tmp_path / "two.obj"
+    path.write_text("\n".join(["mtllib m.mtl", "usemtl red"] + lines[:half] + ["usemtl blue"] + lines[half:]) + "\n")
+    assert_same_document(path)
+
+
+@pytest.mark.parametrize("line", ["s 1 2", "s on", "s -1"])
+def test_unusual_smoothing_lines_fall_back_to_trimesh(tmp_path, line):
+    from baker.geometry.obj_files import read_obj_groups
+
+    path = tmp_path / "odd.obj"
+    path.write_text(CUBE + line + "\n" + "\n".join(f"f {f}" for f in SIDES + CAPS) + "\n")
+    assert read_obj_groups(path, {}) is None
+    path.write_text(CUBE + "vn 0 0 1\n" + line + "\n" + "\n".join(
+        "f " + " ".join(f"{i}//1" for i in f.split()) for f in SIDES + CAPS) + "\n")
+    assert read_obj_groups(path, {}) is not None  # with normals the s lines decide nothing

@@ -7,8 +7,9 @@ The result is what trimesh's OBJ reader (``process=False``) gives for the same f
 is the one the trimesh path builds: one mesh per ``usemtl`` material in trimesh's order (the reverse of first use)
 and with its names, vertices split where the (v, vt, vn) index triples differ and ordered as trimesh orders them
 (the unique triples sorted by vn, vt, v, then by v), quads split as trimesh splits them, UVs and the file's normals
-as they are, and vertex normals computed as trimesh computes them (angle-weighted face normals) when the faces
-reference none.
+as they are, and, when the faces reference none, angle-weighted vertex normals (trimesh's arithmetic) computed
+over all groups welded by position (:func:`seamless_vertex_normals`; the trimesh path of
+:mod:`baker.geometry.asset` computes the same), split only between ``s`` smoothing groups, which trimesh ignores.
 
 **What falls back to trimesh** (:func:`read_obj_groups` returns None; decided by the same scan, before any number
 is converted): a line whose first word is anything but ``v vt vn f usemtl mtllib o g s`` or a comment (``l``, ``p``,
@@ -16,8 +17,9 @@ is converted): a line whose first word is anything but ``v vt vn f usemtl mtllib
 exactly 3 numbers (vertex colours, ``w``); ``vt`` lines not all 2 or all 3 numbers; ``vn`` lines not 3 numbers; face
 corners written in more than one form (``v``, ``v/vt``, ``v//vn``, ``v/vt/vn``) or a face of fewer than 3 corners;
 a number that does not parse (a trailing comment, ``1.5`` as an index); line continuations (``\\``), a lone
-``\\r``; ``usemtl`` anywhere but at the start of a line; no faces at all (points only: trimesh's error); text that
-is not UTF-8 in a name.
+``\\r``; an ``s`` line other than one non-negative integer or ``off`` in a file without normals; ``usemtl``
+anywhere but at the start of a line; no faces at all (points only: trimesh's error); text that is not UTF-8 in a
+name.
 
 **Where it is stricter than trimesh**: a face index (v, vt or vn) of 0 or out of range is refused naming the line
 (trimesh raises for positions but silently drops out-of-range UVs or normals); negative indices count back from the
