@@ -46,6 +46,7 @@ class DrawItem:
     primitive_index: int | None = None
     material_index: int | None = None
     data: dict = field(default_factory=dict)  # what panels read for this item (``Panel.read_item``), by key
+    tangents: np.ndarray | None = None  # (n, 4) float32, world space xyz + handedness w (the TANGENT attribute)
 
 
 @dataclass
@@ -163,6 +164,81 @@ def transform_normals(normals, world) -> np.ndarray:
     return (n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-20)).astype(np.float32)
 
 
+def world_tangents(tangents, world, count: int) -> np.ndarray | None:
+    """glTF TANGENT (xyz, w handedness) in world space; None when it does not match the vertices."""
+    tangents = np.asarray(tangents, np.float64)
+    if tangents.shape != (count, 4):
+        return None
+    xyz = tangents[:, :3] @ world[:3, :3].T
+    xyz /= np.maximum(np.linalg.norm(xyz, axis=1, keepdims=True), 1e-20)
+    # a mirroring world matrix flips the frame's handedness
+    w = tangents[:, 3] * np.sign(np.linalg.det(world[:3, :3]) or 1.0)
+    return np.concatenate([xyz, w[:, None]], axis=1).astype(np.float32)
+
+
+@dataclass
+class SurfaceMaterial:
+    """What every panel shades with from a glTF material: the base colour (factor, linear; texture, sRGB) and the
+    tangent-space normal map. Without a base colour the preview's neutral grey stands in (glTF's default white
+    would clip the lit side)."""
+
+    base_color: tuple = (0.8, 0.8, 0.8, 1.0)
+    base_texture: int | None = None
+    base_texcoord: int = 0
+    normal_texture: int | None = None
+    normal_texcoord: int = 0
+    normal_scale: float = 1.0
+
+
+def texture_reference(ref, texture_count: int) -> tuple[int | None, int]:
+    """(texture index, texcoord set) of a glTF textureInfo; index None when it names no texture of the file."""
+    if not isinstance(ref, dict):
+        return None, 0
+    index, texcoord = ref.get("index"), ref.get("texCoord", 0)
+    valid = isinstance(index, int) and not isinstance(index, bool) and 0 <= index < texture_count
+    return (index if valid else None), (texcoord if isinstance(texcoord, int) else 0)
+
+
+def surface_material(material: dict, texture_count: int) -> SurfaceMaterial:
+    pbr = material.get("pbrMetallicRoughness") if isinstance(material, dict) else None
+    pbr = pbr if isinstance(pbr, dict) else {}
+    factor = pbr.get("baseColorFactor")
+    base_texture, base_texcoord = texture_reference(pbr.get("baseColorTexture"), texture_count)
+    normal = material.get("normalTexture") if isinstance(material, dict) else None
+    normal_texture, normal_texcoord = texture_reference(normal, texture_count)
+    scale = normal.get("scale", 1.0) if isinstance(normal, dict) else 1.0
+    if isinstance(factor, list) and len(factor) == 4 and all(isinstance(c, (int, float)) for c in factor):
+        base_color = tuple(float(c) for c in factor)
+    elif base_texture is not None:
+        base_color = (1.0, 1.0, 1.0, 1.0)  # glTF's default factor, multiplying the texture
+    else:
+        base_color = SurfaceMaterial.base_color
+    return SurfaceMaterial(base_color, base_texture, base_texcoord, normal_texture, normal_texcoord,
+                           float(scale) if isinstance(scale, (int, float)) else 1.0)
+
+
+def material_inputs(scene: "Scene", ctx, item: DrawItem) -> tuple[dict, dict, dict]:
+    """(uniforms, textures, per-vertex arrays) of the item's base colour and normal map for the surface shaders."""
+    textures_in_file = len(scene.doc.json.get("textures", [])) if scene.doc is not None else 0
+    m = surface_material(item.material, textures_in_file)
+    n = len(item.positions)
+    base = m.base_texture is not None and m.base_texcoord in item.texcoords
+    normal = m.normal_texture is not None and m.normal_texcoord in item.texcoords
+    uniforms = {"u_baseColorFactor": m.base_color, "u_hasBaseColorTexture": int(base),
+                "u_hasNormalTexture": int(normal), "u_normalScale": m.normal_scale,
+                "u_hasTangent": int(item.tangents is not None)}
+    textures = {}
+    if base:
+        textures["u_baseColorTexture"] = scene.texture(ctx, m.base_texture, repeat=True, srgb=True)
+    if normal:
+        textures["u_normalTexture"] = scene.texture(ctx, m.normal_texture, repeat=True)
+    zeros = np.zeros((n, 2), np.float32)
+    arrays = {"a_baseUV": item.texcoords[m.base_texcoord] if base else zeros,
+              "a_normalUV": item.texcoords[m.normal_texcoord] if normal else zeros,
+              "a_tangent": item.tangents if item.tangents is not None else np.zeros((n, 4), np.float32)}
+    return uniforms, textures, arrays
+
+
 def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
     """Everything the default scene draws: the triangle primitives as DrawItems, and what each panel gathers.
 
@@ -197,9 +273,11 @@ def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
             texcoords = {int(k.split("_")[1]): doc.accessor(a).astype(np.float32)
                          for k, a in prim["attributes"].items() if k.startswith("TEXCOORD_")}
             index = g.material if g.material is not None and g.material < len(materials) else None
+            tangents = world_tangents(doc.accessor(prim["attributes"]["TANGENT"]), world, len(g.positions)) \
+                if "TANGENT" in prim["attributes"] else None
             item = DrawItem(transform_points(g.positions, world), transform_normals(normals, world),
                             g.faces.astype(np.uint32), attributes, materials[index] if index is not None else {},
-                            texcoords, prim, mesh=mesh, primitive_index=p, material_index=index)
+                            texcoords, prim, mesh=mesh, primitive_index=p, material_index=index, tangents=tangents)
             for panel in panels:
                 panel.read_item(doc, item)
             scene.items.append(item)
@@ -259,7 +337,7 @@ def frame_camera(items, azimuth: float = 30.0, elevation: float = 15.0, fov: flo
 
 
 # ---------------------------------------------------------------------------------------------------- panels
-LAMBERT = "color = vec3(0.8) * (0.15 + 0.85 * max(dot(N, u_light), 0.0));"
+LAMBERT = "color = albedo * (0.15 + 0.85 * max(dot(N, u_light), 0.0));"
 
 
 def module_text(modules) -> str:
@@ -434,8 +512,10 @@ def draw_surfaces(ctx, panel: Panel, scene, camera: Camera, size: int, extra: di
         if use.name not in programs:
             programs[use.name] = ctx.program(vertex_shader=use.vertex_shader(), fragment_shader=use.fragment_shader())
         program = programs[use.name]
-        set_uniforms(program, dict(common, **use.uniforms(item)))
-        for unit, (name, texture) in enumerate(use.textures(scene, ctx, item).items()):
+        material_uniforms, material_textures, material_arrays = material_inputs(scene, ctx, item)
+        set_uniforms(program, dict(common, **material_uniforms, **use.uniforms(item)))
+        textures = dict(material_textures, **use.textures(scene, ctx, item))
+        for unit, (name, texture) in enumerate(textures.items()):
             texture.use(location=unit)
             set_uniforms(program, {name: unit})
         n = len(item.positions)
@@ -445,7 +525,7 @@ def draw_surfaces(ctx, panel: Panel, scene, camera: Camera, size: int, extra: di
         uv = item.texcoords.get(use.texcoord(item), np.zeros((n, 2), np.float32))
         outline = item.attributes.get("_OUTLINE_NORMAL", item.normals)
         arrays = {"POSITION": item.positions, "NORMAL": item.normals, "a_scalar": scalar, "TEXCOORD_0": uv,
-                  "a_outline": outline}
+                  "a_outline": outline, **material_arrays}
         corners = item.faces.reshape(-1)
         if use.expand:
             arrays = {k: v[corners] for k, v in arrays.items()}

@@ -31,9 +31,9 @@ PANELS = [
     NormalBlurPanel("normal-blur", "diffuse normals blurred on the surface (R, G, B)", ("baker_normal_blur.glsl",),
                     "uniform sampler2D u_normalBlurRed;\nuniform sampler2D u_normalBlurGreen;\n"
                     "uniform sampler2D u_normalBlurBlue;",
-                    "mat3 tbn = baker_normal_blur_derivative_frame(N, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
+                    "mat3 tbn = baker_normal_blur_derivative_frame(Ng, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
                     "    vec3 lambert = baker_normal_blur_lambert(tbn, texture(u_normalBlurRed, v_uv).rgb,\n"
                     "        texture(u_normalBlurGreen, v_uv).rgb, texture(u_normalBlurBlue, v_uv).rgb, u_light, 1.0);\n"
-                    "    color = vec3(0.8) * (0.15 + 0.85 * lambert);",
+                    "    color = albedo * (0.15 + 0.85 * lambert);",
                     inputs="in vec2 v_uv;", order=32),
 ]

@@ -63,7 +63,7 @@ PANELS = [
               "uniform sampler2D u_diffuseBlue;",
               "float k = u_hasCurvature != 0 ? scalar : baker_skin_curvature_from_derivatives(fwidth(N), fwidth(P));\n"
               "    // derivatives outside the branch: they are undefined in non-uniform control flow\n"
-              "    mat3 tbn = baker_normal_blur_derivative_frame(N, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
+              "    mat3 tbn = baker_normal_blur_derivative_frame(Ng, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
               "    vec3 ndotl = vec3(dot(N, u_light));\n"
               "    if (u_hasDiffuseNormals != 0) {\n"
               "        ndotl = baker_normal_blur_ndotl(\n"
@@ -71,6 +71,6 @@ PANELS = [
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseGreen, v_uv).rgb, 1.0)),\n"
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseBlue, v_uv).rgb, 1.0)), u_light);\n"
               "    }\n"
-              "    color = vec3(0.8) * (0.15 + 0.85 * baker_skin_diffuse_normals(u_skin, u_lut, ndotl, k));",
+              "    color = albedo * (0.15 + 0.85 * baker_skin_diffuse_normals(u_skin, u_lut, ndotl, k));",
               attribute="_CURVATURE", inputs="in vec2 v_uv;", order=30),
 ]

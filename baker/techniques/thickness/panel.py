@@ -53,7 +53,7 @@ PANELS = [
                    attribute=ATTRIBUTE, needs=(ATTRIBUTE,), order=10),
     TranslucencyPanel("translucency", "translucency, lit from behind", ("baker_translucency.glsl",),
                       "uniform BakerThickness u_thickness;",
-                      "color = 0.05 * vec3(0.8) * max(dot(N, u_light), 0.0)\n"
+                      "color = 0.05 * albedo * max(dot(N, u_light), 0.0)\n"
                       "          + baker_translucency(u_thickness, N, V, u_light, scalar);",
                       attribute=ATTRIBUTE, light="back", needs=(ATTRIBUTE,), order=20),
 ]
