@@ -239,6 +239,60 @@ def material_inputs(scene: "Scene", ctx, item: DrawItem) -> tuple[dict, dict, di
     return uniforms, textures, arrays
 
 
+MODE_LINES, MODE_LINE_LOOP, MODE_LINE_STRIP = 1, 2, 3
+
+
+@dataclass
+class Lines:
+    """A plain line primitive (no BAKER_hair: the hair panel draws those) in world space: a groom's strands."""
+
+    positions: np.ndarray  # (n, 3) float32
+    tangents: np.ndarray  # (n, 3) float32, unit, along the strand
+    segments: np.ndarray  # (m, 2) uint32
+    color: tuple  # linear RGB base colour
+
+
+def line_segments(asset: Asset, mesh: int, primitive: int) -> np.ndarray | None:
+    """The (m, 2) vertex pairs of a LINES / LINE_STRIP / LINE_LOOP primitive; None for other modes."""
+    prim = asset.meshes()[mesh]["primitives"][primitive]
+    mode = prim.get("mode", 4)
+    if mode not in (MODE_LINES, MODE_LINE_LOOP, MODE_LINE_STRIP) or "POSITION" not in prim.get("attributes", {}):
+        return None
+    count = asset.doc.json["accessors"][prim["attributes"]["POSITION"]]["count"]
+    order = asset.doc.accessor(prim["indices"]).reshape(-1).astype(np.int64) if "indices" in prim \
+        else np.arange(count, dtype=np.int64)
+    if len(order) and (order.min() < 0 or order.max() >= count):
+        raise BakerError(asset.source, f"/meshes/{mesh}/primitives/{primitive}/indices: index out of range "
+                                       f"(POSITION has {count} vertices)")
+    if mode == MODE_LINES:
+        segments = order[: len(order) // 2 * 2].reshape(-1, 2)
+    else:
+        chain = np.concatenate([order, order[:1]]) if mode == MODE_LINE_LOOP and len(order) > 2 else order
+        segments = np.stack([chain[:-1], chain[1:]], axis=1) if len(chain) > 1 else np.zeros((0, 2), np.int64)
+    return segments
+
+
+def world_lines(asset: Asset, mesh: int, primitive: int, world: np.ndarray) -> Lines | None:
+    """A line primitive in world space with per-vertex tangents (the mean direction of its segments)."""
+    from baker.gltf.accessors import to_float
+
+    segments = line_segments(asset, mesh, primitive)
+    if segments is None or not len(segments):
+        return None
+    prim = asset.meshes()[mesh]["primitives"][primitive]
+    positions = transform_points(to_float(asset.doc, prim["attributes"]["POSITION"]), world)
+    direction = (positions[segments[:, 1]] - positions[segments[:, 0]]).astype(np.float64)
+    tangents = np.zeros((len(positions), 3))
+    np.add.at(tangents, segments[:, 0], direction)
+    np.add.at(tangents, segments[:, 1], direction)
+    tangents /= np.maximum(np.linalg.norm(tangents, axis=1, keepdims=True), 1e-20)
+    materials = asset.doc.json.get("materials", [])
+    index = prim.get("material")
+    material = materials[index] if isinstance(index, int) and 0 <= index < len(materials) else {}
+    color = surface_material(material, 0).base_color[:3]
+    return Lines(positions, tangents.astype(np.float32), segments.astype(np.uint32), color)
+
+
 def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
     """Everything the default scene draws: the triangle primitives as DrawItems, and what each panel gathers.
 
@@ -258,6 +312,11 @@ def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
         for panel in panels:
             panel.gather(scene, asset, mesh, world, node)
         prims = asset.meshes()[mesh].get("primitives", [])
+        for p, prim in enumerate(prims):
+            if "BAKER_hair" not in (prim.get("extensions") or {}):
+                lines = world_lines(asset, mesh, p, world)
+                if lines is not None:
+                    scene.add("lines", lines)
         for p in asset.triangle_primitives(mesh):
             if any(panel.skips(asset, mesh, p) for panel in panels):
                 continue  # no surface (e.g. degenerate fin quads)
@@ -282,7 +341,7 @@ def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
                 panel.read_item(doc, item)
             scene.items.append(item)
     if not scene.drawables():
-        raise BakerError(asset.source, "nothing to preview (no triangle primitives, text or hair in the scene)")
+        raise BakerError(asset.source, "nothing to preview (no triangle or line primitives, text or hair in the scene)")
     return scene
 
 
@@ -388,7 +447,7 @@ class Panel:
     declarations: str
     body: str
     attribute: str | None = None  # the per-vertex attribute bound to ``a_scalar``
-    light: str = "front"  # "front" (over the camera's shoulder) or "back" (behind the object)
+    light: str = "front"  # "front" (over the camera's shoulder), "side" (grazing: the terminator in view) or "back"
     needs: tuple = ()  # attributes that must be present for the panel to show
     inputs: str = ""  # extra fragment inputs
     vertex_modules: tuple = ()
@@ -403,6 +462,10 @@ class Panel:
 
     def applies(self, item: DrawItem) -> bool:
         return all(n in item.attributes for n in self.needs)
+
+    def describe(self, scene: Scene) -> str:
+        """The panel's label on this scene (what it shows at which scale, or why it cannot show)."""
+        return self.label
 
     def attribute_of(self, item: DrawItem) -> str | None:
         return self.attribute
@@ -443,7 +506,19 @@ class Panel:
         draw_surfaces(ctx, self, scene, camera, size)
 
 
-REFERENCE = Panel("lambert", "shaded (reference)", (), "", LAMBERT, order=-math.inf)
+class ReferencePanel(Panel):
+    """The "before" picture: the surfaces with the material's base colour and normal map under a Lambert light,
+    and plain line primitives (a groom) as shaded lines."""
+
+    def available(self, scene) -> bool:
+        return super().available(scene) or (isinstance(scene, Scene) and bool(scene.part("lines")))
+
+    def draw(self, ctx, scene, camera, size):
+        draw_surfaces(ctx, self, scene, camera, size)
+        draw_lines(ctx, scene, camera, size, light_direction(camera, self.light))
+
+
+REFERENCE = ReferencePanel("lambert", "shaded (reference)", (), "", LAMBERT, order=-math.inf)
 
 
 def all_panels() -> list:
@@ -472,11 +547,15 @@ def create_context():
 
 
 def light_direction(camera: Camera, where: str) -> np.ndarray:
-    """Unit direction to the light: over the camera's right shoulder, or behind the object facing the camera."""
+    """Unit direction to the light: over the camera's right shoulder, from the right at a grazing angle (the
+    terminator runs through the middle of the view, so N.L takes every value from -1 to 1 on the visible side), or
+    behind the object facing the camera."""
     f = camera.forward
     right = np.cross(f, [0.0, 1.0, 0.0])
     right = right / (np.linalg.norm(right) or 1.0)
-    if where == "back":
+    if where == "side":
+        d = right + np.array([0.0, 0.3, 0.0]) - 0.15 * f
+    elif where == "back":
         d = f + 0.25 * right + np.array([0.0, 0.2, 0.0])  # from behind, a little off-axis so the lobe shows
     else:
         d = -f + 0.5 * right + np.array([0.0, 0.5, 0.0])
@@ -551,6 +630,32 @@ def draw_surfaces(ctx, panel: Panel, scene, camera: Camera, size: int, extra: di
         program.release()
 
 
+def draw_lines(ctx, scene: Scene, camera: Camera, size: int, light: np.ndarray) -> None:
+    """The scene's plain line primitives, about size / 256 pixels wide (1 where the driver has no wide lines)."""
+    lines = scene.part("lines")
+    if not lines:
+        return
+    program = ctx.program(vertex_shader=program_source("preview_lines.vert.glsl"),
+                          fragment_shader=program_source("preview_lines.frag.glsl"))
+    vp = (camera.projection @ camera.view).astype(np.float32)
+    try:
+        ctx.line_width = max(1.0, size / 256.0)
+    except Exception:  # core profiles may refuse wide lines: thin ones still show the strands
+        pass
+    for strand_set in lines:
+        set_uniforms(program, {"u_viewProjection": vp.T.tobytes(), "u_light": tuple(float(v) for v in light),
+                               "u_baseColor": tuple(float(c) for c in strand_set.color)})
+        vbo = ctx.buffer(np.ascontiguousarray(strand_set.positions, np.float32).tobytes())
+        tbo = ctx.buffer(np.ascontiguousarray(strand_set.tangents, np.float32).tobytes())
+        ibo = ctx.buffer(np.ascontiguousarray(strand_set.segments, np.uint32).tobytes())
+        vao = ctx.vertex_array(program, [(vbo, "3f", "POSITION"), (tbo, "3f", "a_tangent")],
+                               index_buffer=ibo, index_element_size=4, mode=ctx.LINES)
+        vao.render()
+        for obj in (vao, vbo, tbo, ibo):
+            obj.release()
+    program.release()
+
+
 def render_panel(ctx, panel: Panel, items, camera: Camera, size: int, samples: int = 4) -> np.ndarray:
     """Render one panel; returns (size, size, 3) float32 in [0, 1], row 0 at the top. ``items``: a Scene or a list
     of DrawItems."""
@@ -579,7 +684,8 @@ class Preview:
 def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: float = 15.0,
             panels: list[str] | None = None) -> Preview:
     """Render every available panel of an asset into a contact sheet."""
-    asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset)
+    # a groom (lines only) has no triangle faces: the reference panel draws its strands
+    asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset, require_triangles=False)
     known = all_panels()
     scene = gather_scene(asset, known)
     if panels is not None:
@@ -594,6 +700,7 @@ def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: fl
     ctx = create_context()
     try:
         images = [(p, render_panel(ctx, p, scene, camera, size)) for p in chosen]
+        labels = [p.describe(scene) for p in chosen]
     finally:
         scene.release()
         ctx.release()
@@ -602,11 +709,11 @@ def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: fl
     rows = math.ceil(len(images) / cols)
     sheet = np.full((rows * (size + label_h), cols * size, 3), 24, np.uint8)
     placed = []
-    for k, (panel, image) in enumerate(images):
+    for k, ((panel, image), label) in enumerate(zip(images, labels)):
         r, c = divmod(k, cols)
         y, x = r * (size + label_h) + label_h, c * size
         sheet[y: y + size, x: x + size] = np.round(image * 255).astype(np.uint8)
-        placed.append((panel.name, panel.label, (y, x, size)))
+        placed.append((panel.name, label, (y, x, size)))
     _draw_labels(sheet, [(label, y - label_h, x, label_h) for _, label, (y, x, _) in placed], size)
     return Preview(sheet, placed)
 

@@ -72,5 +72,5 @@ PANELS = [
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseBlue, v_uv).rgb, 1.0)), u_light);\n"
               "    }\n"
               "    color = albedo * (0.15 + 0.85 * baker_skin_diffuse_normals(u_skin, u_lut, ndotl, k));",
-              attribute="_CURVATURE", inputs="in vec2 v_uv;", order=30),
+              attribute="_CURVATURE", inputs="in vec2 v_uv;", light="side", order=30),
 ]
