@@ -289,3 +289,106 @@ def test_skin_panel_reads_the_diffuse_normals(tmp_path):
     print("skin panel detail (R, G, B)", details)
     assert details["skin"][0] < 0.5 * details["blurred"][0]
     assert details["blurred"][0] < 0.75 * details["blurred"][2]
+
+
+# ---------------------------------------------------------------------------------------------------- material, grooms
+def _object(result, name):
+    """A panel's pixels and the mask of the object in it (pixels away from the background), eroded off the edge."""
+    image = _panel(result, name)
+    return image, ndimage.binary_erosion(_covered(image), iterations=2)
+
+
+def test_reference_panel_uses_the_mtl_base_colour(tmp_path):
+    """An OBJ whose MTL has a red Kd previews red: the reference panel (and a technique panel) shade with the
+    material's base colour, so the sheet's first panel is the asset as it was."""
+    import trimesh
+
+    sphere = trimesh.creation.icosphere(subdivisions=3)
+    lines = ["mtllib red.mtl", "usemtl red"] + [f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in sphere.vertices] + \
+        [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in sphere.faces]
+    (tmp_path / "red.obj").write_text("\n".join(lines) + "\n")
+    (tmp_path / "red.mtl").write_text("newmtl red\nKd 0.9 0.05 0.05\n")
+    out = tmp_path / "red.glb"
+    assert main(["bake", str(tmp_path / "red.obj"), "--bakes", "toon", "-o", str(out), "-q"]) == 0
+    result = preview(out, size=128)
+    for name in ("lambert", "toon"):
+        image, inside = _object(result, name)
+        r, g, b = (image[..., c][inside].mean() for c in range(3))
+        print(name, "mean RGB of the object", r, g, b, int(inside.sum()))
+        assert inside.sum() > 1000 and r > 3 * g and r > 3 * b
+
+
+def _normal_mapped_plane(path, normal_rgb):
+    """A unit square facing +Z with UVs (u along +X), its material a constant tangent-space normal map."""
+    import trimesh
+    from PIL import Image
+
+    plane = trimesh.Trimesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2], [0, 2, 3]], process=False)
+    material = trimesh.visual.material.PBRMaterial(
+        baseColorFactor=[204, 204, 204, 255], metallicFactor=0.0, roughnessFactor=0.5,
+        normalTexture=Image.new("RGB", (8, 8), tuple(int(c) for c in normal_rgb)))
+    plane.visual = trimesh.visual.TextureVisuals(uv=[[0, 0], [1, 0], [1, 1], [0, 1]], material=material)
+    plane.export(str(path))
+    return path
+
+
+def test_reference_panel_uses_the_normal_map(tmp_path):
+    """A plane whose normal map tilts every normal 45 degrees towards +u (+X, the key light's side) is brighter
+    than the same plane with the flat normal map, and one tilted towards -u darker (tangent frame from the
+    derivatives: the plane has no TANGENT)."""
+    mean = {}
+    for name, rgb in (("flat", (128, 128, 255)), ("right", (218, 128, 218)), ("left", (38, 128, 218))):
+        result = preview(_normal_mapped_plane(tmp_path / f"{name}.glb", rgb), size=96, azimuth=0, elevation=0)
+        image, inside = _object(result, "lambert")
+        assert inside.sum() > 2000
+        mean[name] = float(_lum(image)[inside].mean())
+    print("plane luminance by normal map", mean)
+    assert mean["right"] > mean["flat"] + 0.05 and mean["left"] < mean["flat"] - 0.05
+
+
+def _lines_gltf(path, mode):
+    """A groom of 40 wavy strands of 12 points as one LINES (mode 1) or LINE_STRIP-per-strand primitive set,
+    no triangles, no material."""
+    import base64
+    import json
+
+    rng = np.random.default_rng(0)
+    t = np.linspace(0.0, 1.0, 12)[:, None]
+    strands = [rng.uniform(-0.5, 0.5, 3) * [1, 0, 1] + t * [0.1 * np.sin(s), 1.0, 0.1 * np.cos(s)]
+               + 0.05 * np.sin(6 * t) * [1, 0, 0] for s in range(40)]
+    positions = np.concatenate(strands).astype(np.float32)
+    if mode == 1:
+        indices = [np.stack([np.arange(11), np.arange(1, 12)], 1).reshape(-1) + 12 * s for s in range(40)]
+    else:
+        indices = [np.arange(12) + 12 * s for s in range(40)]
+    blobs = [positions.tobytes()] + [i.astype(np.uint32).tobytes() for i in indices]
+    offsets = np.cumsum([0] + [len(b) for b in blobs])
+    data = b"".join(blobs)
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+           "buffers": [{"byteLength": len(data),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+           "bufferViews": [{"buffer": 0, "byteOffset": int(offsets[k]), "byteLength": len(b)}
+                           for k, b in enumerate(blobs)],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                          "min": positions.min(0).tolist(), "max": positions.max(0).tolist()}]
+           + [{"bufferView": k + 1, "componentType": 5125, "count": len(i), "type": "SCALAR"}
+              for k, i in enumerate(indices)],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1 + k, "mode": mode}
+                                      for k in range(len(indices))]}]}
+    path.write_text(json.dumps(doc))
+    return path
+
+
+@pytest.mark.parametrize("mode", [1, 3])
+def test_lines_only_groom_previews_as_strands(tmp_path, mode):
+    """A glTF holding only line primitives (a groom) previews: exit 0 and the strands drawn in the reference panel,
+    spread over the frame (the 40 strands, not one blob)."""
+    source = _lines_gltf(tmp_path / "groom.gltf", mode)
+    out = tmp_path / "sheet.png"
+    assert main(["preview", str(source), "-o", str(out), "--size", "128", "-q"]) == 0
+    sheet = read_image(out).astype(np.float64) / 255.0
+    label_h = max(18, 128 // 16)
+    strands = _covered(sheet[label_h:, :128, :3])
+    columns = strands.any(axis=0)
+    print("strand pixels", int(strands.sum()), "columns crossed", int(columns.sum()))
+    assert 200 < strands.sum() < 0.4 * strands.size and columns.sum() > 40

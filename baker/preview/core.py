@@ -447,7 +447,10 @@ class Panel:
     declarations: str
     body: str
     attribute: str | None = None  # the per-vertex attribute bound to ``a_scalar``
-    light: str = "front"  # "front" (over the camera's shoulder), "side" (grazing: the terminator in view) or "back"
+    # "side": the key light of the sheet, grazing from the right so the terminator (where skin, normal-blur and toon
+    # show) is in view and every panel compares with the reference under the same light; "front" (over the
+    # camera's shoulder) or "back" (behind the object)
+    light: str = "side"
     needs: tuple = ()  # attributes that must be present for the panel to show
     inputs: str = ""  # extra fragment inputs
     vertex_modules: tuple = ()
@@ -466,6 +469,10 @@ class Panel:
     def describe(self, scene: Scene) -> str:
         """The panel's label on this scene (what it shows at which scale, or why it cannot show)."""
         return self.label
+
+    def decorate(self, image: np.ndarray, scene: Scene) -> np.ndarray:
+        """The rendered panel with what the panel draws over it (a legend); (size, size, 3) float32 in [0, 1]."""
+        return image
 
     def attribute_of(self, item: DrawItem) -> str | None:
         return self.attribute
@@ -699,7 +706,7 @@ def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: fl
     camera = frame_camera(scene, azimuth, elevation)
     ctx = create_context()
     try:
-        images = [(p, render_panel(ctx, p, scene, camera, size)) for p in chosen]
+        images = [(p, p.decorate(render_panel(ctx, p, scene, camera, size), scene)) for p in chosen]
         labels = [p.describe(scene) for p in chosen]
     finally:
         scene.release()

@@ -35,5 +35,5 @@ PANELS = [
                     "    vec3 lambert = baker_normal_blur_lambert(tbn, texture(u_normalBlurRed, v_uv).rgb,\n"
                     "        texture(u_normalBlurGreen, v_uv).rgb, texture(u_normalBlurBlue, v_uv).rgb, u_light, 1.0);\n"
                     "    color = albedo * (0.15 + 0.85 * lambert);",
-                    inputs="in vec2 v_uv;", light="side", order=32),
+                    inputs="in vec2 v_uv;", order=32),
 ]

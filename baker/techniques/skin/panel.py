@@ -4,7 +4,10 @@ material also has BAKER_normal_blur, the LUT is read with its per-channel diffus
 tangent frame from screen-space derivatives), as the three.js and Babylon.js hosts do."""
 from __future__ import annotations
 
-from baker.preview.core import DrawItem, Panel
+import numpy as np
+
+from baker.gltf.vertex_attributes import unpadded
+from baker.preview.core import DrawItem, Panel, Scene
 from baker.techniques.normal_blur.extension import read as read_normal_blur
 from baker.techniques.skin.extension import read
 
@@ -19,6 +22,26 @@ class SkinPanel(Panel):
 
     def applies(self, item):
         return super().applies(item) and item.data.get("skin") is not None
+
+    def describe(self, scene: Scene) -> str:
+        """Which rows of the LUT the asset's curvature reads (5th-95th percentile of the baked curvature, concave
+        parts read row 0) and the mesh-unit scale the bake assumed: a subtle panel on a large asset is then told
+        apart from a bake that did nothing."""
+        items = [i for i in scene.items if self.applies(i)]
+        if not items:
+            return self.label
+        skin = items[0].data["skin"]
+        unit = skin.unit
+        scale = f"1 mesh unit = {1.0 / skin.curvature_scale:.3g} {unit}" if skin.curvature_scale > 0 else "no scale"
+        values = [unpadded(i.attributes[self.attribute_of(i)], 1) for i in items if self.attribute_of(i) in i.attributes]
+        if not values:
+            return f"skin (curvature from screen derivatives; {scale})"
+        lo, hi = skin.curvature_range
+        curvature = np.maximum(np.concatenate(values).astype(np.float64), 0.0) * skin.curvature_scale
+        k5, k95 = np.percentile(curvature, [5.0, 95.0])
+        rows = np.clip((np.array([k5, k95]) - lo) / max(hi - lo, 1e-30), 0.0, 1.0) * 100.0
+        return (f"skin: LUT rows {rows[0]:.0f}-{rows[1]:.0f}% (1/r {k5:.2g}-{k95:.2g} /{unit} of {lo:.2g}-{hi:.2g}); "
+                f"{scale}")
 
     def attribute_of(self, item):
         return item.data["skin"].curvature_attribute
@@ -72,5 +95,5 @@ PANELS = [
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseBlue, v_uv).rgb, 1.0)), u_light);\n"
               "    }\n"
               "    color = albedo * (0.15 + 0.85 * baker_skin_diffuse_normals(u_skin, u_lut, ndotl, k));",
-              attribute="_CURVATURE", inputs="in vec2 v_uv;", light="side", order=30),
+              attribute="_CURVATURE", inputs="in vec2 v_uv;", order=30),
 ]

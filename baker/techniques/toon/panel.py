@@ -37,5 +37,5 @@ PANELS = [
               "            ? baker_xtoon_detail_depth(length(u_eye - P), u_depthRange.x, u_depthRange.y)\n"
               "            : baker_xtoon_detail_orientation(N, V, u_orientationPower));\n"
               "    color = albedo * shade;",
-              light="side", order=40),
+              order=40),
 ]
