@@ -392,3 +392,64 @@ def test_lines_only_groom_previews_as_strands(tmp_path, mode):
     columns = strands.any(axis=0)
     print("strand pixels", int(strands.sum()), "columns crossed", int(columns.sum()))
     assert 200 < strands.sum() < 0.4 * strands.size and columns.sum() > 40
+
+
+# ---------------------------------------------------------------------------------------------------- at the asset's scale
+MESHES = Path("/work/shared/assets/meshes")
+
+
+@pytest.fixture(scope="module", params=["bunny", "spot"])
+def toon_caustics_sheet(request, tmp_path_factory):
+    """Toon and caustics baked with their defaults (fewer, smaller caustic frames) on the Stanford bunny (0.2 units
+    tall: the default 2-unit caustic tile is 10x the asset) and spot."""
+    source = MESHES / "stanford-bunny.obj" if request.param == "bunny" else SPOT
+    out = tmp_path_factory.mktemp("scale") / f"{request.param}.glb"
+    save(baker.bake(source, bakes=["toon", "caustics"], seed=1, options={"caustics": {"size": 128, "frames": 2}}), out)
+    return preview(out, size=SIZE)
+
+
+def test_toon_shows_every_band(toon_caustics_sheet):
+    """Under the grazing key light the ramp's three bands all show: the most common tone covers at most 80% of the
+    object, and each band at least 3%."""
+    _, inside = _object(toon_caustics_sheet, "lambert")
+    toon = _lum(_panel(toon_caustics_sheet, "toon"))[inside]
+    levels, counts = np.unique(np.round(toon * 255).astype(int), return_counts=True)
+    share = counts / inside.sum()
+    print("toon tones", levels[share > 0.01], share[share > 0.01])
+    assert share.max() <= 0.8
+    assert (share > 0.03).sum() == 3
+
+
+def test_caustics_detail_at_the_asset_scale(toon_caustics_sheet):
+    """The caustic network shows on the object at its scale: the mean luminance gradient inside the object, over
+    its mean luminance, is at least 1.5x the reference panel's; the label says at which tile size."""
+    _, inside = _object(toon_caustics_sheet, "lambert")
+
+    def detail(image):
+        lum = _lum(image)
+        gy, gx = np.gradient(lum)
+        return np.hypot(gx, gy)[inside].mean() / lum[inside].mean()
+
+    reference, caustics = detail(_panel(toon_caustics_sheet, "lambert")), detail(_panel(toon_caustics_sheet, "caustics"))
+    label = next(label for name, label, _ in toon_caustics_sheet.panels if name == "caustics")
+    print("detail reference", reference, "caustics", caustics, label)
+    assert caustics >= 1.5 * reference
+    assert "tile 2" in label
+
+
+def test_caustics_do_not_stretch_on_vertical_faces(tmp_path):
+    """On a box's vertical faces the floor projection along a near-vertical sun would smear the pattern into
+    vertical stripes (no luminance change up the face); the triplanar read keeps it as varied vertically as
+    horizontally."""
+    import trimesh
+
+    box = tmp_path / "box.glb"
+    trimesh.creation.box(extents=[1.0, 1.0, 1.0]).export(str(box))
+    out = tmp_path / "caustics.glb"
+    save(baker.bake(box, bakes=["caustics"], seed=1, options={"caustics": {"size": 128, "frames": 2}}), out)
+    image, inside = _object(preview(out, size=SIZE, azimuth=0, elevation=0), "caustics")  # the +Z face, head on
+    lum = _lum(image)
+    gy, gx = np.gradient(lum)
+    vertical, horizontal = np.abs(gy)[inside].mean(), np.abs(gx)[inside].mean()
+    print("caustics on a vertical face: mean |d/dy|", vertical, "|d/dx|", horizontal)
+    assert inside.sum() > 2000 and vertical > 0.5 * horizontal and horizontal > 0.005
