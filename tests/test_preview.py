@@ -46,7 +46,9 @@ def test_translucency_is_brighter_where_thin(baked_spot):
     brightness = translucent.mean(axis=2)
     corr = np.corrcoef(t[mask], brightness[mask])[0, 1]
     assert corr < -0.3, corr
-    thin, thick = mask & (t < 0.3), mask & (t > 0.7)
+    # the thickness panel's scale is fixed (0 to a round length), not stretched: thin and thick by quartile
+    low, high = np.percentile(t[mask], [25, 75])
+    thin, thick = mask & (t < low), mask & (t > high)
     assert thin.sum() > 50 and thick.sum() > 50
     assert brightness[thin].mean() > 1.5 * brightness[thick].mean()
 
@@ -271,9 +273,10 @@ def test_normal_blur_panel_is_softest_in_red(tmp_path):
 
 
 def test_skin_panel_reads_the_diffuse_normals(tmp_path):
-    """The same bumped sphere baked with skin alone and with normal-blur + skin. The preview's skin panel shades with
-    the interpolated normal, so skin alone shows no bump; with normal-blur it reads the LUT with the per-channel
-    blurred normals: the bump shows, softest in red."""
+    """The same bumped sphere baked with skin alone and with normal-blur + skin. Skin alone blends the normal map's
+    normal with the interpolated one per channel (Penner's normal blending; red takes the smooth normal), so its red
+    channel shows no bump; with normal-blur it reads the LUT with the per-channel blurred normals: the bump shows in
+    red too, softest there."""
     from tests.techniques.test_normal_blur import bump_sphere
 
     source = bump_sphere(tmp_path / "sphere.glb", "v", segments=128, rings=64, size=256)
@@ -453,3 +456,32 @@ def test_caustics_do_not_stretch_on_vertical_faces(tmp_path):
     vertical, horizontal = np.abs(gy)[inside].mean(), np.abs(gx)[inside].mean()
     print("caustics on a vertical face: mean |d/dy|", vertical, "|d/dx|", horizontal)
     assert inside.sum() > 2000 and vertical > 0.5 * horizontal and horizontal > 0.005
+
+
+def test_thickness_on_a_fixed_scale_with_a_legend(tmp_path):
+    """A unit cube's thickness (0.46-0.9: a mean over the rays' lengths) maps onto the fixed scale 0-1 m (the
+    round length at or above its largest value): the object covers a narrow part of the colour ramp instead of being stretched over all of it; the colour
+    bar runs from the ramp's thin end to its thick end and the label gives the scale and the asset's range."""
+    import trimesh
+
+    from baker.gltf.document import GltfDocument
+
+    box = tmp_path / "box.glb"
+    trimesh.creation.box(extents=[1.0, 1.0, 1.0]).subdivide().subdivide().export(str(box))
+    out = tmp_path / "thick.glb"
+    save(baker.bake(box, bakes=["thickness"], seed=1, options={"thickness": {"rays": 16, "per_texel": False}}), out)
+    doc = GltfDocument.load(out)
+    values = np.concatenate([doc.accessor(p["attributes"]["_THICKNESS"]).reshape(len(doc.accessor(
+        p["attributes"]["POSITION"])), -1)[:, 0] for m in doc.json["meshes"] for p in m["primitives"]])
+    result = preview(out, size=SIZE, panels=["thickness"])
+    image, inside = _object(result, "thickness")
+    size = image.shape[0]
+    t = (image[..., 2] - 0.1) / 0.8  # mix(orange, blue, t): blue 0.1 -> 0.9
+    spread = np.percentile(t[inside & (np.arange(size)[:, None] < 0.9 * size)], [5, 95])
+    label = result.panels[0][1]
+    print("thickness values", values.min(), values.max(), "colour t 5-95%", spread, label)
+    assert 0.5 < values.max() <= 1.0 and spread[1] - spread[0] < 0.3
+    assert abs(np.median(t[inside]) - np.median(values)) < 0.1  # t = thickness / 1 m
+    assert "bar 0-1 m" in label and f"{values.max():.3g}" in label
+    bar = image[size - 5, :, :]  # inside the bar along the bottom edge
+    assert np.allclose(bar[8], [0.95, 0.35, 0.1], atol=0.03) and np.allclose(bar[-8], [0.1, 0.3, 0.9], atol=0.03)

@@ -1,5 +1,6 @@
 """Preview panel of BAKER_skin_lut: Penner's pre-integrated skin (``runtime-shaders/baker_skin.glsl``), the LUT by
-N.L and the baked curvature (or the curvature estimated from screen-space derivatives when there is none); where the
+N.L and the baked curvature (or the curvature estimated from screen-space derivatives when there is none), N.L per
+channel from Penner's normal blending of the material's normal map with the interpolated normal; where the
 material also has BAKER_normal_blur, the LUT is read with its per-channel diffuse normals (``baker_normal_blur.glsl``,
 tangent frame from screen-space derivatives), as the three.js and Babylon.js hosts do."""
 from __future__ import annotations
@@ -87,7 +88,7 @@ PANELS = [
               "float k = u_hasCurvature != 0 ? scalar : baker_skin_curvature_from_derivatives(fwidth(N), fwidth(P));\n"
               "    // derivatives outside the branch: they are undefined in non-uniform control flow\n"
               "    mat3 tbn = baker_normal_blur_derivative_frame(Ng, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
-              "    vec3 ndotl = vec3(dot(N, u_light));\n"
+              "    vec3 ndotl = baker_skin_blended_ndotl(Ng, N, u_light, u_skin.normalBlend);\n"
               "    if (u_hasDiffuseNormals != 0) {\n"
               "        ndotl = baker_normal_blur_ndotl(\n"
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseRed, v_uv).rgb, 1.0)),\n"
