@@ -83,11 +83,36 @@ SIZE = 192
 
 
 @pytest.fixture(scope="module")
-def sheet(tmp_path_factory):
+def baked_all(tmp_path_factory):
     out = tmp_path_factory.mktemp("preview_all") / "spot.glb"
     save(baker.bake(SPOT, bakes=BAKES, seed=1, options=OPTIONS), out)
     assert_khronos_clean(out)
-    return preview(out, size=SIZE, azimuth=60, elevation=15)
+    return out
+
+
+@pytest.fixture(scope="module")
+def sheet(baked_all):
+    return preview(baked_all, size=SIZE, azimuth=60, elevation=15)
+
+
+def test_skin_label_says_which_lut_rows_the_asset_reads(baked_all, sheet):
+    """The skin panel's label gives the rows of the LUT's curvature axis that the asset's baked curvature (5th-95th
+    percentile, concave as flat) reads, and the scale the bake assumed (spot as a 2 mm miniature)."""
+    from baker.gltf.document import GltfDocument
+
+    doc = GltfDocument.load(baked_all)
+    skin = doc.json["materials"][0]["extensions"]["BAKER_skin_lut"]
+    prim = doc.json["meshes"][0]["primitives"][0]
+    count = len(doc.accessor(prim["attributes"]["POSITION"]))
+    curvature = doc.accessor(prim["attributes"][skin["curvatureAttribute"]]).reshape(count, -1)[:, 0]
+    lut = np.maximum(curvature, 0) * skin["curvatureScale"]
+    lo, hi = skin["curvatureRange"]
+    rows = [(np.percentile(lut, q) - lo) / (hi - lo) * 100 for q in (5, 95)]
+    label = next(label for name, label, _ in sheet.panels if name == "skin")
+    print(label, rows)
+    assert f"LUT rows {max(rows[0], 0):.0f}-{min(rows[1], 100):.0f}%" in label
+    assert "1 mesh unit = 2 mm" in label
+    assert ("clamped" in label) == (np.percentile(lut, 95) > hi)
 
 
 def _lum(image):

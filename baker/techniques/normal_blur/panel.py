@@ -2,8 +2,13 @@
 three diffuse normal maps, in a tangent frame from screen-space derivatives (the preview passes no TANGENT)."""
 from __future__ import annotations
 
+import numpy as np
+
 from baker.preview.core import DrawItem, Panel
 from baker.techniques.normal_blur.extension import read
+
+
+FLAT = 0.02  # largest deviation of a decoded diffuse normal from +Z that counts as a flat map
 
 
 class NormalBlurPanel(Panel):
@@ -16,6 +21,14 @@ class NormalBlurPanel(Panel):
     def applies(self, item):
         blur = item.data.get("normal_blur")
         return super().applies(item) and blur is not None and blur.texcoord in item.texcoords
+
+    def describe(self, scene) -> str:
+        """The label, saying so when the diffuse normal maps are flat (no normal map detail to blur: the panel is
+        the reference's Lambert)."""
+        textures = {t for i in scene.items if self.applies(i) for t in i.data["normal_blur"].diffuse_textures}
+        flat = all(float(np.abs(scene.image(t)[..., :3] * 2.0 - 1.0 - np.array([0.0, 0.0, 1.0])).max()) < FLAT
+                   for t in textures) if textures else False
+        return f"{self.label} - flat normals: no normal map detail to blur" if flat else self.label
 
     def texcoord(self, item):
         return item.data["normal_blur"].texcoord

@@ -13,6 +13,9 @@ from baker.techniques.normal_blur.extension import read as read_normal_blur
 from baker.techniques.skin.extension import read
 
 
+NEARLY_LAMBERT_ROWS = 3.0  # % of the LUT's curvature axis: below, the profile barely reddens the terminator
+
+
 class SkinPanel(Panel):
     """Penner's pre-integrated skin: the LUT texture by N.L and the curvature attribute the material names."""
 
@@ -41,8 +44,10 @@ class SkinPanel(Panel):
         curvature = np.maximum(np.concatenate(values).astype(np.float64), 0.0) * skin.curvature_scale
         k5, k95 = np.percentile(curvature, [5.0, 95.0])
         rows = np.clip((np.array([k5, k95]) - lo) / max(hi - lo, 1e-30), 0.0, 1.0) * 100.0
+        why = " - nearly Lambert: too flat at this scale" if rows[1] < NEARLY_LAMBERT_ROWS else \
+            " - sharper than the LUT's last row: clamped" if k95 > hi else ""
         return (f"skin: LUT rows {rows[0]:.0f}-{rows[1]:.0f}% (1/r {k5:.2g}-{k95:.2g} /{unit} of {lo:.2g}-{hi:.2g}); "
-                f"{scale}")
+                f"{scale}{why}")
 
     def attribute_of(self, item):
         return item.data["skin"].curvature_attribute
