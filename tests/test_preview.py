@@ -111,7 +111,7 @@ def test_skin_label_says_which_lut_rows_the_asset_reads(baked_all, sheet):
     label = next(label for name, label, _ in sheet.panels if name == "skin")
     print(label, rows)
     assert f"LUT rows {max(rows[0], 0):.0f}-{min(rows[1], 100):.0f}%" in label
-    assert "1 mesh unit = 2 mm" in label
+    assert "1 unit = 2 mm" in label
     assert ("clamped" in label) == (np.percentile(lut, 95) > hi)
 
 

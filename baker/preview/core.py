@@ -743,7 +743,11 @@ def _draw_labels(sheet: np.ndarray, labels, width: int) -> None:
                 font = ImageFont.truetype("DejaVuSans.ttf", size)
         except OSError:
             font = ImageFont.load_default()
-        draw.text((x + 6, y + (h - size) * 0.5), text, fill=(230, 230, 230), font=font)
+        # drawn in the panel's own strip: a label too long even at the smallest size is cut, not written over the
+        # next panel's
+        strip = image.crop((x, y, x + width, y + h))
+        ImageDraw.Draw(strip).text((6, (h - size) * 0.5), text, fill=(230, 230, 230), font=font)
+        image.paste(strip, (x, y))
     sheet[...] = np.asarray(image)
 
 

@@ -36,7 +36,7 @@ class SkinPanel(Panel):
             return self.label
         skin = items[0].data["skin"]
         unit = skin.unit
-        scale = f"1 mesh unit = {1.0 / skin.curvature_scale:.3g} {unit}" if skin.curvature_scale > 0 else "no scale"
+        scale = f"1 unit = {1.0 / skin.curvature_scale:.4g} {unit}" if skin.curvature_scale > 0 else "no scale"
         values = [unpadded(i.attributes[self.attribute_of(i)], 1) for i in items if self.attribute_of(i) in i.attributes]
         if not values:
             return f"skin (curvature from screen derivatives; {scale})"
@@ -44,10 +44,9 @@ class SkinPanel(Panel):
         curvature = np.maximum(np.concatenate(values).astype(np.float64), 0.0) * skin.curvature_scale
         k5, k95 = np.percentile(curvature, [5.0, 95.0])
         rows = np.clip((np.array([k5, k95]) - lo) / max(hi - lo, 1e-30), 0.0, 1.0) * 100.0
-        why = " - nearly Lambert: too flat at this scale" if rows[1] < NEARLY_LAMBERT_ROWS else \
-            " - sharper than the LUT's last row: clamped" if k95 > hi else ""
-        return (f"skin: LUT rows {rows[0]:.0f}-{rows[1]:.0f}% (1/r {k5:.2g}-{k95:.2g} /{unit} of {lo:.2g}-{hi:.2g}); "
-                f"{scale}{why}")
+        why = " - nearly Lambert here" if rows[1] < NEARLY_LAMBERT_ROWS else " - clamped at the LUT's end" \
+            if k95 > hi else ""
+        return f"skin: LUT rows {rows[0]:.0f}-{rows[1]:.0f}% (1/r {k5:.2g}-{k95:.2g}/{unit}); {scale}{why}"
 
     def attribute_of(self, item):
         return item.data["skin"].curvature_attribute
