@@ -46,7 +46,9 @@ def test_translucency_is_brighter_where_thin(baked_spot):
     brightness = translucent.mean(axis=2)
     corr = np.corrcoef(t[mask], brightness[mask])[0, 1]
     assert corr < -0.3, corr
-    thin, thick = mask & (t < 0.3), mask & (t > 0.7)
+    # the thickness panel's scale is fixed (0 to a round length), not stretched: thin and thick by quartile
+    low, high = np.percentile(t[mask], [25, 75])
+    thin, thick = mask & (t < low), mask & (t > high)
     assert thin.sum() > 50 and thick.sum() > 50
     assert brightness[thin].mean() > 1.5 * brightness[thick].mean()
 
@@ -81,11 +83,36 @@ SIZE = 192
 
 
 @pytest.fixture(scope="module")
-def sheet(tmp_path_factory):
+def baked_all(tmp_path_factory):
     out = tmp_path_factory.mktemp("preview_all") / "spot.glb"
     save(baker.bake(SPOT, bakes=BAKES, seed=1, options=OPTIONS), out)
     assert_khronos_clean(out)
-    return preview(out, size=SIZE, azimuth=60, elevation=15)
+    return out
+
+
+@pytest.fixture(scope="module")
+def sheet(baked_all):
+    return preview(baked_all, size=SIZE, azimuth=60, elevation=15)
+
+
+def test_skin_label_says_which_lut_rows_the_asset_reads(baked_all, sheet):
+    """The skin panel's label gives the rows of the LUT's curvature axis that the asset's baked curvature (5th-95th
+    percentile, concave as flat) reads, and the scale the bake assumed (spot as a 2 mm miniature)."""
+    from baker.gltf.document import GltfDocument
+
+    doc = GltfDocument.load(baked_all)
+    skin = doc.json["materials"][0]["extensions"]["BAKER_skin_lut"]
+    prim = doc.json["meshes"][0]["primitives"][0]
+    count = len(doc.accessor(prim["attributes"]["POSITION"]))
+    curvature = doc.accessor(prim["attributes"][skin["curvatureAttribute"]]).reshape(count, -1)[:, 0]
+    lut = np.maximum(curvature, 0) * skin["curvatureScale"]
+    lo, hi = skin["curvatureRange"]
+    rows = [(np.percentile(lut, q) - lo) / (hi - lo) * 100 for q in (5, 95)]
+    label = next(label for name, label, _ in sheet.panels if name == "skin")
+    print(label, rows)
+    assert f"LUT rows {max(rows[0], 0):.0f}-{min(rows[1], 100):.0f}%" in label
+    assert "1 unit = 2 mm" in label
+    assert ("clamped" in label) == (np.percentile(lut, 95) > hi)
 
 
 def _lum(image):
@@ -271,9 +298,10 @@ def test_normal_blur_panel_is_softest_in_red(tmp_path):
 
 
 def test_skin_panel_reads_the_diffuse_normals(tmp_path):
-    """The same bumped sphere baked with skin alone and with normal-blur + skin. The preview's skin panel shades with
-    the interpolated normal, so skin alone shows no bump; with normal-blur it reads the LUT with the per-channel
-    blurred normals: the bump shows, softest in red."""
+    """The same bumped sphere baked with skin alone and with normal-blur + skin. Skin alone blends the normal map's
+    normal with the interpolated one per channel (Penner's normal blending; red takes the smooth normal), so its red
+    channel shows no bump; with normal-blur it reads the LUT with the per-channel blurred normals: the bump shows in
+    red too, softest there."""
     from tests.techniques.test_normal_blur import bump_sphere
 
     source = bump_sphere(tmp_path / "sphere.glb", "v", segments=128, rings=64, size=256)
@@ -289,3 +317,196 @@ def test_skin_panel_reads_the_diffuse_normals(tmp_path):
     print("skin panel detail (R, G, B)", details)
     assert details["skin"][0] < 0.5 * details["blurred"][0]
     assert details["blurred"][0] < 0.75 * details["blurred"][2]
+
+
+# ---------------------------------------------------------------------------------------------------- material, grooms
+def _object(result, name):
+    """A panel's pixels and the mask of the object in it (pixels away from the background), eroded off the edge."""
+    image = _panel(result, name)
+    return image, ndimage.binary_erosion(_covered(image), iterations=2)
+
+
+def test_reference_panel_uses_the_mtl_base_colour(tmp_path):
+    """An OBJ whose MTL has a red Kd previews red: the reference panel (and a technique panel) shade with the
+    material's base colour, so the sheet's first panel is the asset as it was."""
+    import trimesh
+
+    sphere = trimesh.creation.icosphere(subdivisions=3)
+    lines = ["mtllib red.mtl", "usemtl red"] + [f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in sphere.vertices] + \
+        [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in sphere.faces]
+    (tmp_path / "red.obj").write_text("\n".join(lines) + "\n")
+    (tmp_path / "red.mtl").write_text("newmtl red\nKd 0.9 0.05 0.05\n")
+    out = tmp_path / "red.glb"
+    assert main(["bake", str(tmp_path / "red.obj"), "--bakes", "toon", "-o", str(out), "-q"]) == 0
+    result = preview(out, size=128)
+    for name in ("lambert", "toon"):
+        image, inside = _object(result, name)
+        r, g, b = (image[..., c][inside].mean() for c in range(3))
+        print(name, "mean RGB of the object", r, g, b, int(inside.sum()))
+        assert inside.sum() > 1000 and r > 3 * g and r > 3 * b
+
+
+def _normal_mapped_plane(path, normal_rgb):
+    """A unit square facing +Z with UVs (u along +X), its material a constant tangent-space normal map."""
+    import trimesh
+    from PIL import Image
+
+    plane = trimesh.Trimesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2], [0, 2, 3]], process=False)
+    material = trimesh.visual.material.PBRMaterial(
+        baseColorFactor=[204, 204, 204, 255], metallicFactor=0.0, roughnessFactor=0.5,
+        normalTexture=Image.new("RGB", (8, 8), tuple(int(c) for c in normal_rgb)))
+    plane.visual = trimesh.visual.TextureVisuals(uv=[[0, 0], [1, 0], [1, 1], [0, 1]], material=material)
+    plane.export(str(path))
+    return path
+
+
+def test_reference_panel_uses_the_normal_map(tmp_path):
+    """A plane whose normal map tilts every normal 45 degrees towards +u (+X, the key light's side) is brighter
+    than the same plane with the flat normal map, and one tilted towards -u darker (tangent frame from the
+    derivatives: the plane has no TANGENT)."""
+    mean = {}
+    for name, rgb in (("flat", (128, 128, 255)), ("right", (218, 128, 218)), ("left", (38, 128, 218))):
+        result = preview(_normal_mapped_plane(tmp_path / f"{name}.glb", rgb), size=96, azimuth=0, elevation=0)
+        image, inside = _object(result, "lambert")
+        assert inside.sum() > 2000
+        mean[name] = float(_lum(image)[inside].mean())
+    print("plane luminance by normal map", mean)
+    assert mean["right"] > mean["flat"] + 0.05 and mean["left"] < mean["flat"] - 0.05
+
+
+def _lines_gltf(path, mode):
+    """A groom of 40 wavy strands of 12 points as one LINES (mode 1) or LINE_STRIP-per-strand primitive set,
+    no triangles, no material."""
+    import base64
+    import json
+
+    rng = np.random.default_rng(0)
+    t = np.linspace(0.0, 1.0, 12)[:, None]
+    strands = [rng.uniform(-0.5, 0.5, 3) * [1, 0, 1] + t * [0.1 * np.sin(s), 1.0, 0.1 * np.cos(s)]
+               + 0.05 * np.sin(6 * t) * [1, 0, 0] for s in range(40)]
+    positions = np.concatenate(strands).astype(np.float32)
+    if mode == 1:
+        indices = [np.stack([np.arange(11), np.arange(1, 12)], 1).reshape(-1) + 12 * s for s in range(40)]
+    else:
+        indices = [np.arange(12) + 12 * s for s in range(40)]
+    blobs = [positions.tobytes()] + [i.astype(np.uint32).tobytes() for i in indices]
+    offsets = np.cumsum([0] + [len(b) for b in blobs])
+    data = b"".join(blobs)
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+           "buffers": [{"byteLength": len(data),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+           "bufferViews": [{"buffer": 0, "byteOffset": int(offsets[k]), "byteLength": len(b)}
+                           for k, b in enumerate(blobs)],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                          "min": positions.min(0).tolist(), "max": positions.max(0).tolist()}]
+           + [{"bufferView": k + 1, "componentType": 5125, "count": len(i), "type": "SCALAR"}
+              for k, i in enumerate(indices)],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1 + k, "mode": mode}
+                                      for k in range(len(indices))]}]}
+    path.write_text(json.dumps(doc))
+    return path
+
+
+@pytest.mark.parametrize("mode", [1, 3])
+def test_lines_only_groom_previews_as_strands(tmp_path, mode):
+    """A glTF holding only line primitives (a groom) previews: exit 0 and the strands drawn in the reference panel,
+    spread over the frame (the 40 strands, not one blob)."""
+    source = _lines_gltf(tmp_path / "groom.gltf", mode)
+    out = tmp_path / "sheet.png"
+    assert main(["preview", str(source), "-o", str(out), "--size", "128", "-q"]) == 0
+    sheet = read_image(out).astype(np.float64) / 255.0
+    label_h = max(18, 128 // 16)
+    strands = _covered(sheet[label_h:, :128, :3])
+    columns = strands.any(axis=0)
+    print("strand pixels", int(strands.sum()), "columns crossed", int(columns.sum()))
+    assert 200 < strands.sum() < 0.4 * strands.size and columns.sum() > 40
+
+
+# ---------------------------------------------------------------------------------------------------- at the asset's scale
+MESHES = Path("/work/shared/assets/meshes")
+
+
+@pytest.fixture(scope="module", params=["bunny", "spot"])
+def toon_caustics_sheet(request, tmp_path_factory):
+    """Toon and caustics baked with their defaults (fewer, smaller caustic frames) on the Stanford bunny (0.2 units
+    tall: the default 2-unit caustic tile is 10x the asset) and spot."""
+    source = MESHES / "stanford-bunny.obj" if request.param == "bunny" else SPOT
+    out = tmp_path_factory.mktemp("scale") / f"{request.param}.glb"
+    save(baker.bake(source, bakes=["toon", "caustics"], seed=1, options={"caustics": {"size": 128, "frames": 2}}), out)
+    return preview(out, size=SIZE)
+
+
+def test_toon_shows_every_band(toon_caustics_sheet):
+    """Under the grazing key light the ramp's three bands all show: the most common tone covers at most 80% of the
+    object, and each band at least 3%."""
+    _, inside = _object(toon_caustics_sheet, "lambert")
+    toon = _lum(_panel(toon_caustics_sheet, "toon"))[inside]
+    levels, counts = np.unique(np.round(toon * 255).astype(int), return_counts=True)
+    share = counts / inside.sum()
+    print("toon tones", levels[share > 0.01], share[share > 0.01])
+    assert share.max() <= 0.8
+    assert (share > 0.03).sum() == 3
+
+
+def test_caustics_detail_at_the_asset_scale(toon_caustics_sheet):
+    """The caustic network shows on the object at its scale: the mean luminance gradient inside the object, over
+    its mean luminance, is at least 1.5x the reference panel's; the label says at which tile size."""
+    _, inside = _object(toon_caustics_sheet, "lambert")
+
+    def detail(image):
+        lum = _lum(image)
+        gy, gx = np.gradient(lum)
+        return np.hypot(gx, gy)[inside].mean() / lum[inside].mean()
+
+    reference, caustics = detail(_panel(toon_caustics_sheet, "lambert")), detail(_panel(toon_caustics_sheet, "caustics"))
+    label = next(label for name, label, _ in toon_caustics_sheet.panels if name == "caustics")
+    print("detail reference", reference, "caustics", caustics, label)
+    assert caustics >= 1.5 * reference
+    assert "tile 2" in label
+
+
+def test_caustics_do_not_stretch_on_vertical_faces(tmp_path):
+    """On a box's vertical faces the floor projection along a near-vertical sun would smear the pattern into
+    vertical stripes (no luminance change up the face); the triplanar read keeps it as varied vertically as
+    horizontally."""
+    import trimesh
+
+    box = tmp_path / "box.glb"
+    trimesh.creation.box(extents=[1.0, 1.0, 1.0]).export(str(box))
+    out = tmp_path / "caustics.glb"
+    save(baker.bake(box, bakes=["caustics"], seed=1, options={"caustics": {"size": 128, "frames": 2}}), out)
+    image, inside = _object(preview(out, size=SIZE, azimuth=0, elevation=0), "caustics")  # the +Z face, head on
+    lum = _lum(image)
+    gy, gx = np.gradient(lum)
+    vertical, horizontal = np.abs(gy)[inside].mean(), np.abs(gx)[inside].mean()
+    print("caustics on a vertical face: mean |d/dy|", vertical, "|d/dx|", horizontal)
+    assert inside.sum() > 2000 and vertical > 0.5 * horizontal and horizontal > 0.005
+
+
+def test_thickness_on_a_fixed_scale_with_a_legend(tmp_path):
+    """A unit cube's thickness (0.46-0.9: a mean over the rays' lengths) maps onto the fixed scale 0-1 m (the
+    round length at or above its largest value): the object covers a narrow part of the colour ramp instead of being stretched over all of it; the colour
+    bar runs from the ramp's thin end to its thick end and the label gives the scale and the asset's range."""
+    import trimesh
+
+    from baker.gltf.document import GltfDocument
+
+    box = tmp_path / "box.glb"
+    trimesh.creation.box(extents=[1.0, 1.0, 1.0]).subdivide().subdivide().export(str(box))
+    out = tmp_path / "thick.glb"
+    save(baker.bake(box, bakes=["thickness"], seed=1, options={"thickness": {"rays": 16, "per_texel": False}}), out)
+    doc = GltfDocument.load(out)
+    values = np.concatenate([doc.accessor(p["attributes"]["_THICKNESS"]).reshape(len(doc.accessor(
+        p["attributes"]["POSITION"])), -1)[:, 0] for m in doc.json["meshes"] for p in m["primitives"]])
+    result = preview(out, size=SIZE, panels=["thickness"])
+    image, inside = _object(result, "thickness")
+    size = image.shape[0]
+    t = (image[..., 2] - 0.1) / 0.8  # mix(orange, blue, t): blue 0.1 -> 0.9
+    spread = np.percentile(t[inside & (np.arange(size)[:, None] < 0.9 * size)], [5, 95])
+    label = result.panels[0][1]
+    print("thickness values", values.min(), values.max(), "colour t 5-95%", spread, label)
+    assert 0.5 < values.max() <= 1.0 and spread[1] - spread[0] < 0.3
+    assert abs(np.median(t[inside]) - np.median(values)) < 0.1  # t = thickness / 1 m
+    assert "bar 0-1 m" in label and f"{values.max():.3g}" in label
+    bar = image[size - 5, :, :]  # inside the bar along the bottom edge
+    assert np.allclose(bar[8], [0.95, 0.35, 0.1], atol=0.03) and np.allclose(bar[-8], [0.1, 0.3, 0.9], atol=0.03)

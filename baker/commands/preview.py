@@ -26,5 +26,5 @@ def run(args) -> int:
 
     # preview() takes an Asset as well as a path: loaded here under the URI roots and the memory limit
     args.input = memory.load_asset(args.input, memory.parse_limit(args.max_memory), what="previewing this asset",
-                                   allow_outside=args.allow_outside)
+                                   allow_outside=args.allow_outside, require_triangles=False)  # a groom: lines
     return main(args)

@@ -46,6 +46,7 @@ class DrawItem:
     primitive_index: int | None = None
     material_index: int | None = None
     data: dict = field(default_factory=dict)  # what panels read for this item (``Panel.read_item``), by key
+    tangents: np.ndarray | None = None  # (n, 4) float32, world space xyz + handedness w (the TANGENT attribute)
 
 
 @dataclass
@@ -163,6 +164,135 @@ def transform_normals(normals, world) -> np.ndarray:
     return (n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-20)).astype(np.float32)
 
 
+def world_tangents(tangents, world, count: int) -> np.ndarray | None:
+    """glTF TANGENT (xyz, w handedness) in world space; None when it does not match the vertices."""
+    tangents = np.asarray(tangents, np.float64)
+    if tangents.shape != (count, 4):
+        return None
+    xyz = tangents[:, :3] @ world[:3, :3].T
+    xyz /= np.maximum(np.linalg.norm(xyz, axis=1, keepdims=True), 1e-20)
+    # a mirroring world matrix flips the frame's handedness
+    w = tangents[:, 3] * np.sign(np.linalg.det(world[:3, :3]) or 1.0)
+    return np.concatenate([xyz, w[:, None]], axis=1).astype(np.float32)
+
+
+@dataclass
+class SurfaceMaterial:
+    """What every panel shades with from a glTF material: the base colour (factor, linear; texture, sRGB) and the
+    tangent-space normal map. Without a base colour the preview's neutral grey stands in (glTF's default white
+    would clip the lit side)."""
+
+    base_color: tuple = (0.8, 0.8, 0.8, 1.0)
+    base_texture: int | None = None
+    base_texcoord: int = 0
+    normal_texture: int | None = None
+    normal_texcoord: int = 0
+    normal_scale: float = 1.0
+
+
+def texture_reference(ref, texture_count: int) -> tuple[int | None, int]:
+    """(texture index, texcoord set) of a glTF textureInfo; index None when it names no texture of the file."""
+    if not isinstance(ref, dict):
+        return None, 0
+    index, texcoord = ref.get("index"), ref.get("texCoord", 0)
+    valid = isinstance(index, int) and not isinstance(index, bool) and 0 <= index < texture_count
+    return (index if valid else None), (texcoord if isinstance(texcoord, int) else 0)
+
+
+def surface_material(material: dict, texture_count: int) -> SurfaceMaterial:
+    pbr = material.get("pbrMetallicRoughness") if isinstance(material, dict) else None
+    pbr = pbr if isinstance(pbr, dict) else {}
+    factor = pbr.get("baseColorFactor")
+    base_texture, base_texcoord = texture_reference(pbr.get("baseColorTexture"), texture_count)
+    normal = material.get("normalTexture") if isinstance(material, dict) else None
+    normal_texture, normal_texcoord = texture_reference(normal, texture_count)
+    scale = normal.get("scale", 1.0) if isinstance(normal, dict) else 1.0
+    if isinstance(factor, list) and len(factor) == 4 and all(isinstance(c, (int, float)) for c in factor):
+        base_color = tuple(float(c) for c in factor)
+    elif base_texture is not None:
+        base_color = (1.0, 1.0, 1.0, 1.0)  # glTF's default factor, multiplying the texture
+    else:
+        base_color = SurfaceMaterial.base_color
+    return SurfaceMaterial(base_color, base_texture, base_texcoord, normal_texture, normal_texcoord,
+                           float(scale) if isinstance(scale, (int, float)) else 1.0)
+
+
+def material_inputs(scene: "Scene", ctx, item: DrawItem) -> tuple[dict, dict, dict]:
+    """(uniforms, textures, per-vertex arrays) of the item's base colour and normal map for the surface shaders."""
+    textures_in_file = len(scene.doc.json.get("textures", [])) if scene.doc is not None else 0
+    m = surface_material(item.material, textures_in_file)
+    n = len(item.positions)
+    base = m.base_texture is not None and m.base_texcoord in item.texcoords
+    normal = m.normal_texture is not None and m.normal_texcoord in item.texcoords
+    uniforms = {"u_baseColorFactor": m.base_color, "u_hasBaseColorTexture": int(base),
+                "u_hasNormalTexture": int(normal), "u_normalScale": m.normal_scale,
+                "u_hasTangent": int(item.tangents is not None)}
+    textures = {}
+    if base:
+        textures["u_baseColorTexture"] = scene.texture(ctx, m.base_texture, repeat=True, srgb=True)
+    if normal:
+        textures["u_normalTexture"] = scene.texture(ctx, m.normal_texture, repeat=True)
+    zeros = np.zeros((n, 2), np.float32)
+    arrays = {"a_baseUV": item.texcoords[m.base_texcoord] if base else zeros,
+              "a_normalUV": item.texcoords[m.normal_texcoord] if normal else zeros,
+              "a_tangent": item.tangents if item.tangents is not None else np.zeros((n, 4), np.float32)}
+    return uniforms, textures, arrays
+
+
+MODE_LINES, MODE_LINE_LOOP, MODE_LINE_STRIP = 1, 2, 3
+
+
+@dataclass
+class Lines:
+    """A plain line primitive (no BAKER_hair: the hair panel draws those) in world space: a groom's strands."""
+
+    positions: np.ndarray  # (n, 3) float32
+    tangents: np.ndarray  # (n, 3) float32, unit, along the strand
+    segments: np.ndarray  # (m, 2) uint32
+    color: tuple  # linear RGB base colour
+
+
+def line_segments(asset: Asset, mesh: int, primitive: int) -> np.ndarray | None:
+    """The (m, 2) vertex pairs of a LINES / LINE_STRIP / LINE_LOOP primitive; None for other modes."""
+    prim = asset.meshes()[mesh]["primitives"][primitive]
+    mode = prim.get("mode", 4)
+    if mode not in (MODE_LINES, MODE_LINE_LOOP, MODE_LINE_STRIP) or "POSITION" not in prim.get("attributes", {}):
+        return None
+    count = asset.doc.json["accessors"][prim["attributes"]["POSITION"]]["count"]
+    order = asset.doc.accessor(prim["indices"]).reshape(-1).astype(np.int64) if "indices" in prim \
+        else np.arange(count, dtype=np.int64)
+    if len(order) and (order.min() < 0 or order.max() >= count):
+        raise BakerError(asset.source, f"/meshes/{mesh}/primitives/{primitive}/indices: index out of range "
+                                       f"(POSITION has {count} vertices)")
+    if mode == MODE_LINES:
+        segments = order[: len(order) // 2 * 2].reshape(-1, 2)
+    else:
+        chain = np.concatenate([order, order[:1]]) if mode == MODE_LINE_LOOP and len(order) > 2 else order
+        segments = np.stack([chain[:-1], chain[1:]], axis=1) if len(chain) > 1 else np.zeros((0, 2), np.int64)
+    return segments
+
+
+def world_lines(asset: Asset, mesh: int, primitive: int, world: np.ndarray) -> Lines | None:
+    """A line primitive in world space with per-vertex tangents (the mean direction of its segments)."""
+    from baker.gltf.accessors import to_float
+
+    segments = line_segments(asset, mesh, primitive)
+    if segments is None or not len(segments):
+        return None
+    prim = asset.meshes()[mesh]["primitives"][primitive]
+    positions = transform_points(to_float(asset.doc, prim["attributes"]["POSITION"]), world)
+    direction = (positions[segments[:, 1]] - positions[segments[:, 0]]).astype(np.float64)
+    tangents = np.zeros((len(positions), 3))
+    np.add.at(tangents, segments[:, 0], direction)
+    np.add.at(tangents, segments[:, 1], direction)
+    tangents /= np.maximum(np.linalg.norm(tangents, axis=1, keepdims=True), 1e-20)
+    materials = asset.doc.json.get("materials", [])
+    index = prim.get("material")
+    material = materials[index] if isinstance(index, int) and 0 <= index < len(materials) else {}
+    color = surface_material(material, 0).base_color[:3]
+    return Lines(positions, tangents.astype(np.float32), segments.astype(np.uint32), color)
+
+
 def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
     """Everything the default scene draws: the triangle primitives as DrawItems, and what each panel gathers.
 
@@ -182,6 +312,11 @@ def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
         for panel in panels:
             panel.gather(scene, asset, mesh, world, node)
         prims = asset.meshes()[mesh].get("primitives", [])
+        for p, prim in enumerate(prims):
+            if "BAKER_hair" not in (prim.get("extensions") or {}):
+                lines = world_lines(asset, mesh, p, world)
+                if lines is not None:
+                    scene.add("lines", lines)
         for p in asset.triangle_primitives(mesh):
             if any(panel.skips(asset, mesh, p) for panel in panels):
                 continue  # no surface (e.g. degenerate fin quads)
@@ -197,14 +332,16 @@ def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
             texcoords = {int(k.split("_")[1]): doc.accessor(a).astype(np.float32)
                          for k, a in prim["attributes"].items() if k.startswith("TEXCOORD_")}
             index = g.material if g.material is not None and g.material < len(materials) else None
+            tangents = world_tangents(doc.accessor(prim["attributes"]["TANGENT"]), world, len(g.positions)) \
+                if "TANGENT" in prim["attributes"] else None
             item = DrawItem(transform_points(g.positions, world), transform_normals(normals, world),
                             g.faces.astype(np.uint32), attributes, materials[index] if index is not None else {},
-                            texcoords, prim, mesh=mesh, primitive_index=p, material_index=index)
+                            texcoords, prim, mesh=mesh, primitive_index=p, material_index=index, tangents=tangents)
             for panel in panels:
                 panel.read_item(doc, item)
             scene.items.append(item)
     if not scene.drawables():
-        raise BakerError(asset.source, "nothing to preview (no triangle primitives, text or hair in the scene)")
+        raise BakerError(asset.source, "nothing to preview (no triangle or line primitives, text or hair in the scene)")
     return scene
 
 
@@ -259,7 +396,7 @@ def frame_camera(items, azimuth: float = 30.0, elevation: float = 15.0, fov: flo
 
 
 # ---------------------------------------------------------------------------------------------------- panels
-LAMBERT = "color = vec3(0.8) * (0.15 + 0.85 * max(dot(N, u_light), 0.0));"
+LAMBERT = "color = albedo * (0.15 + 0.85 * max(dot(N, u_light), 0.0));"
 
 
 def module_text(modules) -> str:
@@ -310,7 +447,10 @@ class Panel:
     declarations: str
     body: str
     attribute: str | None = None  # the per-vertex attribute bound to ``a_scalar``
-    light: str = "front"  # "front" (over the camera's shoulder) or "back" (behind the object)
+    # "side": the key light of the sheet, grazing from the right so the terminator (where skin, normal-blur and toon
+    # show) is in view and every panel compares with the reference under the same light; "front" (over the
+    # camera's shoulder) or "back" (behind the object)
+    light: str = "side"
     needs: tuple = ()  # attributes that must be present for the panel to show
     inputs: str = ""  # extra fragment inputs
     vertex_modules: tuple = ()
@@ -325,6 +465,14 @@ class Panel:
 
     def applies(self, item: DrawItem) -> bool:
         return all(n in item.attributes for n in self.needs)
+
+    def describe(self, scene: Scene) -> str:
+        """The panel's label on this scene (what it shows at which scale, or why it cannot show)."""
+        return self.label
+
+    def decorate(self, image: np.ndarray, scene: Scene) -> np.ndarray:
+        """The rendered panel with what the panel draws over it (a legend); (size, size, 3) float32 in [0, 1]."""
+        return image
 
     def attribute_of(self, item: DrawItem) -> str | None:
         return self.attribute
@@ -365,7 +513,19 @@ class Panel:
         draw_surfaces(ctx, self, scene, camera, size)
 
 
-REFERENCE = Panel("lambert", "shaded (reference)", (), "", LAMBERT, order=-math.inf)
+class ReferencePanel(Panel):
+    """The "before" picture: the surfaces with the material's base colour and normal map under a Lambert light,
+    and plain line primitives (a groom) as shaded lines."""
+
+    def available(self, scene) -> bool:
+        return super().available(scene) or (isinstance(scene, Scene) and bool(scene.part("lines")))
+
+    def draw(self, ctx, scene, camera, size):
+        draw_surfaces(ctx, self, scene, camera, size)
+        draw_lines(ctx, scene, camera, size, light_direction(camera, self.light))
+
+
+REFERENCE = ReferencePanel("lambert", "shaded (reference)", (), "", LAMBERT, order=-math.inf)
 
 
 def all_panels() -> list:
@@ -394,11 +554,15 @@ def create_context():
 
 
 def light_direction(camera: Camera, where: str) -> np.ndarray:
-    """Unit direction to the light: over the camera's right shoulder, or behind the object facing the camera."""
+    """Unit direction to the light: over the camera's right shoulder, from the right at a grazing angle (the
+    terminator runs through the middle of the view, so N.L takes every value from -1 to 1 on the visible side), or
+    behind the object facing the camera."""
     f = camera.forward
     right = np.cross(f, [0.0, 1.0, 0.0])
     right = right / (np.linalg.norm(right) or 1.0)
-    if where == "back":
+    if where == "side":
+        d = right + np.array([0.0, 0.3, 0.0]) - 0.15 * f
+    elif where == "back":
         d = f + 0.25 * right + np.array([0.0, 0.2, 0.0])  # from behind, a little off-axis so the lobe shows
     else:
         d = -f + 0.5 * right + np.array([0.0, 0.5, 0.0])
@@ -434,8 +598,10 @@ def draw_surfaces(ctx, panel: Panel, scene, camera: Camera, size: int, extra: di
         if use.name not in programs:
             programs[use.name] = ctx.program(vertex_shader=use.vertex_shader(), fragment_shader=use.fragment_shader())
         program = programs[use.name]
-        set_uniforms(program, dict(common, **use.uniforms(item)))
-        for unit, (name, texture) in enumerate(use.textures(scene, ctx, item).items()):
+        material_uniforms, material_textures, material_arrays = material_inputs(scene, ctx, item)
+        set_uniforms(program, dict(common, **material_uniforms, **use.uniforms(item)))
+        textures = dict(material_textures, **use.textures(scene, ctx, item))
+        for unit, (name, texture) in enumerate(textures.items()):
             texture.use(location=unit)
             set_uniforms(program, {name: unit})
         n = len(item.positions)
@@ -445,7 +611,7 @@ def draw_surfaces(ctx, panel: Panel, scene, camera: Camera, size: int, extra: di
         uv = item.texcoords.get(use.texcoord(item), np.zeros((n, 2), np.float32))
         outline = item.attributes.get("_OUTLINE_NORMAL", item.normals)
         arrays = {"POSITION": item.positions, "NORMAL": item.normals, "a_scalar": scalar, "TEXCOORD_0": uv,
-                  "a_outline": outline}
+                  "a_outline": outline, **material_arrays}
         corners = item.faces.reshape(-1)
         if use.expand:
             arrays = {k: v[corners] for k, v in arrays.items()}
@@ -469,6 +635,32 @@ def draw_surfaces(ctx, panel: Panel, scene, camera: Camera, size: int, extra: di
             obj.release()
     for program in programs.values():
         program.release()
+
+
+def draw_lines(ctx, scene: Scene, camera: Camera, size: int, light: np.ndarray) -> None:
+    """The scene's plain line primitives, about size / 256 pixels wide (1 where the driver has no wide lines)."""
+    lines = scene.part("lines")
+    if not lines:
+        return
+    program = ctx.program(vertex_shader=program_source("preview_lines.vert.glsl"),
+                          fragment_shader=program_source("preview_lines.frag.glsl"))
+    vp = (camera.projection @ camera.view).astype(np.float32)
+    try:
+        ctx.line_width = max(1.0, size / 256.0)
+    except Exception:  # core profiles may refuse wide lines: thin ones still show the strands
+        pass
+    for strand_set in lines:
+        set_uniforms(program, {"u_viewProjection": vp.T.tobytes(), "u_light": tuple(float(v) for v in light),
+                               "u_baseColor": tuple(float(c) for c in strand_set.color)})
+        vbo = ctx.buffer(np.ascontiguousarray(strand_set.positions, np.float32).tobytes())
+        tbo = ctx.buffer(np.ascontiguousarray(strand_set.tangents, np.float32).tobytes())
+        ibo = ctx.buffer(np.ascontiguousarray(strand_set.segments, np.uint32).tobytes())
+        vao = ctx.vertex_array(program, [(vbo, "3f", "POSITION"), (tbo, "3f", "a_tangent")],
+                               index_buffer=ibo, index_element_size=4, mode=ctx.LINES)
+        vao.render()
+        for obj in (vao, vbo, tbo, ibo):
+            obj.release()
+    program.release()
 
 
 def render_panel(ctx, panel: Panel, items, camera: Camera, size: int, samples: int = 4) -> np.ndarray:
@@ -499,7 +691,8 @@ class Preview:
 def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: float = 15.0,
             panels: list[str] | None = None) -> Preview:
     """Render every available panel of an asset into a contact sheet."""
-    asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset)
+    # a groom (lines only) has no triangle faces: the reference panel draws its strands
+    asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset, require_triangles=False)
     known = all_panels()
     scene = gather_scene(asset, known)
     if panels is not None:
@@ -513,7 +706,8 @@ def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: fl
     camera = frame_camera(scene, azimuth, elevation)
     ctx = create_context()
     try:
-        images = [(p, render_panel(ctx, p, scene, camera, size)) for p in chosen]
+        images = [(p, p.decorate(render_panel(ctx, p, scene, camera, size), scene)) for p in chosen]
+        labels = [p.describe(scene) for p in chosen]
     finally:
         scene.release()
         ctx.release()
@@ -522,11 +716,11 @@ def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: fl
     rows = math.ceil(len(images) / cols)
     sheet = np.full((rows * (size + label_h), cols * size, 3), 24, np.uint8)
     placed = []
-    for k, (panel, image) in enumerate(images):
+    for k, ((panel, image), label) in enumerate(zip(images, labels)):
         r, c = divmod(k, cols)
         y, x = r * (size + label_h) + label_h, c * size
         sheet[y: y + size, x: x + size] = np.round(image * 255).astype(np.uint8)
-        placed.append((panel.name, panel.label, (y, x, size)))
+        placed.append((panel.name, label, (y, x, size)))
     _draw_labels(sheet, [(label, y - label_h, x, label_h) for _, label, (y, x, _) in placed], size)
     return Preview(sheet, placed)
 
@@ -549,7 +743,11 @@ def _draw_labels(sheet: np.ndarray, labels, width: int) -> None:
                 font = ImageFont.truetype("DejaVuSans.ttf", size)
         except OSError:
             font = ImageFont.load_default()
-        draw.text((x + 6, y + (h - size) * 0.5), text, fill=(230, 230, 230), font=font)
+        # drawn in the panel's own strip: a label too long even at the smallest size is cut, not written over the
+        # next panel's
+        strip = image.crop((x, y, x + width, y + h))
+        ImageDraw.Draw(strip).text((6, (h - size) * 0.5), text, fill=(230, 230, 230), font=font)
+        image.paste(strip, (x, y))
     sheet[...] = np.asarray(image)
 
 

@@ -101,7 +101,7 @@ class WireframePanel(Panel):
 PANELS = [
     OutlinePanel("outline", "shell outline + fins", (), "", LAMBERT, order=60),
     WireframePanel("wireframe", "wireframe (mask)", ("baker_edges.glsl",), "",
-                   "vec3 fill = vec3(0.8) * (0.15 + 0.85 * max(dot(N, u_light), 0.0));\n"
+                   "vec3 fill = albedo * (0.15 + 0.85 * max(dot(N, u_light), 0.0));\n"
                    "    vec2 wire = baker_wireframe(v_bary, fwidth(v_bary), v_mask, u_width, 0.0);\n"
                    "    color = mix(fill, u_ink, wire.x);",
                    inputs="in vec3 v_bary;\nflat in int v_mask;", vertex_modules=("baker_edges.glsl",),

@@ -2,8 +2,13 @@
 three diffuse normal maps, in a tangent frame from screen-space derivatives (the preview passes no TANGENT)."""
 from __future__ import annotations
 
+import numpy as np
+
 from baker.preview.core import DrawItem, Panel
 from baker.techniques.normal_blur.extension import read
+
+
+FLAT = 0.02  # largest deviation of a decoded diffuse normal from +Z that counts as a flat map
 
 
 class NormalBlurPanel(Panel):
@@ -16,6 +21,14 @@ class NormalBlurPanel(Panel):
     def applies(self, item):
         blur = item.data.get("normal_blur")
         return super().applies(item) and blur is not None and blur.texcoord in item.texcoords
+
+    def describe(self, scene) -> str:
+        """The label, saying so when the diffuse normal maps are flat (no normal map detail to blur: the panel is
+        the reference's Lambert)."""
+        textures = {t for i in scene.items if self.applies(i) for t in i.data["normal_blur"].diffuse_textures}
+        flat = all(float(np.abs(scene.image(t)[..., :3] * 2.0 - 1.0 - np.array([0.0, 0.0, 1.0])).max()) < FLAT
+                   for t in textures) if textures else False
+        return f"{self.label} - flat normals: no normal map detail to blur" if flat else self.label
 
     def texcoord(self, item):
         return item.data["normal_blur"].texcoord
@@ -31,9 +44,9 @@ PANELS = [
     NormalBlurPanel("normal-blur", "diffuse normals blurred on the surface (R, G, B)", ("baker_normal_blur.glsl",),
                     "uniform sampler2D u_normalBlurRed;\nuniform sampler2D u_normalBlurGreen;\n"
                     "uniform sampler2D u_normalBlurBlue;",
-                    "mat3 tbn = baker_normal_blur_derivative_frame(N, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
+                    "mat3 tbn = baker_normal_blur_derivative_frame(Ng, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
                     "    vec3 lambert = baker_normal_blur_lambert(tbn, texture(u_normalBlurRed, v_uv).rgb,\n"
                     "        texture(u_normalBlurGreen, v_uv).rgb, texture(u_normalBlurBlue, v_uv).rgb, u_light, 1.0);\n"
-                    "    color = vec3(0.8) * (0.15 + 0.85 * lambert);",
+                    "    color = albedo * (0.15 + 0.85 * lambert);",
                     inputs="in vec2 v_uv;", order=32),
 ]

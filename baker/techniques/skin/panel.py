@@ -1,12 +1,19 @@
 """Preview panel of BAKER_skin_lut: Penner's pre-integrated skin (``runtime-shaders/baker_skin.glsl``), the LUT by
-N.L and the baked curvature (or the curvature estimated from screen-space derivatives when there is none); where the
+N.L and the baked curvature (or the curvature estimated from screen-space derivatives when there is none), N.L per
+channel from Penner's normal blending of the material's normal map with the interpolated normal; where the
 material also has BAKER_normal_blur, the LUT is read with its per-channel diffuse normals (``baker_normal_blur.glsl``,
 tangent frame from screen-space derivatives), as the three.js and Babylon.js hosts do."""
 from __future__ import annotations
 
-from baker.preview.core import DrawItem, Panel
+import numpy as np
+
+from baker.gltf.vertex_attributes import unpadded
+from baker.preview.core import DrawItem, Panel, Scene
 from baker.techniques.normal_blur.extension import read as read_normal_blur
 from baker.techniques.skin.extension import read
+
+
+NEARLY_LAMBERT_ROWS = 3.0  # % of the LUT's curvature axis: below, the profile barely reddens the terminator
 
 
 class SkinPanel(Panel):
@@ -19,6 +26,27 @@ class SkinPanel(Panel):
 
     def applies(self, item):
         return super().applies(item) and item.data.get("skin") is not None
+
+    def describe(self, scene: Scene) -> str:
+        """Which rows of the LUT the asset's curvature reads (5th-95th percentile of the baked curvature, concave
+        parts read row 0) and the mesh-unit scale the bake assumed: a subtle panel on a large asset is then told
+        apart from a bake that did nothing."""
+        items = [i for i in scene.items if self.applies(i)]
+        if not items:
+            return self.label
+        skin = items[0].data["skin"]
+        unit = skin.unit
+        scale = f"1 unit = {1.0 / skin.curvature_scale:.4g} {unit}" if skin.curvature_scale > 0 else "no scale"
+        values = [unpadded(i.attributes[self.attribute_of(i)], 1) for i in items if self.attribute_of(i) in i.attributes]
+        if not values:
+            return f"skin (curvature from screen derivatives; {scale})"
+        lo, hi = skin.curvature_range
+        curvature = np.maximum(np.concatenate(values).astype(np.float64), 0.0) * skin.curvature_scale
+        k5, k95 = np.percentile(curvature, [5.0, 95.0])
+        rows = np.clip((np.array([k5, k95]) - lo) / max(hi - lo, 1e-30), 0.0, 1.0) * 100.0
+        why = " - nearly Lambert here" if rows[1] < NEARLY_LAMBERT_ROWS else " - clamped at the LUT's end" \
+            if k95 > hi else ""
+        return f"skin: LUT rows {rows[0]:.0f}-{rows[1]:.0f}% (1/r {k5:.2g}-{k95:.2g}/{unit}); {scale}{why}"
 
     def attribute_of(self, item):
         return item.data["skin"].curvature_attribute
@@ -63,14 +91,14 @@ PANELS = [
               "uniform sampler2D u_diffuseBlue;",
               "float k = u_hasCurvature != 0 ? scalar : baker_skin_curvature_from_derivatives(fwidth(N), fwidth(P));\n"
               "    // derivatives outside the branch: they are undefined in non-uniform control flow\n"
-              "    mat3 tbn = baker_normal_blur_derivative_frame(N, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
-              "    vec3 ndotl = vec3(dot(N, u_light));\n"
+              "    mat3 tbn = baker_normal_blur_derivative_frame(Ng, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
+              "    vec3 ndotl = baker_skin_blended_ndotl(Ng, N, u_light, u_skin.normalBlend);\n"
               "    if (u_hasDiffuseNormals != 0) {\n"
               "        ndotl = baker_normal_blur_ndotl(\n"
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseRed, v_uv).rgb, 1.0)),\n"
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseGreen, v_uv).rgb, 1.0)),\n"
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseBlue, v_uv).rgb, 1.0)), u_light);\n"
               "    }\n"
-              "    color = vec3(0.8) * (0.15 + 0.85 * baker_skin_diffuse_normals(u_skin, u_lut, ndotl, k));",
+              "    color = albedo * (0.15 + 0.85 * baker_skin_diffuse_normals(u_skin, u_lut, ndotl, k));",
               attribute="_CURVATURE", inputs="in vec2 v_uv;", order=30),
 ]

@@ -36,6 +36,6 @@ PANELS = [
               "        : baker_xtoon(u_ramp, NdotL, u_xtoon == 1\n"
               "            ? baker_xtoon_detail_depth(length(u_eye - P), u_depthRange.x, u_depthRange.y)\n"
               "            : baker_xtoon_detail_orientation(N, V, u_orientationPower));\n"
-              "    color = vec3(shade);",
+              "    color = albedo * shade;",
               order=40),
 ]
