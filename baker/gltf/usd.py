@@ -62,6 +62,7 @@ Output bytes depend only on the document: no timestamps, no absolute paths, orde
 from __future__ import annotations
 
 import mimetypes
+import re
 import tempfile
 from pathlib import Path
 
@@ -284,7 +285,7 @@ def _interpolate(values, interpolation, indices, face_of_corner, n_points):
 
 
 # ====================================================================== writing
-def write_usd(doc, path, primitive_hooks=None, attribute_widths=None) -> list[Path]:
+def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> list[Path]:
     """Write ``doc`` (a :class:`~baker.gltf.document.GltfDocument`) as ``.usda``, ``.usdc``, ``.usd`` or ``.usdz``.
 
     The file is written atomically; textures go to ``<stem>_textures/`` beside it, or into the ``.usdz`` package.
@@ -292,17 +293,19 @@ def write_usd(doc, path, primitive_hooks=None, attribute_widths=None) -> list[Pa
     ``(stage, prim_path, parent_path, doc, mesh, primitive)`` that adds that extension's USD beside each mesh
     primitive carrying it (see :func:`baker.registry.usd_primitive_hooks`). ``attribute_widths`` maps a custom
     attribute name to its data's width (:func:`baker.registry.vertex_attribute_widths`): its primvar takes that many
-    components whatever the glTF layout padded it to.
+    components whatever the glTF layout padded it to. ``texture_color_spaces`` maps an extension name to a function
+    ``(params, json_path) -> "sRGB" | "raw"`` naming the colour space of each texture it references
+    (:func:`baker.registry.usd_texture_color_spaces`; without one, its textures are data: ``raw``).
     """
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".usd", ".usda", ".usdc", ".usdz"):
         raise BakerError(path, "output must end in .usd, .usda, .usdc or .usdz")
     if suffix == ".usdz":
-        _write_usdz(doc, path, primitive_hooks, attribute_widths)
+        _write_usdz(doc, path, primitive_hooks, attribute_widths, texture_color_spaces)
         return [path]
     folder = f"{path.stem}_textures"
-    layer, images = build_layer(doc, folder, primitive_hooks, attribute_widths)
+    layer, images = build_layer(doc, folder, primitive_hooks, attribute_widths, texture_color_spaces)
     # one atomic group, textures renamed first and the stage last: a reader never sees a stage whose textures are
     # missing, and a failed or killed run keeps every earlier file
     return write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])
@@ -318,10 +321,10 @@ def write_stage_and_textures(layer, path: Path, textures) -> list[Path]:
     return targets
 
 
-def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None) -> None:
+def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> None:
     from pxr import Sdf, UsdUtils
 
-    layer, images = build_layer(doc, "textures", primitive_hooks, attribute_widths)
+    layer, images = build_layer(doc, "textures", primitive_hooks, attribute_widths, texture_color_spaces)
     with tempfile.TemporaryDirectory(prefix=".baker-usdz-") as work:
         work = Path(work)
         root = work / f"{path.stem}.usdc"
@@ -384,7 +387,7 @@ class _Names:
         return candidate
 
 
-def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None):
+def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None):
     """Author the stage in memory; returns (root layer, [(texture file name, bytes)]) in a fixed order."""
     from pxr import Gf, Kind, Usd, UsdGeom
 
@@ -395,7 +398,8 @@ def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths
     stage.SetDefaultPrim(root)
     Usd.ModelAPI(root).SetKind(Kind.Tokens.component)  # one asset: what USDZ viewers and assemblies expect
 
-    writer = _Writer(doc, stage, texture_folder, primitive_hooks or {}, attribute_widths or {})
+    writer = _Writer(doc, stage, texture_folder, primitive_hooks or {}, attribute_widths or {},
+                     texture_color_spaces or {})
     writer.names.make("/Root", "Materials", "Materials")  # reserved: a node named "Materials" becomes Materials_1
     gltf = doc.json
     nodes = gltf.get("nodes", [])
@@ -427,7 +431,8 @@ def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths
 
 
 class _Writer:
-    def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict, attribute_widths: dict):
+    def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict, attribute_widths: dict,
+                 texture_color_spaces: dict):
         self.doc = doc
         self.primitive_hooks = primitive_hooks
         self.attribute_widths = attribute_widths
@@ -436,6 +441,9 @@ class _Writer:
         self.names = _Names()
         self.materials: dict[int, object] = {}  # glTF material -> UsdShade.Material
         self.image_paths: dict[int, str] = {}  # glTF image -> asset path
+        self.image_alpha: dict[int, bool] = {}  # glTF image -> has an alpha channel
+        self.data_textures: dict[tuple, object] = {}  # (material path, texture, texCoord, colour space) -> shader
+        self.texture_color_spaces = texture_color_spaces
         self.image_files: list = []
 
     # ------------------------------------------------------------------ geometry
@@ -498,7 +506,7 @@ class _Writer:
                          mesh_index, p)
 
     def _custom_primvar(self, primvars, key: str, acc: int) -> None:
-        from pxr import Sdf, Tf, UsdGeom, Vt
+        from pxr import Sdf, UsdGeom, Vt
 
         from baker.gltf.accessors import to_float
         from baker.gltf.vertex_attributes import TYPE_WIDTHS, WIDTH_TYPES, unpadded
@@ -516,7 +524,7 @@ class _Writer:
             return  # matrices: no vertex primvar type fits
         value_type, array_type = types[kind]
         data = np.ascontiguousarray(data)
-        name = "baker:" + Tf.MakeValidIdentifier(key.lstrip("_").lower())
+        name = primvar_name(key)[len("primvars:"):]
         primvars.CreatePrimvar(name, value_type, UsdGeom.Tokens.vertex).Set(array_type.FromNumpy(data))
 
     # ------------------------------------------------------------------ materials
@@ -578,13 +586,14 @@ class _Writer:
                 tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
                 surface.CreateInput("normal", Sdf.ValueTypeNames.Normal3f).ConnectToSource(tex.ConnectableAPI(), "rgb")
 
-        # the thickness texture: BAKER_thickness's (on every material baker bakes), else KHR_materials_volume's
+        # the thickness texture: BAKER_thickness's (on every material baker bakes), else KHR_materials_volume's;
+        # outputs:baker:thickness is its green channel (the thickness), for a consumer that wants the scalar
         volume = gltf.get("extensions", {}).get("KHR_materials_volume", {})
         baked = gltf.get("extensions", {}).get("BAKER_thickness", {})
         if not isinstance(baked.get("thicknessTexture"), dict):
             baked = volume
         if "thicknessTexture" in baked:
-            tex = self._texture(mat_path, "ThicknessTexture", baked["thicknessTexture"], "raw", readers)
+            tex = self._data_texture(mat_path, "ThicknessTexture", baked["thicknessTexture"], "raw", readers)
             if tex is not None:
                 out = tex.CreateOutput("g", Sdf.ValueTypeNames.Float)
                 material.CreateOutput("baker:thickness", Sdf.ValueTypeNames.Float).ConnectToSource(out)
@@ -596,19 +605,66 @@ class _Writer:
         for ext_name, params in gltf.get("extensions", {}).items():
             if ext_name.startswith("BAKER_") and isinstance(params, dict):
                 namespace = "baker:" + _valid_name(ext_name[6:])
-                custom_attributes(prim, namespace, params)
-                # every texture the extension references: a UsdUVTexture feeding the material output
-                # outputs:baker:<ext>:<json path> (float4 rgba), e.g. outputs:baker:skin_lut:lutTexture
+                custom_attributes(prim, namespace, usd_parameters(params))
+                # every texture the extension names: a UsdUVTexture shader feeding material outputs named after its
+                # JSON path, e.g. outputs:baker:skin_lut:lutTexture (rgb) and ...:lutTexture:a (alpha, if any)
+                color_space = self.texture_color_spaces.get(ext_name)
+                default_texcoord = params.get("texCoord") if isinstance(params.get("texCoord"), int) else 0
                 for path, info in _texture_infos(params):
+                    name = ":".join([namespace, *(f"_{k}" if isinstance(k, int) else _valid_name(k) for k in path)])
                     shader = "Baker_" + _valid_name("_".join([ext_name[6:], *map(str, path)]))
-                    tex = self._texture(mat_path, shader, info, "raw", readers)
-                    if tex is not None:
-                        out = tex.CreateOutput("rgba", Sdf.ValueTypeNames.Float4)
-                        name = ":".join([namespace, *(f"_{k}" if isinstance(k, int) else _valid_name(k) for k in path)])
-                        material.CreateOutput(name, Sdf.ValueTypeNames.Float4).ConnectToSource(out)
+                    space = color_space(params, path) if color_space else "raw"
+                    self.baker_texture(material, name, shader, info, space, readers, default_texcoord)
                 if isinstance(params.get("coverageMips"), list):
                     self._coverage_mips(prim, namespace + ":coverageMips", params["coverageMips"])
         return material
+
+    def baker_texture(self, material, output: str, shader_name: str, info: dict, color_space: str, readers: dict,
+                      default_texcoord: int = 0):
+        """One texture an extension names, as a USD consumer follows it: a ``UsdUVTexture`` under the material
+        (shared by every reference to the same texture, UV set and colour space) whose ``rgb`` feeds the material
+        output ``outputs:<output>`` (float3) and, when the image has alpha, ``a`` feeds ``outputs:<output>:a``.
+        Returns the shader, or None when the reference leads to no image."""
+        from pxr import Sdf, UsdShade
+
+        mat_path = str(material.GetPath())
+        tex = self._data_texture(mat_path, shader_name, info, color_space, readers, default_texcoord)
+        if tex is None:
+            return None
+        rgb = tex.GetOutput("rgb") or tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
+        material.CreateOutput(output, Sdf.ValueTypeNames.Float3).ConnectToSource(rgb)
+        source = self.doc.json["textures"][info["index"]]["source"]
+        if self._image_has_alpha(source):
+            alpha = tex.GetOutput("a") or tex.CreateOutput("a", Sdf.ValueTypeNames.Float)
+            material.CreateOutput(f"{output}:a", Sdf.ValueTypeNames.Float).ConnectToSource(alpha)
+        return UsdShade.Shader(tex.GetPrim())
+
+    def _data_texture(self, mat_path: str, shader_name: str, info: dict, color_space: str, readers: dict,
+                      default_texcoord: int = 0):
+        """A scale-free ``UsdUVTexture`` for ``info``, made once per material, texture, UV set and colour space (the
+        same texture named by two extensions, e.g. BAKER_thickness and KHR_materials_volume, is one shader)."""
+        if not isinstance(info, dict) or not isinstance(info.get("index"), int):
+            return None
+        texcoord = info.get("texCoord", default_texcoord)
+        key = (mat_path, info["index"], texcoord, color_space)
+        if key not in self.data_textures:
+            self.data_textures[key] = self._texture(mat_path, shader_name, dict(info, texCoord=texcoord),
+                                                    color_space, readers)
+        return self.data_textures[key]
+
+    def _image_has_alpha(self, index: int) -> bool:
+        """Whether glTF image ``index`` has an alpha channel (PNG/WebP modes LA, RGBA, ...); unreadable: no."""
+        if index not in self.image_alpha:
+            import io
+
+            from PIL import Image
+
+            try:
+                with Image.open(io.BytesIO(self.doc.image_bytes(index))) as image:
+                    self.image_alpha[index] = "A" in image.getbands()
+            except Exception:  # not an image PIL reads (e.g. KTX2): rgb only
+                self.image_alpha[index] = False
+        return self.image_alpha[index]
 
     def _coverage_mips(self, prim, namespace: str, entries: list) -> None:
         """Each coverage-preserving mip chain (:mod:`baker.gltf.alpha_mips`) as its KTX2 file beside the textures:
@@ -736,11 +792,57 @@ def custom_attributes(prim, namespace: str, params: dict) -> None:
         prim.CreateAttribute(name, type_name, custom=True).Set(value)
 
 
+def usd_parameters(params: dict) -> dict:
+    """An extension object's parameters as they mean something in USD (written by :func:`custom_attributes`).
+
+    glTF indices have no meaning in a stage, so none is kept: a texture reference keeps only its non-index fields
+    (``scale``, ``strength``; its image and UV set are the ``UsdUVTexture`` and primvar reader the writer connects);
+    a top-level ``texCoord`` (the UV set the extension's textures read) becomes ``texCoordPrimvar``, the primvar's
+    name; lists of objects (which hold accessor, mesh or texture indices, e.g. ``coverageMips``, ``fins``) are
+    left out; and a custom vertex attribute name (``"_THICKNESS"``) becomes the primvar USD carries it as
+    (``"primvars:baker:thickness"``).
+    """
+    out = {}
+    for key, value in params.items():
+        if key in ("extensions", "extras"):
+            continue
+        if _is_texture_info(value):
+            rest = {k: v for k, v in value.items() if k not in ("index", "texCoord", "extensions", "extras")}
+            if rest:
+                out[key] = rest
+        elif key == "texCoord" and isinstance(value, int) and not isinstance(value, bool):
+            out["texCoordPrimvar"] = _st_name(value)
+        elif isinstance(value, dict):
+            out[key] = usd_parameters(value)
+        elif isinstance(value, list) and any(isinstance(v, dict) for v in value):
+            continue
+        elif isinstance(value, str) and _CUSTOM_ATTRIBUTE.fullmatch(value):
+            out[key] = primvar_name(value)
+        else:
+            out[key] = value
+    return out
+
+
+_CUSTOM_ATTRIBUTE = re.compile(r"_[A-Z][A-Z0-9_]*")
+
+
+def primvar_name(attribute: str) -> str:
+    """The USD primvar a custom glTF vertex attribute is written as (``_PRINCIPAL_CURVATURES`` ->
+    ``primvars:baker:principal_curvatures``)."""
+    from pxr import Tf
+
+    return "primvars:baker:" + Tf.MakeValidIdentifier(attribute.lstrip("_").lower())
+
+
+def _is_texture_info(node) -> bool:
+    return isinstance(node, dict) and isinstance(node.get("index"), int) and not isinstance(node.get("index"), bool) \
+        and set(node) <= {"index", "texCoord", "scale", "strength", "extensions", "extras"}
+
+
 def _texture_infos(node, path=()):
     """(JSON path, textureInfo) of every ``{"index": n, ...}`` texture reference nested in an extension object."""
     if isinstance(node, dict):
-        if isinstance(node.get("index"), int) and not isinstance(node.get("index"), bool) and set(node) <= {
-                "index", "texCoord", "scale", "strength", "extensions", "extras"}:
+        if _is_texture_info(node):
             yield path, node
             return
         for key, value in node.items():
