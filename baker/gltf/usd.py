@@ -40,22 +40,36 @@ cameras, lights, ``KHR_texture_transform``. Per primitive:
 Each glTF material a written primitive uses becomes a ``UsdShade.Material`` under ``/Root/Materials`` with a
 ``UsdPreviewSurface`` (``diffuseColor``, ``opacity``, ``metallic``, ``roughness``, ``emissiveColor`` times
 ``KHR_materials_emissive_strength``; the base color texture (and its alpha as ``opacity`` when the alpha mode is
-MASK or BLEND), the emissive texture and the normal texture through ``UsdUVTexture`` and a
-``UsdPrimvarReader_float2`` per UV set). ``metallic`` and ``roughness`` follow glTF: a factor the material does not
-write is 1 (its default), so a material without ``pbrMetallicRoughness`` is metallic; baker's mesh-format
-conversion writes both factors (``metallic`` 0, see :mod:`baker.geometry.mtl`). Images are written beside the
-stage in ``<stem>_textures/`` (``.usda``/``.usdc``/``.usd``) or inside the package (``.usdz``).
+MASK or BLEND, with ``opacityThreshold`` = ``alphaCutoff`` for MASK), the metallic-roughness texture (blue, green),
+the occlusion texture (red), the emissive texture and the normal texture through ``UsdUVTexture`` (glTF's factors,
+scale and strength as its ``scale``/``bias``) and a ``UsdPrimvarReader_float2`` per UV set). ``metallic`` and
+``roughness`` follow glTF: a factor the material does not write is 1 (its default), so a material without
+``pbrMetallicRoughness`` is metallic; baker's mesh-format conversion writes both factors (``metallic`` 0, see
+:mod:`baker.geometry.mtl`). Images are written beside the stage in ``<stem>_textures/`` (``.usda``/``.usdc``/
+``.usd``) or inside the package (``.usdz``).
 
-Baked data on materials:
+Baked data on materials (no glTF index of any kind is written: a texture, accessor or mesh number means nothing in
+a stage):
 
-- ``BAKER_thickness.thicknessTexture`` (or, without it, ``KHR_materials_volume.thicknessTexture``): a
-  ``UsdUVTexture`` shader ``ThicknessTexture`` (raw color space) whose ``outputs:g`` feeds the material output
-  ``outputs:baker:thickness`` (float); the material input ``inputs:baker:thicknessFactor`` (float) holds
-  ``thicknessFactor`` (texel value 1.0 = that many units).
-- Every ``BAKER_<name>`` material extension is written as typed **custom attributes** on the Material prim, named
+- Every texture a ``BAKER_<name>`` material extension names is a ``UsdUVTexture`` shader under the material
+  (``Baker_<name>_<json path>``; ``file`` = the written image, ``st`` from the primvar reader of its UV set,
+  ``sourceColorSpace`` ``raw`` for data and ``sRGB`` for colour, as the extension's ``usd_color_space`` says)
+  whose ``outputs:rgb`` feeds the material output ``outputs:baker:<name>:<json path>`` (float3) and, for an image
+  with alpha, ``outputs:a`` feeds ``outputs:baker:<name>:<json path>:a`` (float); e.g.
+  ``outputs:baker:skin_lut:lutTexture``, ``outputs:baker:fur:shellTextures:_0:a``. Material outputs are
+  UsdShade's terminals, the place a consumer starts from (as ``outputs:surface``). One shader serves every
+  reference to the same texture, UV set and colour space.
+- ``BAKER_thickness.thicknessTexture`` (or, without it, ``KHR_materials_volume.thicknessTexture``) is the shader
+  ``ThicknessTexture``, whose ``outputs:g`` (the thickness) also feeds ``outputs:baker:thickness`` (float); the
+  material input ``inputs:baker:thicknessFactor`` (float) holds ``thicknessFactor`` (texel value 1.0 = that many
+  units).
+- Every other field of a ``BAKER_<name>`` material extension is a typed **custom attribute** on the Material prim,
   ``baker:<name>:<key>`` (e.g. ``baker:thickness:rays`` int, ``baker:thickness:subsurfaceColor`` float3,
-  ``baker:thickness:distribution`` string). Attributes rather than ``customData`` so they are typed, can be
-  time-sampled or overridden from a stronger layer like any other property, and show up in every USD tool.
+  ``baker:thickness:distribution`` string), by :func:`usd_parameters`: a texture reference keeps its non-index
+  fields (``baker:<name>:<field>:scale``), a top-level ``texCoord`` becomes ``texCoordPrimvar`` (``"st"``), a
+  vertex attribute name becomes its primvar's (``"primvars:baker:thickness"``), lists of objects (which carry
+  indices) are left out. Attributes rather than ``customData`` so they are typed, can be time-sampled or
+  overridden from a stronger layer like any other property, and show up in every USD tool.
 
 Output bytes depend only on the document: no timestamps, no absolute paths, ordered iteration everywhere.
 """
@@ -576,6 +590,25 @@ class _Writer:
                 tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(*emissive, 1.0))
                 tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
                 surface.GetInput("emissiveColor").ConnectToSource(tex.ConnectableAPI(), "rgb")
+        metal_rough_texture = pbr.get("metallicRoughnessTexture")
+        if metal_rough_texture is not None:  # glTF: roughness in green, metalness in blue, times the factors
+            tex = self._texture(mat_path, "MetallicRoughnessTexture", metal_rough_texture, "raw", readers)
+            if tex is not None:
+                metallic = float(pbr.get("metallicFactor", 1.0))
+                roughness = float(pbr.get("roughnessFactor", 1.0))
+                tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(1.0, roughness, metallic, 1.0))
+                surface.GetInput("roughness").ConnectToSource(tex.CreateOutput("g", Sdf.ValueTypeNames.Float))
+                surface.GetInput("metallic").ConnectToSource(tex.CreateOutput("b", Sdf.ValueTypeNames.Float))
+        occlusion_texture = gltf.get("occlusionTexture")
+        if occlusion_texture is not None:  # glTF: occlusion in red, 1 + strength (r - 1)
+            tex = self._texture(mat_path, "OcclusionTexture", occlusion_texture, "raw", readers)
+            if tex is not None:
+                strength = float(occlusion_texture.get("strength", 1.0))
+                tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(strength, strength, strength, 1))
+                tex.CreateInput("bias", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(1 - strength, 1 - strength,
+                                                                                1 - strength, 0))
+                surface.CreateInput("occlusion", Sdf.ValueTypeNames.Float).ConnectToSource(
+                    tex.CreateOutput("r", Sdf.ValueTypeNames.Float))
         normal_texture = gltf.get("normalTexture")
         if normal_texture is not None:
             tex = self._texture(mat_path, "NormalTexture", normal_texture, "raw", readers)
