@@ -350,7 +350,7 @@ def test_every_bake_on_spot_gives_clean_usd(tmp_path):
     """issue 39: no glTF index in USD; every texture the glTF names is a UsdUVTexture reachable from its material,
     same pixels as the glTF output's image, right UV set and colour space; pxr's validators find no error."""
     from baker.registry import bakes
-    from usd_checks import assert_usd_matches_gltf, gltf_index_attributes, validation_errors
+    from usd_checks import assert_usd_matches_gltf, gltf_index_attributes, texture_references, validation_errors
 
     fast = {"thickness": {"rays": 8, "texture_size": 64}, "curvature": {"per_texel": True, "texture_size": 64},
             "skin": {"width": 32, "height": 32, "penumbra_size": 16, "encoding": "srgb"}, "edges": {"fins": True},
@@ -366,7 +366,6 @@ def test_every_bake_on_spot_gives_clean_usd(tmp_path):
 
     counts = assert_usd_matches_gltf(usda, GltfDocument.load(gltf))
     material = GltfDocument.load(gltf).json["materials"][0]
-    from usd_checks import texture_references
     expected = sum(1 for name, ext in material["extensions"].items() if name.startswith("BAKER_")
                    for _ in texture_references(ext))
     assert counts == {"core": 4, "baker": expected} and expected >= 10
