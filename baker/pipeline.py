@@ -67,4 +67,5 @@ def save(asset: Asset, path) -> list[Path]:
         return asset.doc.save(path)
     from baker.gltf.usd import write_usd
 
-    return write_usd(asset.doc, path, registry.usd_primitive_hooks(), registry.vertex_attribute_widths())
+    return write_usd(asset.doc, path, registry.usd_primitive_hooks(), registry.vertex_attribute_widths(),
+                     registry.usd_texture_color_spaces())

@@ -77,6 +77,12 @@ def vertex_attribute_widths() -> dict:
     return widths
 
 
+def usd_texture_color_spaces() -> dict:
+    """Extension name -> its ``usd_color_space(params, json_path)`` ("sRGB" or "raw") for the extensions whose
+    textures are not all data (the USD writer reads every other extension's textures as ``raw``)."""
+    return {name: ext.usd_color_space for name, ext in extensions().items() if hasattr(ext, "usd_color_space")}
+
+
 def semantic_checks() -> dict:
     """Extension name -> its ``check(doc, places, issues)`` for ``baker validate``."""
     return {name: ext.check for name, ext in extensions().items() if hasattr(ext, "check")}

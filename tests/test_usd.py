@@ -319,3 +319,70 @@ def test_extension_textures_and_edge_curves_reach_usd(tmp_path):
     shader = UsdShade.Shader(output.GetConnectedSources()[0][0].source.GetPrim())
     assert shader.GetIdAttr().Get() == "UsdUVTexture"
     assert (out.parent / shader.GetInput("file").Get().path).is_file()
+
+
+def _textured_spot():
+    """spot with a base colour, a metallic-roughness, an occlusion (strength 0.5) and a normal texture, so every
+    bake runs (normal-blur needs the normal map) and every core texture has a UsdPreviewSurface input to reach."""
+    from baker.gltf.images import encode_image
+
+    asset = Asset.load(Path(__file__).parents[1] / "examples" / "spot" / "spot.obj")
+    doc = asset.doc
+    rng = np.random.default_rng(3)
+    y, x = np.mgrid[0:64, 0:64] / 64.0
+    slope = 0.3 * np.sin(2 * np.pi * 4 * x)  # bumps along u: a tangent-space normal map
+    normal = np.stack([-slope, np.zeros_like(slope), np.ones_like(slope)], -1)
+    normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
+    images = {"normal": np.rint((normal + 1) / 2 * 255).astype(np.uint8),
+              "color": rng.integers(0, 256, (32, 32, 3), dtype=np.uint8),
+              "orm": rng.integers(0, 256, (16, 16, 3), dtype=np.uint8),
+              "occlusion": rng.integers(0, 256, (8, 8, 3), dtype=np.uint8)}
+    textures = {k: doc.add_texture(doc.add_image(encode_image(v, ".png"), "image/png", k)) for k, v in images.items()}
+    material = doc.json["materials"][0]
+    material["normalTexture"] = {"index": textures["normal"]}
+    material["occlusionTexture"] = {"index": textures["occlusion"], "strength": 0.5}
+    material["pbrMetallicRoughness"].update(baseColorTexture={"index": textures["color"]},
+                                            metallicRoughnessTexture={"index": textures["orm"]})
+    return asset
+
+
+def test_every_bake_on_spot_gives_clean_usd(tmp_path):
+    """issue 39: no glTF index in USD; every texture the glTF names is a UsdUVTexture reachable from its material,
+    same pixels as the glTF output's image, right UV set and colour space; pxr's validators find no error."""
+    from baker.registry import bakes
+    from usd_checks import assert_usd_matches_gltf, gltf_index_attributes, texture_references, validation_errors
+
+    fast = {"thickness": {"rays": 8, "texture_size": 64}, "curvature": {"per_texel": True, "texture_size": 64},
+            "skin": {"width": 32, "height": 32, "penumbra_size": 16, "encoding": "srgb"}, "edges": {"fins": True},
+            "tam": {"size": 64, "levels": 2}, "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
+            "caustics": {"size": 32, "frames": 4, "waves": 16}, "normal-blur": {"texture_size": 64}}
+    names = list(bakes())
+    asset = baker.bake(_textured_spot(), bakes=names, options={k: v for k, v in fast.items() if k in names})
+    extensions = set(asset.doc.json["extensionsUsed"])
+    assert {"BAKER_thickness", "BAKER_fur", "BAKER_skin_lut", "BAKER_normal_blur", "BAKER_tonal_art_map",
+            "BAKER_toon_ramp", "BAKER_caustics", "BAKER_curvature"} <= extensions
+    gltf = save(asset, tmp_path / "gltf" / "spot.gltf")[-1]
+    usda = save(asset, tmp_path / "usd" / "spot.usda")[-1]
+
+    counts = assert_usd_matches_gltf(usda, GltfDocument.load(gltf))
+    material = GltfDocument.load(gltf).json["materials"][0]
+    expected = sum(1 for name, ext in material["extensions"].items() if name.startswith("BAKER_")
+                   for _ in texture_references(ext))
+    assert counts == {"core": 4, "baker": expected} and expected >= 10
+    assert validation_errors(usda) == []
+
+    stage = Usd.Stage.Open(str(usda))
+    prim = UsdShade.Material(next(p for p in stage.Traverse() if p.IsA(UsdShade.Material))).GetPrim()
+    # factors and other non-index fields stay attributes; the UV set and attribute names become USD names
+    assert prim.GetAttribute("baker:thickness:thicknessFactor").Get() == pytest.approx(
+        material["extensions"]["BAKER_thickness"]["thicknessFactor"])
+    assert prim.GetAttribute("baker:tonal_art_map:texCoordPrimvar").Get() == "st"
+    assert prim.GetAttribute("baker:thickness:attribute").Get() == "primvars:baker:thickness"
+    mesh = _only_mesh(stage)
+    assert UsdGeom.PrimvarsAPI(mesh.GetPrim()).GetPrimvar("baker:thickness")
+    occlusion = UsdShade.Shader(stage.GetPrimAtPath(prim.GetPath().AppendChild("OcclusionTexture")))
+    assert occlusion.GetInput("scale").Get()[0] == pytest.approx(0.5)  # 1 + 0.5 (r - 1) = 0.5 r + 0.5
+    assert occlusion.GetInput("bias").Get()[0] == pytest.approx(0.5)
+    # the checker itself sees an index when there is one
+    prim.CreateAttribute("baker:thickness:thicknessTexture:index", Sdf.ValueTypeNames.Int, custom=True).Set(3)
+    assert gltf_index_attributes(stage)

@@ -40,28 +40,43 @@ cameras, lights, ``KHR_texture_transform``. Per primitive:
 Each glTF material a written primitive uses becomes a ``UsdShade.Material`` under ``/Root/Materials`` with a
 ``UsdPreviewSurface`` (``diffuseColor``, ``opacity``, ``metallic``, ``roughness``, ``emissiveColor`` times
 ``KHR_materials_emissive_strength``; the base color texture (and its alpha as ``opacity`` when the alpha mode is
-MASK or BLEND), the emissive texture and the normal texture through ``UsdUVTexture`` and a
-``UsdPrimvarReader_float2`` per UV set). ``metallic`` and ``roughness`` follow glTF: a factor the material does not
-write is 1 (its default), so a material without ``pbrMetallicRoughness`` is metallic; baker's mesh-format
-conversion writes both factors (``metallic`` 0, see :mod:`baker.geometry.mtl`). Images are written beside the
-stage in ``<stem>_textures/`` (``.usda``/``.usdc``/``.usd``) or inside the package (``.usdz``).
+MASK or BLEND, with ``opacityThreshold`` = ``alphaCutoff`` for MASK), the metallic-roughness texture (blue, green),
+the occlusion texture (red), the emissive texture and the normal texture through ``UsdUVTexture`` (glTF's factors,
+scale and strength as its ``scale``/``bias``) and a ``UsdPrimvarReader_float2`` per UV set). ``metallic`` and
+``roughness`` follow glTF: a factor the material does not write is 1 (its default), so a material without
+``pbrMetallicRoughness`` is metallic; baker's mesh-format conversion writes both factors (``metallic`` 0, see
+:mod:`baker.geometry.mtl`). Images are written beside the stage in ``<stem>_textures/`` (``.usda``/``.usdc``/
+``.usd``) or inside the package (``.usdz``).
 
-Baked data on materials:
+Baked data on materials (no glTF index of any kind is written: a texture, accessor or mesh number means nothing in
+a stage):
 
-- ``BAKER_thickness.thicknessTexture`` (or, without it, ``KHR_materials_volume.thicknessTexture``): a
-  ``UsdUVTexture`` shader ``ThicknessTexture`` (raw color space) whose ``outputs:g`` feeds the material output
-  ``outputs:baker:thickness`` (float); the material input ``inputs:baker:thicknessFactor`` (float) holds
-  ``thicknessFactor`` (texel value 1.0 = that many units).
-- Every ``BAKER_<name>`` material extension is written as typed **custom attributes** on the Material prim, named
+- Every texture a ``BAKER_<name>`` material extension names is a ``UsdUVTexture`` shader under the material
+  (``Baker_<name>_<json path>``; ``file`` = the written image, ``st`` from the primvar reader of its UV set,
+  ``sourceColorSpace`` ``raw`` for data and ``sRGB`` for colour, as the extension's ``usd_color_space`` says)
+  whose ``outputs:rgb`` feeds the material output ``outputs:baker:<name>:<json path>`` (float3) and, for an image
+  with alpha, ``outputs:a`` feeds ``outputs:baker:<name>:<json path>:a`` (float); e.g.
+  ``outputs:baker:skin_lut:lutTexture``, ``outputs:baker:fur:shellTextures:_0:a``. Material outputs are
+  UsdShade's terminals, the place a consumer starts from (as ``outputs:surface``). One shader serves every
+  reference to the same texture, UV set and colour space.
+- ``BAKER_thickness.thicknessTexture`` (or, without it, ``KHR_materials_volume.thicknessTexture``) is the shader
+  ``ThicknessTexture``, whose ``outputs:g`` (the thickness) also feeds ``outputs:baker:thickness`` (float); the
+  material input ``inputs:baker:thicknessFactor`` (float) holds ``thicknessFactor`` (texel value 1.0 = that many
+  units).
+- Every other field of a ``BAKER_<name>`` material extension is a typed **custom attribute** on the Material prim,
   ``baker:<name>:<key>`` (e.g. ``baker:thickness:rays`` int, ``baker:thickness:subsurfaceColor`` float3,
-  ``baker:thickness:distribution`` string). Attributes rather than ``customData`` so they are typed, can be
-  time-sampled or overridden from a stronger layer like any other property, and show up in every USD tool.
+  ``baker:thickness:distribution`` string), by :func:`usd_parameters`: a texture reference keeps its non-index
+  fields (``baker:<name>:<field>:scale``), a top-level ``texCoord`` becomes ``texCoordPrimvar`` (``"st"``), a
+  vertex attribute name becomes its primvar's (``"primvars:baker:thickness"``), lists of objects (which carry
+  indices) are left out. Attributes rather than ``customData`` so they are typed, can be time-sampled or
+  overridden from a stronger layer like any other property, and show up in every USD tool.
 
 Output bytes depend only on the document: no timestamps, no absolute paths, ordered iteration everywhere.
 """
 from __future__ import annotations
 
 import mimetypes
+import re
 import tempfile
 from pathlib import Path
 
@@ -284,7 +299,7 @@ def _interpolate(values, interpolation, indices, face_of_corner, n_points):
 
 
 # ====================================================================== writing
-def write_usd(doc, path, primitive_hooks=None, attribute_widths=None) -> list[Path]:
+def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> list[Path]:
     """Write ``doc`` (a :class:`~baker.gltf.document.GltfDocument`) as ``.usda``, ``.usdc``, ``.usd`` or ``.usdz``.
 
     The file is written atomically; textures go to ``<stem>_textures/`` beside it, or into the ``.usdz`` package.
@@ -292,17 +307,19 @@ def write_usd(doc, path, primitive_hooks=None, attribute_widths=None) -> list[Pa
     ``(stage, prim_path, parent_path, doc, mesh, primitive)`` that adds that extension's USD beside each mesh
     primitive carrying it (see :func:`baker.registry.usd_primitive_hooks`). ``attribute_widths`` maps a custom
     attribute name to its data's width (:func:`baker.registry.vertex_attribute_widths`): its primvar takes that many
-    components whatever the glTF layout padded it to.
+    components whatever the glTF layout padded it to. ``texture_color_spaces`` maps an extension name to a function
+    ``(params, json_path) -> "sRGB" | "raw"`` naming the colour space of each texture it references
+    (:func:`baker.registry.usd_texture_color_spaces`; without one, its textures are data: ``raw``).
     """
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".usd", ".usda", ".usdc", ".usdz"):
         raise BakerError(path, "output must end in .usd, .usda, .usdc or .usdz")
     if suffix == ".usdz":
-        _write_usdz(doc, path, primitive_hooks, attribute_widths)
+        _write_usdz(doc, path, primitive_hooks, attribute_widths, texture_color_spaces)
         return [path]
     folder = f"{path.stem}_textures"
-    layer, images = build_layer(doc, folder, primitive_hooks, attribute_widths)
+    layer, images = build_layer(doc, folder, primitive_hooks, attribute_widths, texture_color_spaces)
     # one atomic group, textures renamed first and the stage last: a reader never sees a stage whose textures are
     # missing, and a failed or killed run keeps every earlier file
     return write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])
@@ -318,10 +335,10 @@ def write_stage_and_textures(layer, path: Path, textures) -> list[Path]:
     return targets
 
 
-def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None) -> None:
+def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> None:
     from pxr import Sdf, UsdUtils
 
-    layer, images = build_layer(doc, "textures", primitive_hooks, attribute_widths)
+    layer, images = build_layer(doc, "textures", primitive_hooks, attribute_widths, texture_color_spaces)
     with tempfile.TemporaryDirectory(prefix=".baker-usdz-") as work:
         work = Path(work)
         root = work / f"{path.stem}.usdc"
@@ -384,7 +401,7 @@ class _Names:
         return candidate
 
 
-def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None):
+def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None):
     """Author the stage in memory; returns (root layer, [(texture file name, bytes)]) in a fixed order."""
     from pxr import Gf, Kind, Usd, UsdGeom
 
@@ -395,7 +412,8 @@ def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths
     stage.SetDefaultPrim(root)
     Usd.ModelAPI(root).SetKind(Kind.Tokens.component)  # one asset: what USDZ viewers and assemblies expect
 
-    writer = _Writer(doc, stage, texture_folder, primitive_hooks or {}, attribute_widths or {})
+    writer = _Writer(doc, stage, texture_folder, primitive_hooks or {}, attribute_widths or {},
+                     texture_color_spaces or {})
     writer.names.make("/Root", "Materials", "Materials")  # reserved: a node named "Materials" becomes Materials_1
     gltf = doc.json
     nodes = gltf.get("nodes", [])
@@ -427,7 +445,8 @@ def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths
 
 
 class _Writer:
-    def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict, attribute_widths: dict):
+    def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict, attribute_widths: dict,
+                 texture_color_spaces: dict):
         self.doc = doc
         self.primitive_hooks = primitive_hooks
         self.attribute_widths = attribute_widths
@@ -436,6 +455,9 @@ class _Writer:
         self.names = _Names()
         self.materials: dict[int, object] = {}  # glTF material -> UsdShade.Material
         self.image_paths: dict[int, str] = {}  # glTF image -> asset path
+        self.image_alpha: dict[int, bool] = {}  # glTF image -> has an alpha channel
+        self.data_textures: dict[tuple, object] = {}  # (material path, texture, texCoord, colour space) -> shader
+        self.texture_color_spaces = texture_color_spaces
         self.image_files: list = []
 
     # ------------------------------------------------------------------ geometry
@@ -498,7 +520,7 @@ class _Writer:
                          mesh_index, p)
 
     def _custom_primvar(self, primvars, key: str, acc: int) -> None:
-        from pxr import Sdf, Tf, UsdGeom, Vt
+        from pxr import Sdf, UsdGeom, Vt
 
         from baker.gltf.accessors import to_float
         from baker.gltf.vertex_attributes import TYPE_WIDTHS, WIDTH_TYPES, unpadded
@@ -516,7 +538,7 @@ class _Writer:
             return  # matrices: no vertex primvar type fits
         value_type, array_type = types[kind]
         data = np.ascontiguousarray(data)
-        name = "baker:" + Tf.MakeValidIdentifier(key.lstrip("_").lower())
+        name = primvar_name(key)[len("primvars:"):]
         primvars.CreatePrimvar(name, value_type, UsdGeom.Tokens.vertex).Set(array_type.FromNumpy(data))
 
     # ------------------------------------------------------------------ materials
@@ -568,6 +590,25 @@ class _Writer:
                 tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(*emissive, 1.0))
                 tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
                 surface.GetInput("emissiveColor").ConnectToSource(tex.ConnectableAPI(), "rgb")
+        metal_rough_texture = pbr.get("metallicRoughnessTexture")
+        if metal_rough_texture is not None:  # glTF: roughness in green, metalness in blue, times the factors
+            tex = self._texture(mat_path, "MetallicRoughnessTexture", metal_rough_texture, "raw", readers)
+            if tex is not None:
+                metallic = float(pbr.get("metallicFactor", 1.0))
+                roughness = float(pbr.get("roughnessFactor", 1.0))
+                tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(1.0, roughness, metallic, 1.0))
+                surface.GetInput("roughness").ConnectToSource(tex.CreateOutput("g", Sdf.ValueTypeNames.Float))
+                surface.GetInput("metallic").ConnectToSource(tex.CreateOutput("b", Sdf.ValueTypeNames.Float))
+        occlusion_texture = gltf.get("occlusionTexture")
+        if occlusion_texture is not None:  # glTF: occlusion in red, 1 + strength (r - 1)
+            tex = self._texture(mat_path, "OcclusionTexture", occlusion_texture, "raw", readers)
+            if tex is not None:
+                strength = float(occlusion_texture.get("strength", 1.0))
+                tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(strength, strength, strength, 1))
+                tex.CreateInput("bias", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(1 - strength, 1 - strength,
+                                                                                1 - strength, 0))
+                surface.CreateInput("occlusion", Sdf.ValueTypeNames.Float).ConnectToSource(
+                    tex.CreateOutput("r", Sdf.ValueTypeNames.Float))
         normal_texture = gltf.get("normalTexture")
         if normal_texture is not None:
             tex = self._texture(mat_path, "NormalTexture", normal_texture, "raw", readers)
@@ -578,13 +619,14 @@ class _Writer:
                 tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
                 surface.CreateInput("normal", Sdf.ValueTypeNames.Normal3f).ConnectToSource(tex.ConnectableAPI(), "rgb")
 
-        # the thickness texture: BAKER_thickness's (on every material baker bakes), else KHR_materials_volume's
+        # the thickness texture: BAKER_thickness's (on every material baker bakes), else KHR_materials_volume's;
+        # outputs:baker:thickness is its green channel (the thickness), for a consumer that wants the scalar
         volume = gltf.get("extensions", {}).get("KHR_materials_volume", {})
         baked = gltf.get("extensions", {}).get("BAKER_thickness", {})
         if not isinstance(baked.get("thicknessTexture"), dict):
             baked = volume
         if "thicknessTexture" in baked:
-            tex = self._texture(mat_path, "ThicknessTexture", baked["thicknessTexture"], "raw", readers)
+            tex = self._data_texture(mat_path, "ThicknessTexture", baked["thicknessTexture"], "raw", readers)
             if tex is not None:
                 out = tex.CreateOutput("g", Sdf.ValueTypeNames.Float)
                 material.CreateOutput("baker:thickness", Sdf.ValueTypeNames.Float).ConnectToSource(out)
@@ -596,19 +638,66 @@ class _Writer:
         for ext_name, params in gltf.get("extensions", {}).items():
             if ext_name.startswith("BAKER_") and isinstance(params, dict):
                 namespace = "baker:" + _valid_name(ext_name[6:])
-                custom_attributes(prim, namespace, params)
-                # every texture the extension references: a UsdUVTexture feeding the material output
-                # outputs:baker:<ext>:<json path> (float4 rgba), e.g. outputs:baker:skin_lut:lutTexture
+                custom_attributes(prim, namespace, usd_parameters(params))
+                # every texture the extension names: a UsdUVTexture shader feeding material outputs named after its
+                # JSON path, e.g. outputs:baker:skin_lut:lutTexture (rgb) and ...:lutTexture:a (alpha, if any)
+                color_space = self.texture_color_spaces.get(ext_name)
+                default_texcoord = params.get("texCoord") if isinstance(params.get("texCoord"), int) else 0
                 for path, info in _texture_infos(params):
+                    name = ":".join([namespace, *(f"_{k}" if isinstance(k, int) else _valid_name(k) for k in path)])
                     shader = "Baker_" + _valid_name("_".join([ext_name[6:], *map(str, path)]))
-                    tex = self._texture(mat_path, shader, info, "raw", readers)
-                    if tex is not None:
-                        out = tex.CreateOutput("rgba", Sdf.ValueTypeNames.Float4)
-                        name = ":".join([namespace, *(f"_{k}" if isinstance(k, int) else _valid_name(k) for k in path)])
-                        material.CreateOutput(name, Sdf.ValueTypeNames.Float4).ConnectToSource(out)
+                    space = color_space(params, path) if color_space else "raw"
+                    self.baker_texture(material, name, shader, info, space, readers, default_texcoord)
                 if isinstance(params.get("coverageMips"), list):
                     self._coverage_mips(prim, namespace + ":coverageMips", params["coverageMips"])
         return material
+
+    def baker_texture(self, material, output: str, shader_name: str, info: dict, color_space: str, readers: dict,
+                      default_texcoord: int = 0):
+        """One texture an extension names, as a USD consumer follows it: a ``UsdUVTexture`` under the material
+        (shared by every reference to the same texture, UV set and colour space) whose ``rgb`` feeds the material
+        output ``outputs:<output>`` (float3) and, when the image has alpha, ``a`` feeds ``outputs:<output>:a``.
+        Returns the shader, or None when the reference leads to no image."""
+        from pxr import Sdf, UsdShade
+
+        mat_path = str(material.GetPath())
+        tex = self._data_texture(mat_path, shader_name, info, color_space, readers, default_texcoord)
+        if tex is None:
+            return None
+        rgb = tex.GetOutput("rgb") or tex.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
+        material.CreateOutput(output, Sdf.ValueTypeNames.Float3).ConnectToSource(rgb)
+        source = self.doc.json["textures"][info["index"]]["source"]
+        if self._image_has_alpha(source):
+            alpha = tex.GetOutput("a") or tex.CreateOutput("a", Sdf.ValueTypeNames.Float)
+            material.CreateOutput(f"{output}:a", Sdf.ValueTypeNames.Float).ConnectToSource(alpha)
+        return UsdShade.Shader(tex.GetPrim())
+
+    def _data_texture(self, mat_path: str, shader_name: str, info: dict, color_space: str, readers: dict,
+                      default_texcoord: int = 0):
+        """A scale-free ``UsdUVTexture`` for ``info``, made once per material, texture, UV set and colour space (the
+        same texture named by two extensions, e.g. BAKER_thickness and KHR_materials_volume, is one shader)."""
+        if not isinstance(info, dict) or not isinstance(info.get("index"), int):
+            return None
+        texcoord = info.get("texCoord", default_texcoord)
+        key = (mat_path, info["index"], texcoord, color_space)
+        if key not in self.data_textures:
+            self.data_textures[key] = self._texture(mat_path, shader_name, dict(info, texCoord=texcoord),
+                                                    color_space, readers)
+        return self.data_textures[key]
+
+    def _image_has_alpha(self, index: int) -> bool:
+        """Whether glTF image ``index`` has an alpha channel (PNG/WebP modes LA, RGBA, ...); unreadable: no."""
+        if index not in self.image_alpha:
+            import io
+
+            from PIL import Image
+
+            try:
+                with Image.open(io.BytesIO(self.doc.image_bytes(index))) as image:
+                    self.image_alpha[index] = "A" in image.getbands()
+            except Exception:  # not an image PIL reads (e.g. KTX2): rgb only
+                self.image_alpha[index] = False
+        return self.image_alpha[index]
 
     def _coverage_mips(self, prim, namespace: str, entries: list) -> None:
         """Each coverage-preserving mip chain (:mod:`baker.gltf.alpha_mips`) as its KTX2 file beside the textures:
@@ -736,11 +825,57 @@ def custom_attributes(prim, namespace: str, params: dict) -> None:
         prim.CreateAttribute(name, type_name, custom=True).Set(value)
 
 
+def usd_parameters(params: dict) -> dict:
+    """An extension object's parameters as they mean something in USD (written by :func:`custom_attributes`).
+
+    glTF indices have no meaning in a stage, so none is kept: a texture reference keeps only its non-index fields
+    (``scale``, ``strength``; its image and UV set are the ``UsdUVTexture`` and primvar reader the writer connects);
+    a top-level ``texCoord`` (the UV set the extension's textures read) becomes ``texCoordPrimvar``, the primvar's
+    name; lists of objects (which hold accessor, mesh or texture indices, e.g. ``coverageMips``, ``fins``) are
+    left out; and a custom vertex attribute name (``"_THICKNESS"``) becomes the primvar USD carries it as
+    (``"primvars:baker:thickness"``).
+    """
+    out = {}
+    for key, value in params.items():
+        if key in ("extensions", "extras"):
+            continue
+        if _is_texture_info(value):
+            rest = {k: v for k, v in value.items() if k not in ("index", "texCoord", "extensions", "extras")}
+            if rest:
+                out[key] = rest
+        elif key == "texCoord" and isinstance(value, int) and not isinstance(value, bool):
+            out["texCoordPrimvar"] = _st_name(value)
+        elif isinstance(value, dict):
+            out[key] = usd_parameters(value)
+        elif isinstance(value, list) and any(isinstance(v, dict) for v in value):
+            continue
+        elif isinstance(value, str) and _CUSTOM_ATTRIBUTE.fullmatch(value):
+            out[key] = primvar_name(value)
+        else:
+            out[key] = value
+    return out
+
+
+_CUSTOM_ATTRIBUTE = re.compile(r"_[A-Z][A-Z0-9_]*")
+
+
+def primvar_name(attribute: str) -> str:
+    """The USD primvar a custom glTF vertex attribute is written as (``_PRINCIPAL_CURVATURES`` ->
+    ``primvars:baker:principal_curvatures``)."""
+    from pxr import Tf
+
+    return "primvars:baker:" + Tf.MakeValidIdentifier(attribute.lstrip("_").lower())
+
+
+def _is_texture_info(node) -> bool:
+    return isinstance(node, dict) and isinstance(node.get("index"), int) and not isinstance(node.get("index"), bool) \
+        and set(node) <= {"index", "texCoord", "scale", "strength", "extensions", "extras"}
+
+
 def _texture_infos(node, path=()):
     """(JSON path, textureInfo) of every ``{"index": n, ...}`` texture reference nested in an extension object."""
     if isinstance(node, dict):
-        if isinstance(node.get("index"), int) and not isinstance(node.get("index"), bool) and set(node) <= {
-                "index", "texCoord", "scale", "strength", "extensions", "extras"}:
+        if _is_texture_info(node):
             yield path, node
             return
         for key, value in node.items():

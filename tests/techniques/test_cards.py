@@ -293,6 +293,13 @@ def test_usd_output_read_by_pxr(baked):
     (entry,) = baked["cards"]["material"]["extensions"]["BAKER_hair_cards"]["coverageMips"]
     assert ktx2.read_bytes() == acc(entry["accessor"]).tobytes()
     assert prim.GetAttribute("baker:hair_cards:coverageMips:_0:levelCount").Get() == entry["levelCount"]
+    # no glTF index in the stage; base colour (sRGB) and the data and flow textures (raw) reachable with the GLB's
+    # pixels; pxr's validators find no error
+    from baker.gltf.document import GltfDocument
+    from usd_checks import assert_usd_matches_gltf, validation_errors
+
+    assert assert_usd_matches_gltf(baked[".usda"], GltfDocument.load(baked[".glb"])) == {"core": 1, "baker": 2}
+    assert validation_errors(baked[".usda"]) == []
 
 
 # ------------------------------------------------------------------------------------ coverage-preserving mips

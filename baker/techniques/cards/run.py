@@ -72,9 +72,9 @@ def write_output(doc, output) -> None:
         doc.save(output)
     else:
         from baker.gltf.usd import write_usd
-        from baker.registry import usd_primitive_hooks, vertex_attribute_widths
+        from baker.registry import usd_primitive_hooks, usd_texture_color_spaces, vertex_attribute_widths
 
-        write_usd(doc, output, usd_primitive_hooks(), vertex_attribute_widths())
+        write_usd(doc, output, usd_primitive_hooks(), vertex_attribute_widths(), usd_texture_color_spaces())
 
 
 def run(args) -> int:

@@ -31,6 +31,12 @@ SAMPLER_REPEAT = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT":
 SAMPLER_FIN = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 33071}
 
 
+def usd_color_space(params: dict, path: tuple) -> str:
+    """USD ``sourceColorSpace`` of a texture this extension names: the shell and fin textures are hair colour
+    (sRGB) with linear coverage in alpha (UsdUVTexture decodes only rgb)."""
+    return "sRGB" if path and path[0] in ("shellTextures", "finTexture") else "raw"
+
+
 def encode_rgba_png(pixels: np.ndarray) -> bytes:
     """PNG of straight-alpha RGBA8 pixels, stored as given."""
     return encode_image(np.ascontiguousarray(pixels, np.uint8), ".png")

@@ -86,9 +86,10 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     if path.suffix.lower() not in (".usda", ".usdc", ".usd"):
         raise BakerError(path, "hair USD output must end in .usda, .usdc or .usd")
     folder = f"{path.stem}_textures"
-    from baker.registry import vertex_attribute_widths
+    from baker.registry import usd_texture_color_spaces, vertex_attribute_widths
 
-    layer, images = build_layer(doc, folder, primitive_hooks, vertex_attribute_widths())
+    layer, images = build_layer(doc, folder, primitive_hooks, vertex_attribute_widths(),
+                                 usd_texture_color_spaces())
     stage = Usd.Stage.Open(layer)
     hair = UsdGeom.Xform.Define(stage, "/Root/Hair")
     matrix = emitter_world_matrix(doc.json, emitter_mesh)

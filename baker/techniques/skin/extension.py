@@ -25,6 +25,11 @@ NAME = "BAKER_skin_lut"
 CLAMP_LINEAR = {"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 33071}
 
 
+def usd_color_space(params: dict, path: tuple) -> str:
+    """USD ``sourceColorSpace`` of the LUTs: as their ``encoding`` says (linear values by default)."""
+    return "sRGB" if params.get("encoding") == "srgb" else "raw"
+
+
 def encode_lut(values: np.ndarray, bits: int, encoding: str) -> bytes:
     """(H, W, 3) linear [0, 1] -> RGB PNG, row 0 at the top (v = 0)."""
     from baker.techniques.skin.kernel import quantize
