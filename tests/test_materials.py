@@ -7,6 +7,9 @@
 - PLY, STL and an OBJ without MTL get an explicit dielectric (metallicFactor 0), in glTF and in USD (read with pxr).
 - Untrusted MTL: a malformed number or a texture outside the asset's folder is exit 2 and one line naming the file
   and the line.
+- Optional pieces (issue 35, item 2): a missing or unreadable ``mtllib`` file, or a missing texture map, is one
+  warning line naming the file and line that name it; the bake (run as a process) exits 0 with the dielectric
+  default, or the material without that map; ``baker build`` over such a folder succeeds.
 - A Blender-like glTF (a double-sided material, an unlit material) baked with every material bake gains no Khronos
   glTF-Validator code its input did not have; the thickness texture stays in BAKER_thickness on the double-sided
   material and the bake says so once.
@@ -16,6 +19,8 @@ from __future__ import annotations
 import json
 import math
 import struct
+import subprocess
+import sys
 import warnings
 
 import numpy as np
@@ -226,7 +231,6 @@ def test_untrusted_mtl(tmp_path, textures, capsys):
     for text, words in (("newmtl a\nKd 1 0.5 x\n", ("m.mtl", "line 2", "'x'")),
                         ("newmtl a\n\nNs nan\n", ("m.mtl", "line 3", "finite")),
                         ("newmtl a\nmap_Bump -bm\n", ("m.mtl", "line 2", "-bm")),
-                        ("newmtl a\nmap_Kd missing.png\n", ("m.mtl", "line 2", "not found")),
                         ("newmtl a\nmap_Kd ../outside/colour.png\n", ("m.mtl", "line 2", "leaves the asset's folder"))):
         (tmp_path / "m.mtl").write_text(text)
         refused(["bake", obj, "-o", out, "--bakes", "edges", "-q"], capsys, *words)
@@ -332,3 +336,72 @@ def test_single_sided_material_keeps_khr_volume(tmp_path, capsys):
     assert skin["KHR_materials_volume"]["thicknessTexture"] == skin["BAKER_thickness"]["thicknessTexture"]
     assert skin["KHR_materials_volume"]["thicknessFactor"] == skin["BAKER_thickness"]["thicknessFactor"]
     assert not codes(khronos_validate(out)) - codes(khronos_validate(source))
+
+
+# ------------------------------------------------------------------------------------ optional pieces missing
+def cli(*args, cwd=None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "baker.cli", *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd)
+
+
+def test_missing_mtl_is_one_warning_and_the_dielectric(tmp_path):
+    """An OBJ shared without its .mtl (or with a folder in its place) bakes as the same OBJ without ``mtllib``
+    does, byte for byte, and says so in one warning line naming the OBJ, the line and the file; -q keeps it."""
+    bare_dir = tmp_path / "bare"
+    bare_dir.mkdir()
+    text = QUAD_OBJ.format(mtl="absent.mtl", first="a", second="b")
+    (bare_dir / "quad.obj").write_text("# no mtllib\n" + text.split("\n", 1)[1])  # same line count
+    bare = bare_dir / "out.glb"
+    result = cli("bake", bare_dir / "quad.obj", "-o", bare, "--bakes", "edges", "-q")
+    assert result.returncode == 0 and result.stderr == "", result.stderr
+    obj = tmp_path / "quad.obj"
+    obj.write_text(text)
+    for problem in ("not found", "is not a file"):
+        if problem == "is not a file":
+            (tmp_path / "absent.mtl").mkdir()
+        out = tmp_path / "out.glb"
+        result = cli("bake", obj, "-o", out, "--bakes", "edges", "-q")
+        assert result.returncode == 0, result.stderr
+        assert result.stderr.splitlines() == [f"baker: warning: {obj}: line 1: mtllib: file 'absent.mtl' {problem}; "
+                                              "the materials it defines are the dielectric default"]
+        assert out.read_bytes() == bare.read_bytes()
+        gltf, _ = read_glb(out)
+        assert gltf["materials"] == [{"name": "baker_dielectric",
+                                      "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.5}}]
+        assert {p["material"] for m in gltf["meshes"] for p in m["primitives"]} == {0}
+    # structural bad input still exits 2 with one line: a non-finite vertex
+    obj.write_text(text.replace("v 1 1 0", "v 1 nan 0"))
+    result = cli("bake", obj, "-o", tmp_path / "nan.glb", "--bakes", "edges", "-q")
+    assert result.returncode == 2 and len(result.stderr.splitlines()) == 1 and "line 4" in result.stderr
+
+
+def test_missing_texture_map_is_one_warning(tmp_path, textures):
+    """A map the MTL names that is absent leaves only that map out; the rest of the material is the MTL's."""
+    (tmp_path / "quad.obj").write_text(QUAD_OBJ.format(mtl="m.mtl", first="a", second="b"))
+    (tmp_path / "m.mtl").write_text("newmtl a\nKd 1 0.5 0\nmap_Kd gone.png\nmap_Ke glow.png\nnewmtl b\nPm 1\n")
+    out = tmp_path / "out.glb"
+    result = cli("bake", "quad.obj", "-o", out, "--bakes", "edges", "-q", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.splitlines() == [f"baker: warning: {(tmp_path / 'm.mtl').resolve()}: line 3: map_Kd: file "
+                                          "'gone.png' not found; material 'a' is baked without it"]
+    gltf, binary = read_glb(out)
+    a = materials_by_name(gltf)["a"]
+    assert a["pbrMetallicRoughness"]["baseColorFactor"] == [1.0, 0.5, 0.0, 1.0]
+    assert "baseColorTexture" not in a["pbrMetallicRoughness"]
+    assert image_bytes(gltf, binary, a["emissiveTexture"]["index"]) == (tmp_path / "glow.png").read_bytes()
+    assert len(gltf["images"]) == 1 and materials_by_name(gltf)["b"]["pbrMetallicRoughness"]["metallicFactor"] == 1
+
+
+def test_build_over_a_folder_with_a_missing_mtl(tmp_path):
+    """``baker build``: the asset without its .mtl is baked (exit 0) and the warning names it as the recipe does."""
+    (tmp_path / "models").mkdir()
+    (tmp_path / "models" / "quad.obj").write_text(QUAD_OBJ.format(mtl="absent.mtl", first="a", second="b"))
+    (tmp_path / "baker.toml").write_text('[build]\noutput = "baked"\nformat = "glb"\nbakes = ["edges"]\n\n'
+                                         '[[assets]]\ninputs = ["models/*.obj"]\n')
+    result = cli("build", "--recipe", tmp_path / "baker.toml", "-q")
+    assert result.returncode == 0, result.stdout + result.stderr
+    warnings_printed = [line for line in result.stderr.splitlines() if line.startswith("baker: warning:")]
+    assert warnings_printed == ["baker: warning: baked/models/quad.glb: models/quad.obj: line 1: mtllib: file "
+                                "'absent.mtl' not found; the materials it defines are the dielectric default"]
+    gltf, _ = read_glb(tmp_path / "baked" / "models" / "quad.glb")
+    assert [m["name"] for m in gltf["materials"]] == ["baker_dielectric"]

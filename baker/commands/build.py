@@ -276,10 +276,14 @@ def referenced_files(root: Path, rel: str) -> list[str]:
                 refs.append((Path(rel).parent / urllib.parse.unquote(uri)).as_posix())
     elif source.suffix.lower() == ".obj":
         # the .mtl files and the textures they name, as the bake itself resolves them (baker.geometry.mtl)
-        from baker.geometry.mtl import read_obj_materials
+        import warnings
+
+        from baker.geometry.mtl import MissingFileWarning, read_obj_materials
 
         try:
-            materials, libraries = read_obj_materials(source)
+            with warnings.catch_warnings():  # a missing file is the bake's warning to give, not the hashing's
+                warnings.simplefilter("ignore", MissingFileWarning)
+                materials, libraries = read_obj_materials(source)
         except BakerError:  # the bake reports it, naming the line; the task keeps its other inputs
             materials, libraries = {}, []
         files = libraries + [t.path for m in materials.values() for t in m.textures.values()]
@@ -344,7 +348,10 @@ def run_task(payload: dict) -> dict:
                     asset = bake(scratch / "in" / payload["input"], bakes=payload["bakes"],
                                  options=payload["options"], seed=payload["seed"],
                                  max_memory=payload.get("max_memory"), attribute_layout=payload["attribute_layout"])
+                # a note naming an input names it as the recipe does, not inside this scratch folder
                 notes = [str(w.message) for w in caught if issubclass(w.category, BakeNote)]
+                for inputs in {scratch / "in", (scratch / "in").resolve()}:  # an MTL's path is resolved
+                    notes = [note.replace(str(inputs) + os.sep, "") for note in notes]
                 save(asset, out_main)
             else:
                 subst = {"{output}": str(out_main),

@@ -86,7 +86,14 @@ class Asset:
 
             doc = _doc_from_trimesh_scene(path, read_usd(path))
         else:
-            doc = _read_direct(path, allow_outside) or _doc_from_trimesh_scene(path, *_load_trimesh(path, allow_outside))
+            # an OBJ's MTL files are read once for both readers (a missing one is one warning)
+            libraries = None
+            if suffix == ".obj":
+                from baker.geometry.mtl import read_obj_materials
+
+                libraries = read_obj_materials(path, allow_outside)
+            doc = (_read_direct(path, allow_outside, libraries)
+                   or _doc_from_trimesh_scene(path, *_load_trimesh(path, allow_outside, libraries)))
         asset = cls(doc=doc, source=path)
         if require_triangles:
             asset.check_has_triangles()
@@ -219,15 +226,16 @@ def _read_only(array: np.ndarray) -> np.ndarray:
     return array
 
 
-def _read_direct(path: Path, allow_outside=None) -> GltfDocument | None:
+def _read_direct(path: Path, allow_outside=None, libraries: tuple | None = None) -> GltfDocument | None:
     """A binary PLY of triangles (:func:`baker.geometry.mesh_files.read_ply_triangles`) or a plain OBJ
     (:func:`baker.geometry.obj_files.read_obj_groups`) read straight into a document without trimesh; None for
     every other file (trimesh reads it). A PLY keeps the positions, normals and UVs it has as float32, no normals
-    are computed; an OBJ gives the document the trimesh path gives."""
+    are computed; an OBJ gives the document the trimesh path gives. ``libraries``: an OBJ's
+    :func:`baker.geometry.mtl.read_obj_materials`, when already read."""
     from baker.geometry.mesh_files import check_mesh_file, non_finite_location, read_ply_triangles
 
     if path.suffix.lower() == ".obj":
-        return _read_obj(path, allow_outside)
+        return _read_obj(path, allow_outside, libraries)
     if path.suffix.lower() != ".ply":
         return None
     check_mesh_file(path)  # header counts against the file size, before anything is allocated
@@ -244,15 +252,15 @@ def _read_direct(path: Path, allow_outside=None) -> GltfDocument | None:
     return doc
 
 
-def _read_obj(path: Path, allow_outside=None) -> GltfDocument | None:
+def _read_obj(path: Path, allow_outside=None, libraries: tuple | None = None) -> GltfDocument | None:
     """An OBJ the direct reader takes, as the document :func:`_doc_from_trimesh_scene` makes of trimesh's reading:
     one mesh and node per usemtl group, accessors laid out as trimesh's glTF exporter lays them out (identical
     arrays share a bufferView or an accessor), vertex normals made unit by :func:`unit_normals`, then as trimesh's
-    exporter does."""
+    exporter does. ``libraries``: :func:`baker.geometry.mtl.read_obj_materials` of the file, when already read."""
     from baker.geometry.mtl import read_obj_materials
     from baker.geometry.obj_files import check_finite, read_obj_groups, seamless_vertex_normals, unitize
 
-    materials, _ = read_obj_materials(path, allow_outside)
+    materials, _ = libraries or read_obj_materials(path, allow_outside)
     groups = read_obj_groups(path, materials)
     if groups is None:
         return None
@@ -330,8 +338,9 @@ class _LibraryResolver:
         raise OSError(f"{name}: read by baker.geometry.mtl")
 
 
-def _load_trimesh(path: Path, allow_outside=None) -> tuple:
-    """The mesh file read by trimesh, and the MTL materials by name (empty without ``mtllib``)."""
+def _load_trimesh(path: Path, allow_outside=None, libraries: tuple | None = None) -> tuple:
+    """The mesh file read by trimesh, and the MTL materials by name (empty without ``mtllib``). ``libraries``: an
+    OBJ's :func:`baker.geometry.mtl.read_obj_materials`, when already read."""
     import trimesh
 
     from baker.geometry.mesh_files import check_mesh_file
@@ -341,8 +350,8 @@ def _load_trimesh(path: Path, allow_outside=None) -> tuple:
     if path.suffix.lower() == ".obj":
         from baker.geometry.mtl import read_obj_materials
 
-        materials, libraries = read_obj_materials(path, allow_outside)
-        kwargs["resolver"] = _LibraryResolver(libraries)
+        materials, files = libraries or read_obj_materials(path, allow_outside)
+        kwargs["resolver"] = _LibraryResolver(files)
     try:
         # process=False keeps the file's vertices (no merging); OBJ vertices are split where UVs differ
         loaded = trimesh.load(str(path), process=False, **kwargs)

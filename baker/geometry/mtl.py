@@ -3,7 +3,10 @@
 An OBJ's ``mtllib`` files are untrusted input like the OBJ itself: every number is checked (a malformed or
 non-finite value is refused naming the file and the line), and every file a statement names (the MTL, each
 ``map_*`` texture) resolves only inside the asset's folder or an ``allow_outside`` root
-(:func:`baker.gltf.structure.local_file`, the rule glTF URIs follow).
+(:func:`baker.gltf.structure.local_file`, the rule glTF URIs follow). Those files are optional pieces, though: one
+that is absent or unreadable (an OBJ shared without its .mtl) is one :class:`MissingFileWarning` naming the file
+and line that name it, and the asset bakes without it (a missing MTL's materials are the dielectric default, a
+missing map is left out of its material), as Blender, trimesh and Assimp do.
 
 The mapping (README "Materials"; MTL statements as in the Wavefront spec and the common PBR additions):
 
@@ -31,10 +34,11 @@ from __future__ import annotations
 
 import math
 import urllib.parse
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from baker.errors import BakerError
+from baker.errors import BakeNote, BakerError
 from baker.gltf.structure import local_file, uri_roots
 
 DEFAULT_ROUGHNESS = 0.5
@@ -51,6 +55,12 @@ TEXTURE_OPTIONS = {"-blendu": (1, 1), "-blendv": (1, 1), "-boost": (1, 1), "-mm"
                    "-imfchan": (1, 1), "-type": (1, 1), "-cc": (1, 1)}
 COLOR_STATEMENTS = {"kd": "diffuse", "ke": "emissive"}
 SCALAR_STATEMENTS = {"d": "dissolve", "tr": "transparency", "ns": "shininess", "pr": "roughness", "pm": "metallic"}
+
+
+class MissingFileWarning(BakeNote):
+    """An MTL or texture file an OBJ or MTL names is absent or cannot be read: the asset bakes without it."""
+
+    label = "warning"
 
 
 @dataclass
@@ -82,20 +92,38 @@ def roughness_from_shininess(ns: float) -> float:
 
 
 # ---------------------------------------------------------------------------------------------------------- reading
-def resolve_file(name: str, base: Path, roots: list, source: Path, where: str) -> Path:
-    """The file ``name`` (as written in an OBJ/MTL, not a URI) relative to ``base``, under the URI policy; a
-    refusal or a missing file is a :class:`BakerError` naming ``source`` and ``where``."""
+def resolve_file(name: str, base: Path, roots: list, source: Path, where: str, without: str) -> Path | None:
+    """The file ``name`` (as written in an OBJ/MTL, not a URI) relative to ``base``, under the URI policy. A refusal
+    (a path leaving the allowed folders) is a :class:`BakerError` naming ``source`` and ``where``; a file that is
+    absent or unreadable is one :class:`MissingFileWarning` naming them and saying ``without`` (what the asset does
+    without it), and None."""
     try:
         target = local_file(urllib.parse.quote(name, safe="/\\:"), base, roots)
     except ValueError as exc:
         raise BakerError(source, f"{where}: {str(exc).replace('URI ', '', 1)}") from None
-    if not target.is_file():
-        raise BakerError(source, f"{where}: file {name!r} not found")
+    problem = unreadable(target)
+    if problem is not None:
+        warnings.warn(MissingFileWarning(f"{source}: {where}: file {name!r} {problem}; {without}"), stacklevel=2)
+        return None
     return target
 
 
+def unreadable(path: Path) -> str | None:
+    """Why ``path`` cannot be read as a file (``"not found"``, ...), or None when it can."""
+    if not path.exists():
+        return "not found"
+    if not path.is_file():
+        return "is not a file"
+    try:
+        with open(path, "rb"):
+            pass
+    except OSError as exc:
+        return f"cannot be read ({exc.strerror or exc})"
+    return None
+
+
 def material_libraries(obj: Path, allow_outside=None) -> list[Path]:
-    """The ``mtllib`` files an OBJ names, resolved under the URI policy (a missing one is refused)."""
+    """The ``mtllib`` files an OBJ names, resolved under the URI policy (a missing one is a warning, left out)."""
     obj = Path(obj)
     found = []
     data = obj.read_bytes()
@@ -113,10 +141,16 @@ def material_libraries(obj: Path, allow_outside=None) -> list[Path]:
         line = data.count(b"\n", 0, start) + 1
         where = f"line {line}: mtllib"
         roots = uri_roots(obj.parent, allow_outside)
-        # a name with spaces is one file when it exists; otherwise several names separated by spaces
-        whole = obj.parent / rest
-        names = [rest] if whole.is_file() else rest.split()
-        found += [resolve_file(name, obj.parent, roots, obj, where) for name in names]
+        # a name with spaces is one file when it exists; otherwise several names separated by spaces (when none of
+        # them exists either, the one name as written is the missing file)
+        names = rest.split()
+        if (obj.parent / rest).is_file() or not any((obj.parent / name).exists() for name in names):
+            names = [rest]
+        for name in names:
+            library = resolve_file(name, obj.parent, roots, obj, where,
+                                   "the materials it defines are the dielectric default")
+            if library is not None:
+                found.append(library)
     return found
 
 
@@ -147,7 +181,8 @@ def _numbers(words: list, source: Path, where: str, count: tuple) -> list:
     return values
 
 
-def _texture(words: list, source: Path, where: str, statement: str, number: int, roots: list) -> MtlTexture:
+def _texture(words: list, source: Path, where: str, statement: str, number: int, roots: list,
+             material: str) -> MtlTexture | None:
     multiplier = 1.0
     i = 0
     while i < len(words) and words[i].lower() in TEXTURE_OPTIONS:
@@ -167,8 +202,8 @@ def _texture(words: list, source: Path, where: str, statement: str, number: int,
     name = " ".join(words[i:])
     if not name:
         raise BakerError(source, f"{where} names no file")
-    path = resolve_file(name, source.parent, roots, source, where)
-    return MtlTexture(path, source, statement, number, multiplier)
+    path = resolve_file(name, source.parent, roots, source, where, f"material {material!r} is baked without it")
+    return None if path is None else MtlTexture(path, source, statement, number, multiplier)
 
 
 def _is_number(word: str) -> bool:
@@ -221,7 +256,11 @@ def read_mtl(path: Path, roots: list) -> dict[str, MtlMaterial]:
             else:
                 setattr(current, SCALAR_STATEMENTS[key], value)
         else:
-            current.textures[TEXTURE_STATEMENTS[key]] = _texture(words[1:], path, where, words[0], number, roots)
+            texture = _texture(words[1:], path, where, words[0], number, roots, current.name)
+            if texture is not None:
+                current.textures[TEXTURE_STATEMENTS[key]] = texture
+            else:  # the later statement wins even when its file is missing: the material has no such map
+                current.textures.pop(TEXTURE_STATEMENTS[key], None)
     return materials
 
 
