@@ -11,6 +11,12 @@ class BakerError(Exception):
         super().__init__(f"{self.path}: {message}" if self.path else message)
 
 
+class NothingToBake(Exception):
+    """A bake that finds nothing on this asset to cover (every material unlit, no normal map for normal-blur): not
+    bad input. A bake raises it, with the reason, before it writes anything; :meth:`baker.technique.Technique.bake`
+    turns it into one note, ``<bake>: nothing baked: <reason>``, and the run's other bakes go on."""
+
+
 class BakeNote(UserWarning):
     """Something the user should know about a bake's result, though nothing failed (a Khronos field left out,
     materials skipped, attribute widths Blender cannot import). Issued as a Python warning, so API callers see it

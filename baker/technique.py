@@ -49,7 +49,14 @@ class Technique:
     schemas: str | None = None
 
     def bake(self, asset, options, seed: int = 0, progress=None) -> None:
-        load(self.run)(asset, options, seed=seed, progress=progress)
+        """Run the bake on ``asset``; one with nothing to cover on it (:class:`baker.errors.NothingToBake`) is a
+        note on the asset, not a failure."""
+        from baker.errors import NothingToBake
+
+        try:
+            load(self.run)(asset, options, seed=seed, progress=progress)
+        except NothingToBake as exc:
+            asset.note(f"{self.name}: nothing baked: {exc}")
 
     def extension_objects(self) -> list:
         return [load(reference) for reference in self.extensions]

@@ -338,6 +338,46 @@ def test_single_sided_material_keeps_khr_volume(tmp_path, capsys):
     assert not codes(khronos_validate(out)) - codes(khronos_validate(source))
 
 
+MATERIAL_BAKES = ("caustics", "curvature", "fur", "normal-blur", "skin", "tam", "thickness", "toon")
+
+
+def test_a_bake_with_nothing_to_cover_is_one_note(tmp_path):
+    """One rule for every bake (issue 35, item 2): on an asset of unlit materials only, each material bake says
+    ``<bake>: nothing baked: <why>`` once, edges (which covers any triangles) still bakes, exit 0, and the
+    materials are the input's; normal-blur on a lit asset without a normal map says so once beside toon's work."""
+    from baker.gltf.document import GltfDocument
+
+    source = tmp_path / "blender.glb"
+    blender_like_gltf(source)
+    unlit = tmp_path / "unlit.glb"
+    doc = GltfDocument.load(source)
+    for mesh in doc.json["meshes"]:
+        for prim in mesh["primitives"]:
+            prim["material"] = 1
+    doc.save(unlit)
+    out = tmp_path / "out.glb"
+    result = cli("bake", unlit, "-o", out, "--bakes", ",".join(MATERIAL_BAKES + ("edges",)), "-q",
+                 "--thickness-rays", "4", "--thickness-texture-size", "16")
+    assert result.returncode == 0, result.stderr
+    why = "every material is unlit (KHR_materials_unlit): 1 'Glow'"
+    assert sorted(result.stderr.splitlines()) == [f"baker: note: {name}: nothing baked: {why}"
+                                                  for name in sorted(MATERIAL_BAKES)]
+    gltf, _ = read_glb(out)
+    assert gltf["materials"] == GltfDocument.load(unlit).json["materials"]
+    assert all("BAKER_edges" in p["extensions"] for m in gltf["meshes"] for p in m["primitives"])
+    # a lit asset without a normal map: normal-blur has nothing to blur; toon still bakes the lit material
+    result = cli("bake", source, "-o", out, "--bakes", "normal-blur,toon", "-q")
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.splitlines() == [
+        "baker: note: unlit (KHR_materials_unlit) materials get no baked material data: 1 'Glow'",
+        "baker: note: normal-blur: nothing baked: no material has a normalTexture with texture coordinates"]
+    gltf, _ = read_glb(out)
+    assert set(gltf["materials"][0]["extensions"]) == {"BAKER_toon_ramp"}
+    # true bad input is still an error: an option out of range
+    result = cli("bake", source, "-o", out, "--bakes", "tam", "--tam-levels", "0", "-q")
+    assert result.returncode == 2 and len(result.stderr.splitlines()) == 1, result.stderr
+
+
 # ------------------------------------------------------------------------------------ optional pieces missing
 def cli(*args, cwd=None) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "baker.cli", *map(str, args)], capture_output=True, text=True,

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from baker.errors import NothingToBake
 from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.geometry.normals import vertex_normals
 from baker.geometry.welding import weld
@@ -58,7 +59,8 @@ def material_groups(asset: Asset) -> dict[int, list[tuple[int, int]]]:
 
     ``KHR_materials_unlit`` materials are left out: the material bakes are lighting models (translucency, skin,
     toon, hatching, fur shading) that an unlit material does not evaluate, and the Khronos validator warns
-    (MULTIPLE_EXTENSIONS) about any other extension beside KHR_materials_unlit. The asset notes which."""
+    (MULTIPLE_EXTENSIONS) about any other extension beside KHR_materials_unlit. The asset notes which; when every
+    material is unlit the bake has nothing to cover (:class:`baker.errors.NothingToBake`)."""
     doc = asset.doc
     groups: dict[int, list] = {}
     default = None
@@ -78,6 +80,8 @@ def material_groups(asset: Asset) -> dict[int, list[tuple[int, int]]]:
             groups.setdefault(prim["material"], []).append((m, p))
     if unlit:
         names = ", ".join(material_label(doc, i) for i in sorted(unlit))
+        if not groups:
+            raise NothingToBake(f"every material is unlit (KHR_materials_unlit): {names}")
         asset.note(f"unlit (KHR_materials_unlit) materials get no baked material data: {names}")
     return dict(sorted(groups.items()))
 

@@ -89,3 +89,46 @@ def test_fur_without_fins(tmp_path):
     assert len(doc.json["meshes"][0]["primitives"]) == 1
     ext = doc.json["materials"][0]["extensions"]["BAKER_fur"]
     assert ext["fins"] == []
+
+
+def test_fur_unwraps_a_mesh_without_uvs(tmp_path):
+    """Spot without its ``vt`` lines (issue 35, item 2): ``--bakes thickness,fur,edges`` bakes all three (a process,
+    exit 0, nothing on stderr); fur gives the mesh a TEXCOORD_0 (an xatlas layout, as tam and the texture bakes
+    do), the file passes ``baker validate`` and Khronos' validator, and tileSize is sqrt(surface area / UV area) /
+    tiling measured on the written file."""
+    import re
+    import subprocess
+    import sys
+
+    text = Path(SPOT).read_text()
+    bare = tmp_path / "bare.obj"
+    bare.write_text(re.sub(r"(\d+)/\d*(/\d+)?", r"\1", "".join(line for line in text.splitlines(True)
+                                                                 if not line.startswith("vt "))))
+    out = tmp_path / "out.glb"
+    cli = [sys.executable, "-m", "baker.cli"]
+    result = subprocess.run(cli + ["bake", str(bare), "-o", str(out), "--bakes", "thickness,fur,edges", "-q",
+                                   "--thickness-rays", "4", "--thickness-texture-size", "32", "--fur-shells", "2",
+                                   "--fur-texture-size", "16", "--fur-hairs", "50"], capture_output=True, text=True)
+    assert result.returncode == 0 and result.stderr == "", result.stderr
+    checked = subprocess.run(cli + ["validate", "--no-khronos", str(out)], capture_output=True, text=True)
+    assert checked.returncode == 0, checked.stdout + checked.stderr
+    assert_khronos_clean(out)
+    doc = GltfDocument.load(out)
+    prim = doc.json["meshes"][0]["primitives"][0]
+    extensions = doc.json["materials"][prim["material"]]["extensions"]
+    assert {"BAKER_fur", "BAKER_thickness"} <= set(extensions) and "BAKER_edges" in prim["extensions"]
+    positions = doc.accessor(prim["attributes"]["POSITION"]).astype(np.float64)
+    uv = doc.accessor(prim["attributes"]["TEXCOORD_0"]).astype(np.float64)
+    faces = doc.accessor(prim["indices"]).reshape(-1, 3)
+    source = np.array([line.split()[1:4] for line in text.splitlines() if line.startswith("v ")], np.float64)
+    # the unwrap splits vertices along its seams: the same surface, every position one of the file's
+    assert len(faces) == sum(1 for line in text.splitlines() if line.startswith("f "))
+    assert np.unique(positions, axis=0).shape == np.unique(source.astype(np.float32), axis=0).shape
+    assert uv.min() >= 0.0 and uv.max() <= 1.0
+    p, t = positions[faces], uv[faces]
+    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()
+    e1, e2 = t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]
+    uv_area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]).sum()
+    assert 0.3 < uv_area <= 1.0  # a packed atlas, not a degenerate layout
+    fur = extensions["BAKER_fur"]
+    assert math.isclose(fur["tileSize"], math.sqrt(area / uv_area) / fur["tiling"], rel_tol=1e-4)

@@ -18,8 +18,6 @@ def run(asset: Asset, options: CausticsOptions, seed: int = 0, progress: Progres
 
         raise BakerError(None, str(exc)) from None
     materials = list(material_groups(asset))
-    if not materials:
-        return
     frames = caustic_frames(options, seed=seed)
     textures, scale = ext.write_frame_textures(asset.doc, frames)
     for material in materials:

@@ -1,5 +1,7 @@
-"""Wire the fur kernel to an Asset: bake the shell/fin textures once, attach them to every material whose
-primitives have TEXCOORD_0, and build fin primitives from the edge adjacency (:mod:`baker.geometry.edges`)."""
+"""Wire the fur kernel to an Asset: bake the shell/fin textures once, attach them to every material, and build fin
+primitives from the edge adjacency (:mod:`baker.geometry.edges`). The shells tile along TEXCOORD_0, so any layout
+works, overlapping or not; a primitive without one is unwrapped with xatlas into a new TEXCOORD_0 (as ``tam`` and
+the texture bakes do)."""
 from __future__ import annotations
 
 import math
@@ -9,10 +11,10 @@ import numpy as np
 from baker.geometry.asset import Asset
 from baker.techniques.fur.options import FurOptions
 from baker.techniques.fur.kernel import bake_fur_textures
-from baker.errors import BakerError
 from baker.techniques.fur import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_target import material_groups
+from baker.geometry.texture_space import unwrap
+from baker.geometry.texture_target import material_groups, reindex_primitive
 
 
 def _fins(asset: Asset, m: int, prims: list, tile_size: float):
@@ -47,11 +49,15 @@ def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = Q
     groups = material_groups(asset)
     furred = {}
     for material, members in groups.items():
-        geoms = [asset.primitive(m, p) for m, p in members]
-        if all(0 in g.texcoords for g in geoms):
-            furred[material] = (members, geoms)
-    if not furred:
-        raise BakerError(asset.source, "the fur bake needs TEXCOORD_0 on the primitives it covers (unlit ones are left out); none has it")
+        members = [(m, p) for m, p in members if len(asset.primitive(m, p).faces)]
+        bare = [(m, p) for m, p in members if 0 not in asset.primitive(m, p).texcoords]
+        if bare:  # no UVs to tile along (glTF's sets start at 0: these have none): unwrap, as tam does
+            geoms = [asset.primitive(m, p) for m, p in bare]
+            layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=512, seed=seed)
+            for (m, p), (vmap, faces, uv) in zip(bare, layouts):
+                reindex_primitive(asset, m, p, vmap, faces, uv, 0)
+        if members:
+            furred[material] = (members, [asset.primitive(m, p) for m, p in members])
     all_pos = np.concatenate([asset.mesh_triangles(m)[0] for m in range(len(asset.meshes()))])
     diag = float(np.linalg.norm(all_pos.max(0) - all_pos.min(0))) or 1.0
     length = options.length if options.length else 0.02 * diag

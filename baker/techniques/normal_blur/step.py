@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from baker.errors import BakerError
+from baker.errors import BakerError, NothingToBake
 from baker.geometry.asset import Asset
 from baker.gltf.accessors import to_float
 from baker.checks import pointer
@@ -130,8 +130,7 @@ def run(asset: Asset, options: NormalBlurOptions, seed: int = 0, progress: Progr
     doc = asset.doc
     materials = normal_mapped_materials(asset)
     if not materials:
-        asset.note("normal-blur: no material has a normalTexture with texture coordinates; nothing baked")
-        return
+        raise NothingToBake("no material has a normalTexture with texture coordinates")
     profile, variances, weights = profile_in_mesh_units(options)
     inputs, layouts, tangents, generated = {}, {}, {}, {}
     for material, (info, members) in materials.items():

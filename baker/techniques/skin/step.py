@@ -15,8 +15,6 @@ from baker.geometry.texture_target import material_groups
 def run(asset: Asset, options: SkinOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     doc = asset.doc
     groups = material_groups(asset)
-    if not groups:
-        return
     with progress.task("skin LUTs", 1) as advance:
         tables = skin_tables(options)
         advance(1)
