@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import signal
 import sys
+import warnings
 
 from baker import commands
-from baker.errors import BakerError
+from baker.errors import BakeNote, BakerError
 
 
 class Terminated(BaseException):
@@ -24,6 +25,18 @@ def _terminate(signum, frame):
     raise Terminated()
 
 
+def _one_line_notes(show):
+    """``warnings.showwarning`` printing a :class:`BakeNote` as ``baker: <label>: ...`` (what ``baker bake`` prints),
+    so every command that loads an asset (inspect, preview, hair, ...) says a missing MTL the same way."""
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, BakeNote):
+            print(f"baker: {category.label}: {message}", file=sys.stderr)
+        else:
+            show(message, category, filename, lineno, file, line)
+
+    return showwarning
+
+
 def main(argv=None) -> int:
     previous = None
     try:
@@ -31,7 +44,9 @@ def main(argv=None) -> int:
     except ValueError:  # not the main thread (main() called from a thread): leave signals alone
         pass
     try:
-        return commands.run(sys.argv[1:] if argv is None else argv)
+        with warnings.catch_warnings():  # restores showwarning
+            warnings.showwarning = _one_line_notes(warnings.showwarning)
+            return commands.run(sys.argv[1:] if argv is None else argv)
     except BakerError as exc:
         print(f"baker: error: {exc}", file=sys.stderr)
         return 2

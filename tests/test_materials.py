@@ -405,6 +405,8 @@ def test_missing_mtl_is_one_warning_and_the_dielectric(tmp_path):
         assert result.stderr.splitlines() == [f"baker: warning: {obj}: line 1: mtllib: file 'absent.mtl' {problem}; "
                                               "the materials it defines are the dielectric default"]
         assert out.read_bytes() == bare.read_bytes()
+        listed = cli("inspect", obj)  # every command that loads the OBJ says it the same way
+        assert listed.returncode == 0 and listed.stderr == result.stderr
         gltf, _ = read_glb(out)
         assert gltf["materials"] == [{"name": "baker_dielectric",
                                       "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.5}}]
