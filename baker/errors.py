@@ -20,6 +20,6 @@ class NothingToBake(Exception):
 class BakeNote(UserWarning):
     """Something the user should know about a bake's result, though nothing failed (a Khronos field left out,
     materials skipped, attribute widths Blender cannot import). Issued as a Python warning, so API callers see it
-    too; ``baker bake`` and ``baker build`` print each once as ``baker: <label>: ...`` on stderr."""
+    too; every command prints each once as ``baker: <label>: ...`` on stderr (``baker build`` names the output)."""
 
     label = "note"
