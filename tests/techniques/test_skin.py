@@ -215,13 +215,37 @@ def test_extension_round_trip(baked):
     image = doc.json["textures"][ext["lutTexture"]["index"]]["source"]
     pixels = decode_image(doc.image_bytes(image), ".png")
     assert pixels.dtype == np.uint16 and pixels.shape == (32, 64, 3)
-    expected, _ = S.diffusion_lut(64, 32)
+    # the curvature axis is fitted to the sphere's one curvature (1/20 mm), widened by 1.5 either side
+    lo, hi = ext["curvatureRange"]
+    assert ext["curvatureRangePercentiles"] == [1.0, 99.0]
+    assert lo < 0.05 < hi and hi / lo < 2.25 * 1.1
+    expected, _ = S.diffusion_lut(64, 32, 1.0 / hi, 1.0 / lo)
     assert np.abs(pixels / 65535.0 - expected).max() <= 0.5 / 65535 + 1e-9
     sampler = doc.json["samplers"][doc.json["textures"][ext["lutTexture"]["index"]]["sampler"]]
     assert sampler["wrapS"] == sampler["wrapT"] == 33071
     # the baked curvature lands inside the LUT's axis once scaled: 1 / 20 mm
     curvature = doc.accessor(doc.json["meshes"][0]["primitives"][0]["attributes"]["_CURVATURE"])[:, 0]
     assert np.median(curvature * ext["curvatureScale"]) == pytest.approx(0.05, rel=0.04)  # icosphere(3): 2.7% coarse-mesh bias
+
+
+def test_lut_axis_spans_the_assets_curvature():
+    """The LUT's radii default to the 1st-99th percentile of the asset's |mean curvature| (1/mm); explicit radii are
+    kept exactly; no curvature gives 1-100 mm; a flat asset's axis spans at most 1000x."""
+    from baker.techniques.skin.options import SkinOptions
+
+    curvature = np.concatenate([np.linspace(0.1, 2.0, 9801), -np.linspace(0.1, 2.0, 199)])  # 1/mm, some concave
+    lo, hi = np.percentile(np.abs(curvature), [1, 99])
+    assert S.lut_radii(SkinOptions(), curvature) == pytest.approx((1 / hi, 1 / lo, True))
+    assert S.lut_radii(SkinOptions(min_radius=0.3), curvature) == pytest.approx((0.3, 1 / lo, True))
+    assert S.lut_radii(SkinOptions(min_radius=0.3, max_radius=7.0), curvature) == (0.3, 7.0, False)
+    assert S.lut_radii(SkinOptions(), None) == (1.0, 100.0, False)
+    assert S.lut_radii(SkinOptions(), np.zeros(10)) == (1.0, 100.0, False)
+    flat = np.concatenate([np.zeros(980), np.full(20, 0.5)])  # a plane with a rounded rim
+    r_min, r_max, _ = S.lut_radii(SkinOptions(), flat)
+    assert r_min == pytest.approx(2.0) and r_max == pytest.approx(2000.0)
+    tables = S.skin_tables(SkinOptions(width=16, height=8, samples=16, penumbra=False), curvature)
+    assert tables.axes.curvature_range == pytest.approx((lo, hi)) and tables.curvature_percentiles == (1.0, 99.0)
+    assert S.skin_tables(SkinOptions(width=16, height=8, samples=16, penumbra=False)).curvature_percentiles is None
 
 
 def test_validator_catches_broken_lut(baked, tmp_path):

@@ -60,6 +60,8 @@ def write_material_parameters(doc: GltfDocument, material: int, *, tables: SkinT
         "scatterWidth": float(options.scatter_width),
         "scatterColor": [float(c) for c in options.scatter_color],
     }
+    if tables.curvature_percentiles is not None:  # the axis was fitted to the asset's curvature (kernel.lut_radii)
+        ext["curvatureRangePercentiles"] = [float(p) for p in tables.curvature_percentiles]
     if penumbra_texture is not None:
         ext["penumbraTexture"] = {"index": int(penumbra_texture)}
         ext["penumbraWidthRange"] = [float(x) for x in tables.penumbra_range]

@@ -30,12 +30,13 @@ integrand's kinks (where cos changes sign) keep the error O(h^2), well under 1e-
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numba
 import numpy as np
 
-from baker.techniques.skin.options import JIMENEZ_STRENGTH, JIMENEZ_FALLOFF, SkinOptions
+from baker.techniques.skin.options import (DEFAULT_RADII, FIT_PERCENTILES, JIMENEZ_FALLOFF, JIMENEZ_STRENGTH,
+                                           MAX_RADIUS_RATIO, SkinOptions)
 from baker.techniques.skin.profile import CHANNELS, DEON_SKIN, Profile, load_profile  # noqa: F401 (re-exported)
 
 GAUSSIAN_CUTOFF = 7.0  # standard deviations beyond which a Gaussian is treated as zero (exp(-24.5) ~ 2e-11)
@@ -264,10 +265,43 @@ class SkinTables:
     jimenez: np.ndarray  # (taps, 4)
     gaussians: list
     normal_blend: np.ndarray  # (3,)
+    # percentiles of the asset's |mean curvature| that the curvature axis spans (None: options or fixed defaults)
+    curvature_percentiles: tuple | None = None
 
 
-def skin_tables(options: SkinOptions) -> SkinTables:
+def lut_radii(options: SkinOptions, curvature: np.ndarray | None = None) -> tuple[float, float, bool]:
+    """Radii (mm) of the LUT's last and first rows: the options' where given, else spanning the asset's curvature.
+
+    ``curvature`` is the asset's baked mean curvature in 1/mm (|H| x the curvature scale, convex and concave alike);
+    the axis runs from its 1st to its 99th percentile (``FIT_PERCENTILES``) so the rows go to the curvatures the
+    asset has instead of a fixed 1-100 mm (a 15 mm figure would clamp at the 1 mm row, a building would read row 0
+    only). At most ``MAX_RADIUS_RATIO`` between the ends (the 1st percentile of a mostly flat asset is ~0); an
+    asset of one curvature (a sphere) gets a factor 1.5 either side. No curvature: ``DEFAULT_RADII``. The flag says
+    whether the asset's curvature set an end."""
+    fitted, from_asset = DEFAULT_RADII, False
+    k = np.abs(np.asarray(curvature, np.float64).reshape(-1)) if curvature is not None else np.zeros(0)
+    k = k[np.isfinite(k)]
+    if len(k):
+        k_lo, k_hi = np.percentile(k, FIT_PERCENTILES)
+        if k_hi > 0:
+            k_lo = max(float(k_lo), float(k_hi) / MAX_RADIUS_RATIO)
+            if k_lo > k_hi / 1.01:
+                k_lo, k_hi = k_lo / 1.5, k_hi * 1.5
+            fitted, from_asset = (1.0 / float(k_hi), 1.0 / float(k_lo)), True
+    lo = options.min_radius if options.min_radius is not None else fitted[0]
+    hi = options.max_radius if options.max_radius is not None else fitted[1]
+    if lo >= hi:  # one radius given, the other fitted on the wrong side of it: keep the given one's decade ratio
+        lo, hi = (lo, lo * 100.0) if options.min_radius is not None else (hi / 100.0, hi)
+    from_asset = from_asset and (options.min_radius is None or options.max_radius is None)
+    return float(lo), float(hi), from_asset
+
+
+def skin_tables(options: SkinOptions, curvature: np.ndarray | None = None) -> SkinTables:
+    """The LUTs and kernels of ``options``; the LUT's curvature axis spans ``curvature`` (1/mm, see
+    :func:`lut_radii`) where the options leave the radii unset."""
     options.check()
+    min_radius, max_radius, from_asset = lut_radii(options, curvature)
+    options = replace(options, min_radius=min_radius, max_radius=max_radius)
     profile = load_profile(options.profile) if options.profile else DEON_SKIN
     lut, axes = diffusion_lut(options.width, options.height, options.min_radius, options.max_radius, profile,
                               options.samples)
@@ -279,7 +313,7 @@ def skin_tables(options: SkinOptions) -> SkinTables:
     blend = np.where(blend < 0.0, default_normal_blend(profile), blend)
     return SkinTables(lut, axes, penumbra, penumbra_range, profile,
                       jimenez_kernel(options.jimenez_taps, options.jimenez_strength, options.jimenez_falloff),
-                      deon_gaussians(profile), blend)
+                      deon_gaussians(profile), blend, FIT_PERCENTILES if from_asset else None)
 
 
 def srgb_encode(linear: np.ndarray) -> np.ndarray:

@@ -44,7 +44,7 @@ def sidecar(tables, options: SkinOptions, lut_file: str, penumbra_file: str | No
             "channels": ["red", "green", "blue"],
             "u": {"quantity": "N.L", "range": [-1.0, 1.0], "mapping": "u = N.L * 0.5 + 0.5"},
             "v": {"quantity": "curvature", "unit": "1/mm", "range": [float(c) for c in axes.curvature_range],
-                  "radiusRange": [float(options.min_radius), float(options.max_radius)], "radiusUnit": "mm",
+                  "radiusRange": [1.0 / axes.curvature_range[1], 1.0 / axes.curvature_range[0]], "radiusUnit": "mm",
                   "mapping": "v = (curvature - range[0]) / (range[1] - range[0]), linear in 1/r"},
             "texels": "endpoint-aligned: column 0 is N.L = -1, the last column N.L = +1; row 0 (top) is range[0]; "
                       "sample at (t * (size - 1) + 0.5) / size",

@@ -15,14 +15,23 @@ JIMENEZ_FALLOFF = (1.0, 0.37, 0.3)
 
 
 # ---------------------------------------------------------------------------------------------------- options
+DEFAULT_RADII = (1.0, 100.0)  # mm: the LUT's radii when neither the options nor the asset's curvature set them
+FIT_PERCENTILES = (1.0, 99.0)  # of the asset's |mean curvature|: the part of the distribution the LUT's axis spans
+MAX_RADIUS_RATIO = 1000.0  # a fitted axis spans at most this ratio of radii (a flat asset's 1st percentile is ~0)
 @dataclass(frozen=True)
 class SkinOptions:
     """Options of the pre-integrated skin bake (``--bakes skin``) and of ``baker skin-lut``."""
 
     width: int = opt(256, "LUT texels along N.L (u = N.L * 0.5 + 0.5)", min=2, max=4096)
     height: int = opt(256, "LUT texels along the curvature 1/r", min=2, max=4096)
-    min_radius: float = opt(1.0, "smallest radius of curvature in the LUT, mm (its last row)", min=1e-6)
-    max_radius: float = opt(100.0, "largest radius of curvature in the LUT, mm (its first row)", min=1e-6)
+    min_radius: float | None = opt(None, "smallest radius of curvature in the LUT, mm (its last row; default: from "
+                                         "the asset, 1 / the 99th percentile of its baked |mean curvature| x the "
+                                         "curvature scale; 1 mm without baked curvature and for baker skin-lut)",
+                                   min=1e-6)
+    max_radius: float | None = opt(None, "largest radius of curvature in the LUT, mm (its first row; default: from "
+                                         "the asset, 1 / the 1st percentile of its baked |mean curvature| x the "
+                                         "curvature scale, at most 1000 x min-radius; 100 mm without baked "
+                                         "curvature and for baker skin-lut)", min=1e-6)
     samples: int = opt(256, "integration samples per Gaussian and LUT row", min=3, max=65536)
     profile: str | None = opt(None, "diffusion profile JSON (variances + red/green/blue weights; default: d'Eon & "
                                     "Luebke's skin)")
@@ -34,8 +43,9 @@ class SkinOptions:
     penumbra_min_width: float = opt(1.0, "narrowest penumbra in the LUT, mm", min=1e-6)
     penumbra_max_width: float = opt(100.0, "widest penumbra in the LUT, mm", min=1e-6)
     sharpening: float = opt(1.0, "shadow sharpening: the true shadow ramps over penumbra width / sharpening", min=1.0)
-    unit_scale: float = opt(1000.0, "millimetres per mesh unit (glTF metres: 1000); curvatureScale = 1 / this",
-                            min=1e-12)
+    unit_scale: float = opt(1000.0, "millimetres per mesh unit: the profile is physical, so this is the asset's real "
+                                    "size (glTF is metres by spec: 1000; OBJ/PLY/STL carry no unit and are taken "
+                                    "as metres too); curvatureScale = 1 / this", min=1e-12)
     normal_blend: tuple = opt((-1.0, -1.0, -1.0), "per-channel weight (0..1) of the smooth normal in Penner's "
                                                   "normal blending; negative: each channel's RMS scatter distance / "
                                                   "the largest", max=1.0)
@@ -48,7 +58,7 @@ class SkinOptions:
     jimenez_falloff: tuple = opt(JIMENEZ_FALLOFF, "Jimenez kernel falloff per channel", min=0.0)
 
     def check(self) -> None:
-        if self.min_radius >= self.max_radius:
+        if self.min_radius is not None and self.max_radius is not None and self.min_radius >= self.max_radius:
             raise BakerError(None, f"skin min-radius ({self.min_radius}) must be below max-radius ({self.max_radius})")
         if self.penumbra_min_width >= self.penumbra_max_width:
             raise BakerError(None, "skin penumbra-min-width must be below penumbra-max-width")

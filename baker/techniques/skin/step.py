@@ -3,7 +3,10 @@
 then the runtime estimates it per pixel)."""
 from __future__ import annotations
 
+import numpy as np
+
 from baker.geometry.asset import Asset
+from baker.gltf.vertex_attributes import unpadded
 from baker.techniques.skin.options import SkinOptions
 from baker.techniques.skin.kernel import skin_tables
 from baker.techniques.curvature import extension as curvature_ext
@@ -12,11 +15,23 @@ from baker.progress import QUIET, Progress
 from baker.geometry.texture_target import material_groups
 
 
+def baked_curvature(doc, groups: dict) -> np.ndarray:
+    """The mean curvature (1 / mesh units) of every vertex whose primitive has the curvature bake's attribute, over
+    the primitives of ``groups``: the distribution the LUT's curvature axis is fitted to (empty without one)."""
+    values = [np.zeros(0)]
+    for members in groups.values():
+        for m, p in members:
+            attributes = doc.json["meshes"][m]["primitives"][p].get("attributes", {})
+            if curvature_ext.ATTRIBUTE in attributes:
+                values.append(unpadded(doc.accessor(attributes[curvature_ext.ATTRIBUTE]), 1).astype(np.float64))
+    return np.concatenate(values)
+
+
 def run(asset: Asset, options: SkinOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     doc = asset.doc
     groups = material_groups(asset)
     with progress.task("skin LUTs", 1) as advance:
-        tables = skin_tables(options)
+        tables = skin_tables(options, baked_curvature(doc, groups) / options.unit_scale)
         advance(1)
     lut = ext.add_lut_texture(doc, ext.encode_lut(tables.lut, options.bits, options.encoding), "skin_lut")
     penumbra = None
