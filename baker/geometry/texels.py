@@ -122,6 +122,22 @@ class TexelSets:
                                                   self.mesh[part])
         return mean, error
 
+    def chart_edges(self) -> np.ndarray:
+        """Per texel, whether it lies on the edge of its chart in its image: one of its 8 neighbours in the image
+        is no texel of the same texture (or lies off the image). A window of texels around it is one-sided there,
+        dilation copies it into the padding, and bilinear filtering and mip levels read it."""
+        edge = np.zeros(len(self), bool)
+        for s in self.sets:
+            rows, cols = self.rows[s.start: s.stop], self.cols[s.start: s.stop]
+            covered = np.zeros((s.size + 2, s.size + 2), bool)  # a border of False: off the image counts as empty
+            covered[rows + 1, cols + 1] = True
+            part = np.zeros(len(rows), bool)
+            for dy in (-1, 0, 1):
+                for dx in (-1, 0, 1):
+                    part |= ~covered[rows + 1 + dy, cols + 1 + dx]
+            edge[s.start: s.stop] = part
+        return edge
+
     def images(self, values: np.ndarray) -> Iterator[tuple[TexelSet, np.ndarray, np.ndarray]]:
         """(texel set, image dilated past its charts, coverage mask) per material from per-texel ``values``."""
         for texel_set in self.sets:
