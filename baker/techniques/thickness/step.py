@@ -174,7 +174,7 @@ def corrected_by_neighbours(texels, values: np.ndarray, prior: np.ndarray, first
     A texel's first 12 rays alone are noisy (relative RMS 0.057 on spot against 1024 rays, where 64 rays give
     0.013) but unbiased, and the prior is noise-free but off by up to a few percent between vertices; averaged over
     a 7 x 7 window (~600 rays) the deviation removes most of the prior's error and the rays' noise both (spot:
-    0.010 at 512^2, 0.009 at 1024^2, ``benchmarks/texel.py``). The texels that did not stop (their first rays
+    0.0101 at 512^2 in the PNG as written, ``benchmarks/texel.py``). The texels that did not stop (their first rays
     disagree with the prior past the tolerance: a feature the vertices miss) keep their own full estimate and take
     no part in the mean.
 
