@@ -122,6 +122,23 @@ class TexelSets:
                                                   self.mesh[part])
         return mean, error
 
+    def region_edges(self, inside: np.ndarray) -> np.ndarray:
+        """Per texel, whether it is an ``inside`` texel on the edge of that region in its image: one of its 8
+        neighbours in the image is no ``inside`` texel of the same texture (or lies off the image). With every
+        texel inside these are the charts' edges, which dilation copies into the padding and bilinear filtering and
+        mip levels read; a window of texels around an edge texel is one-sided."""
+        edge = np.zeros(len(self), bool)
+        for s in self.sets:
+            rows, cols = self.rows[s.start: s.stop], self.cols[s.start: s.stop]
+            covered = np.zeros((s.size + 2, s.size + 2), bool)  # a border of False: off the image counts as outside
+            covered[rows + 1, cols + 1] = inside[s.start: s.stop]
+            part = np.zeros(len(rows), bool)
+            for dy in (-1, 0, 1):
+                for dx in (-1, 0, 1):
+                    part |= ~covered[rows + 1 + dy, cols + 1 + dx]
+            edge[s.start: s.stop] = part & inside[s.start: s.stop]
+        return edge
+
     def images(self, values: np.ndarray) -> Iterator[tuple[TexelSet, np.ndarray, np.ndarray]]:
         """(texel set, image dilated past its charts, coverage mask) per material from per-texel ``values``."""
         for texel_set in self.sets:

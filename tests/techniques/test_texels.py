@@ -173,6 +173,91 @@ def test_default_texels_error_no_worse_than_fixed_rays(tmp_path):
     assert rms(default) < 0.75 * rms(prior_only), (rms(default), rms(prior_only))
 
 
+def box_islands(extent=(2.0, 1.0, 0.5), cells: int = 8, padding: float = 0.04) -> trimesh.Trimesh:
+    """A box as a DCC exports it: flat normals, each face a ``cells`` x ``cells`` grid of quads and its own UV
+    island in a 3 x 2 atlas (the charts' edges are the box's edges, where thickness changes fastest)."""
+    extent = np.asarray(extent, np.float64)
+    grid = np.linspace(0.0, 1.0, cells + 1)
+    s, t = (a.ravel() for a in np.meshgrid(grid, grid, indexing="ij"))
+    index = np.arange((cells + 1) ** 2).reshape(cells + 1, cells + 1)
+    quads = np.stack([index[:-1, :-1], index[1:, :-1], index[1:, 1:], index[:-1, 1:]], -1).reshape(-1, 4)
+    positions, normals, uvs, faces = [], [], [], []
+    for slot, (axis, sign) in enumerate((a, sg) for a in range(3) for sg in (-1.0, 1.0)):
+        u_axis, v_axis = ((1, 2), (2, 0), (0, 1))[axis][::int(sign)]  # swapped on the negative side: outward
+        p = np.zeros((len(s), 3))
+        p[:, axis] = sign * extent[axis] / 2
+        p[:, u_axis] = (s - 0.5) * extent[u_axis]
+        p[:, v_axis] = (t - 0.5) * extent[v_axis]
+        faces.append(np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]]) + len(s) * slot)
+        positions.append(p)
+        normals.append(np.tile(np.eye(3)[axis] * sign, (len(s), 1)))
+        uvs.append(np.stack([(slot % 3 + padding + s * (1 - 2 * padding)) / 3,
+                             (slot // 3 + padding + t * (1 - 2 * padding)) / 2], -1))
+    mesh = trimesh.Trimesh(np.concatenate(positions), np.concatenate(faces), vertex_normals=np.concatenate(normals),
+                           process=False)
+    assert mesh.volume > 0  # outward winding
+    mesh.visual = trimesh.visual.TextureVisuals(uv=np.concatenate(uvs))
+    return mesh
+
+
+def box_mean_chord(points: np.ndarray, normals: np.ndarray, extent, bands: int = 64) -> np.ndarray:
+    """The exact cosine-weighted mean chord inside an axis-aligned box centred on the origin from points on its
+    faces (outward axis normals), by the midpoint rule over ``bands`` equal-probability elevation bands
+    (u = sin^2 theta) and 2 x ``bands`` azimuths; each ray's exit distance is the slab test's."""
+    half = np.asarray(extent, np.float64) / 2
+    u = (np.arange(bands) + 0.5) / bands
+    phi = np.pi * (np.arange(2 * bands) + 0.5) / bands
+    sin_t, cos_t = np.sqrt(u)[:, None], np.sqrt(1.0 - u)[:, None]
+    local = np.stack(np.broadcast_arrays(sin_t * np.cos(phi), sin_t * np.sin(phi), cos_t), -1).reshape(-1, 3)
+    out = np.empty(len(points))
+    for i, (p, n) in enumerate(zip(points, normals)):
+        axis = int(np.argmax(np.abs(n)))
+        frame = np.roll(np.eye(3), -axis - 1, axis=0)  # two tangent axes, then the normal's
+        frame[2] *= -np.sign(n[axis])  # inward
+        d = local @ frame
+        with np.errstate(divide="ignore"):
+            exit_distance = np.where(d > 0, (half - p) / d, np.where(d < 0, (-half - p) / d, np.inf))
+        out[i] = exit_distance.min(axis=1).mean()
+    return out
+
+
+def test_shipped_texture_as_accurate_as_fixed_rays_on_a_box(tmp_path):
+    """The thickness texture as written (PNG decoded, times thicknessFactor) of a box whose faces are UV islands
+    with flat normals, at 128^2: the default bake is within 10% of every texel tracing its 64 rays, in RMS and
+    99th-percentile error against a 1024-ray reference (checked against the exact mean chord), over all texels and
+    over the charts' edges (which dilation copies into the padding). Before texels on the edge of the prior's region
+    traced all their rays and texels whose normal turns away from the vertices' took no prior: 2.2x the fixed
+    bake's RMS, 3.1x its 99th percentile, 3.6x on the edges."""
+    from baker.geometry.raycast import RayScene
+    from baker.techniques.thickness.kernel import default_max_distance, local_thickness
+
+    extent = (2.0, 1.0, 0.5)
+    path = tmp_path / "box.glb"
+    box_islands(extent).export(str(path))
+    asset = Asset.load(path)
+    texels = gather_texels(asset, 128)
+    vertices, faces = asset.mesh_triangles(0)
+    diag = default_max_distance(vertices)
+    reference = local_thickness(RayScene(vertices, faces), texels.positions, texels.normals, rays=1024, seed=7,
+                                max_distance=diag, bias=1e-5 * diag)
+    sample = np.arange(0, len(texels), 97)
+    exact = box_mean_chord(texels.positions[sample], texels.normals[sample], extent)
+    # measured 0.54% (the midpoint rule converges as 1 / bands: 0.15% with 256 bands, too slow for a test)
+    assert np.abs(reference[sample] / exact - 1.0).max() < 0.01
+    default = baked_texel_thickness(path, texels)
+    fixed = baked_texel_thickness(path, texels, tolerance=0.0)
+    edge = texels.region_edges(np.ones(len(texels), bool))
+    scale = float(np.sqrt(np.mean(reference ** 2)))
+
+    def errors(values):
+        error = np.abs(values - reference) / scale
+        return float(np.sqrt(np.mean(error ** 2))), float(np.percentile(error, 99)), float(np.sqrt(np.mean(error[edge] ** 2)))
+
+    # measured (default, fixed): RMS 0.0121, 0.0116; p99 0.0336, 0.0332; edges 0.0182, 0.0182
+    for ours, theirs, what in zip(errors(default), errors(fixed), ("RMS", "p99", "edge RMS")):
+        assert ours <= 1.1 * theirs, (what, ours, theirs)
+
+
 def test_first_rays_stop_on_the_prior_and_report_their_mean(tmp_path):
     """With a prior and a tolerance each texel traces FIRST_RAYS rays, and its reported first mean is exactly the
     estimate of those rays alone (the same pattern and rotation); a texel that did not stop traces all 64 more

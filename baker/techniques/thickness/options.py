@@ -31,7 +31,9 @@ class ThicknessOptions:
     tolerance: float = opt(0.25, "texels whose first 12 rays agree within +-tolerance (relative) with the thickness "
                                  "interpolated from the per-vertex solution take that value, corrected by "
                                  "their neighbours (--thickness-texel-window); the others trace all "
-                                 "--thickness-rays (0: every texel traces them all)", min=0.0, max=1.0)
+                                 "--thickness-rays, as do texels on a chart's edge and texels whose normal turns "
+                                 "more than 10 degrees from the vertices' (a hard edge) (0: every texel traces them "
+                                 "all)", min=0.0, max=1.0)
     texel_window: int = opt(3, "texels that take the per-vertex value add the mean deviation of the first rays "
                                "from it over the (2 x window + 1)^2 texels around them on the surface, shrunk "
                                "toward 0 by its significance (0: the per-vertex value alone)", min=0, max=16)
