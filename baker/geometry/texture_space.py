@@ -160,11 +160,21 @@ def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding
     pack.bilinear = True
     pack.bruteForce = False
     atlas.generate(chart, pack)
+    return [_in_source_order(*atlas[i]) for i in range(len(meshes))]
+
+
+def _in_source_order(vmapping, faces, uv):
+    """xatlas's output with its vertices renumbered in the order of the vertices they copy (copies of one vertex in
+    xatlas's order). Welding the split mesh (first occurrence) then gives the mesh welded before the split, vertex
+    for vertex: a per-vertex bake computes the same values whether or not a texture bake unwrapped first."""
+    vmapping = np.asarray(vmapping, np.int64)
+    order = np.argsort(vmapping, kind="stable")
+    renumber = np.empty_like(order)
+    renumber[order] = np.arange(len(order))
     # xatlas gives NaN UVs to the vertices of zero-area triangles (a flat or degenerate mesh); such triangles cover
     # no texel, so any UV serves: 0 keeps NaN out of TEXCOORD_0
-    return [(np.asarray(v, np.int64), np.asarray(f, np.int64), np.nan_to_num(np.asarray(u, np.float64), nan=0.0,
-                                                                              posinf=0.0, neginf=0.0))
-            for v, f, u in (atlas[i] for i in range(len(meshes)))]
+    uv = np.nan_to_num(np.asarray(uv, np.float64), nan=0.0, posinf=0.0, neginf=0.0)
+    return vmapping[order], renumber[np.asarray(faces, np.int64)], uv[order]
 
 
 def dilate(image: np.ndarray, mask: np.ndarray) -> np.ndarray:
