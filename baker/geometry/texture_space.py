@@ -143,6 +143,15 @@ def usable_layout_texels(uv: np.ndarray, faces: np.ndarray, size: int = 512,
     return texels if texels.overlap_fraction <= max_overlap else None
 
 
+CHART_LIMIT_FROM_FACES = 16384  # triangles in an unwrap above which charts are bounded (below, xatlas takes ~1 s)
+MAX_CHART_FACES = 256  # a bounded chart's area: that of this many of the mesh's triangles, on average
+
+
+def triangle_areas(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    a = positions[faces[:, 0]]
+    return 0.5 * np.linalg.norm(np.cross(positions[faces[:, 1]] - a, positions[faces[:, 2]] - a), axis=1)
+
+
 def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding: int = 4, seed: int = 0):
     """Unwrap several meshes into one shared atlas with xatlas.
 
@@ -154,6 +163,13 @@ def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding
     for vertices, faces in meshes:
         atlas.add_mesh(np.ascontiguousarray(vertices, np.float32), np.ascontiguousarray(faces, np.uint32))
     chart = xatlas.ChartOptions()
+    faces_total = sum(len(f) for _, f in meshes)
+    if faces_total > CHART_LIMIT_FROM_FACES:
+        # xatlas's chart growth and its re-parameterisation of charts that fold grow much faster than linearly
+        # with a chart's triangle count: the 69k-triangle Stanford bunny took ~60 s with unbounded charts. Charts of
+        # at most ~MAX_CHART_FACES triangles' area keep it linear; their layout measures as well (benchmarks/unwrap.py)
+        area = sum(float(triangle_areas(np.asarray(v, np.float64), np.asarray(f, np.int64)).sum()) for v, f in meshes)
+        chart.max_chart_area = area * MAX_CHART_FACES / faces_total
     pack = xatlas.PackOptions()
     pack.resolution = int(resolution)
     pack.padding = int(padding)

@@ -162,10 +162,18 @@ def unwrap_material(asset: Asset, material: int, members: list[tuple[int, int]],
         charts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
         vmaps = {}
         for g, (vmap, faces, uv) in zip(geoms, charts):
+            # the slots reindex_primitive fills with the new layout (those the primitive had not)
+            asset.cache[("unwrapped texcoords", g.mesh, g.primitive)] = \
+                frozenset(k for k in range(texcoord + 1) if k not in g.texcoords)
             reindex_primitive(asset, g.mesh, g.primitive, vmap, faces, uv, texcoord)
             vmaps[(g.mesh, g.primitive)] = (vmap, g.positions.shape)
         asset.cache[key] = (texcoord, vmaps)
     return asset.cache[key]
+
+
+def made_by_unwrap(asset: Asset, mesh: int, primitive: int, texcoord: int) -> bool:
+    """Whether TEXCOORD_<texcoord> of the primitive is a layout :func:`unwrap_material` made, not the asset's own."""
+    return texcoord in asset.cache.get(("unwrapped texcoords", mesh, primitive), ())
 
 
 def _statistics(geoms: list[PrimitiveGeometry], texcoord: int | None, coverage: float = 0.0) -> SurfaceStatistics:
