@@ -143,6 +143,15 @@ def usable_layout_texels(uv: np.ndarray, faces: np.ndarray, size: int = 512,
     return texels if texels.overlap_fraction <= max_overlap else None
 
 
+CHART_LIMIT_FROM_FACES = 16384  # triangles in an unwrap above which charts are bounded (below, xatlas takes ~1 s)
+MAX_CHART_FACES = 256  # a bounded chart's area: that of this many of the mesh's triangles, on average
+
+
+def triangle_areas(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    a = positions[faces[:, 0]]
+    return 0.5 * np.linalg.norm(np.cross(positions[faces[:, 1]] - a, positions[faces[:, 2]] - a), axis=1)
+
+
 def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding: int = 4, seed: int = 0):
     """Unwrap several meshes into one shared atlas with xatlas.
 
@@ -154,17 +163,34 @@ def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding
     for vertices, faces in meshes:
         atlas.add_mesh(np.ascontiguousarray(vertices, np.float32), np.ascontiguousarray(faces, np.uint32))
     chart = xatlas.ChartOptions()
+    faces_total = sum(len(f) for _, f in meshes)
+    if faces_total > CHART_LIMIT_FROM_FACES:
+        # xatlas's chart growth and its re-parameterisation of charts that fold grow much faster than linearly
+        # with a chart's triangle count: the 69k-triangle Stanford bunny took ~60 s with unbounded charts. Charts of
+        # at most ~MAX_CHART_FACES triangles' area keep it linear; their layout measures as well (benchmarks/unwrap.py)
+        area = sum(float(triangle_areas(np.asarray(v, np.float64), np.asarray(f, np.int64)).sum()) for v, f in meshes)
+        chart.max_chart_area = area * MAX_CHART_FACES / faces_total
     pack = xatlas.PackOptions()
     pack.resolution = int(resolution)
     pack.padding = int(padding)
     pack.bilinear = True
     pack.bruteForce = False
     atlas.generate(chart, pack)
+    return [_in_source_order(*atlas[i]) for i in range(len(meshes))]
+
+
+def _in_source_order(vmapping, faces, uv):
+    """xatlas's output with its vertices renumbered in the order of the vertices they copy (copies of one vertex in
+    xatlas's order). Welding the split mesh (first occurrence) then gives the mesh welded before the split, vertex
+    for vertex: a per-vertex bake computes the same values whether or not a texture bake unwrapped first."""
+    vmapping = np.asarray(vmapping, np.int64)
+    order = np.argsort(vmapping, kind="stable")
+    renumber = np.empty_like(order)
+    renumber[order] = np.arange(len(order))
     # xatlas gives NaN UVs to the vertices of zero-area triangles (a flat or degenerate mesh); such triangles cover
     # no texel, so any UV serves: 0 keeps NaN out of TEXCOORD_0
-    return [(np.asarray(v, np.int64), np.asarray(f, np.int64), np.nan_to_num(np.asarray(u, np.float64), nan=0.0,
-                                                                              posinf=0.0, neginf=0.0))
-            for v, f, u in (atlas[i] for i in range(len(meshes)))]
+    uv = np.nan_to_num(np.asarray(uv, np.float64), nan=0.0, posinf=0.0, neginf=0.0)
+    return vmapping[order], renumber[np.asarray(faces, np.int64)], uv[order]
 
 
 def dilate(image: np.ndarray, mask: np.ndarray) -> np.ndarray:

@@ -124,21 +124,13 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
                                                                             chosen)) for g in geoms]
                 targets.append(MaterialTarget(material, texcoord, chosen, prims, False))
             continue
+        made = asset.cache.get(("unwrap", material))
         # the overlap test at 256^2 when the size is not forced: overlapping charts show at any resolution
-        tested = _existing_uv_texels(geoms, size or 256)
+        tested = None if made is not None else _existing_uv_texels(geoms, size or 256)
         if tested is not None:
             texcoord, unwrapped = 0, False
         else:
-            texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
-            # xatlas pads charts by texels of `resolution`: a forced size, or the size the surface gets at the
-            # coverage xatlas typically reaches (the final size follows the coverage it really reached)
-            resolution = size or size_for_density(_statistics(geoms, None, UNWRAP_COVERAGE), density)
-            # not named `layouts`: that is the argument, tested again for the next material
-            charts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
-            vmaps = {}
-            for g, (vmap, faces, uv) in zip(geoms, charts):
-                reindex_primitive(asset, g.mesh, g.primitive, vmap, faces, uv, texcoord)
-                vmaps[(g.mesh, g.primitive)] = (vmap, g.positions.shape)
+            texcoord, vmaps = unwrap_material(asset, material, [(g.mesh, g.primitive) for g in geoms], seed)
             geoms = [asset.primitive(m, p) for m, p in vmaps]
             unwrapped = True
         chosen = size or size_for_density(_statistics(geoms, texcoord), density)
@@ -155,6 +147,37 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
 
 
 UNWRAP_COVERAGE = 0.6  # share of the UV square xatlas charts cover on ordinary meshes, to size the unwrap's padding
+
+
+def unwrap_material(asset: Asset, material: int, members: list[tuple[int, int]], seed: int = 0) -> tuple[int, dict]:
+    """Unwrap the primitives ``members`` ((mesh, primitive), each with triangles) of ``material`` into one new UV
+    set, once per asset: every bake that needs a layout (the texture bakes, tam, fur) gets the same one, whichever
+    ran first. Returns (its TEXCOORD index, {(mesh, primitive): (vertex map, positions shape before the unwrap)}).
+
+    The layout depends on the geometry alone, never on a bake's options (its padding is sized for the automatic
+    texture size, not a forced ``size``): a bake's output must not depend on which other bakes ran."""
+    key = ("unwrap", material)
+    if key not in asset.cache:
+        geoms = [asset.primitive(m, p) for m, p in members]
+        texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
+        # xatlas pads charts by texels of `resolution`: the size the surface gets at the automatic density and the
+        # coverage xatlas typically reaches (a bake's final size follows the coverage it really reached)
+        resolution = size_for_density(_statistics(geoms, None, UNWRAP_COVERAGE))
+        charts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
+        vmaps = {}
+        for g, (vmap, faces, uv) in zip(geoms, charts):
+            # the slots reindex_primitive fills with the new layout (those the primitive had not)
+            asset.cache[("unwrapped texcoords", g.mesh, g.primitive)] = \
+                frozenset(k for k in range(texcoord + 1) if k not in g.texcoords)
+            reindex_primitive(asset, g.mesh, g.primitive, vmap, faces, uv, texcoord)
+            vmaps[(g.mesh, g.primitive)] = (vmap, g.positions.shape)
+        asset.cache[key] = (texcoord, vmaps)
+    return asset.cache[key]
+
+
+def made_by_unwrap(asset: Asset, mesh: int, primitive: int, texcoord: int) -> bool:
+    """Whether TEXCOORD_<texcoord> of the primitive is a layout :func:`unwrap_material` made, not the asset's own."""
+    return texcoord in asset.cache.get(("unwrapped texcoords", mesh, primitive), ())
 
 
 def _statistics(geoms: list[PrimitiveGeometry], texcoord: int | None, coverage: float = 0.0) -> SurfaceStatistics:

@@ -11,6 +11,7 @@ import numpy as np
 from baker.geometry.asset import Asset
 from baker.techniques.edges.options import EdgesOptions
 from baker.geometry.edges import analyze_mesh, primitive_edges
+from baker.geometry.texture_target import made_by_unwrap
 from baker.techniques.edges import extension as ext
 from baker.progress import QUIET, Progress
 
@@ -63,7 +64,10 @@ def run(asset: Asset, options: EdgesOptions, seed: int = 0, progress: Progress =
             # edges
             group = np.repeat(np.arange(len(members)), np.diff(f_off))
         # per-corner attributes only where a primitive has them: no seam work on a mesh without UVs or normals
-        has_uv = any("TEXCOORD_0" in (prims[p].get("attributes") or {}) for p, *_ in members)
+        # a layout baker made (an unwrap for a texture bake that ran first) is not the mesh's: its seams are not
+        # UV seams of the asset, and the edges baked alone would not see them
+        has_uv = any("TEXCOORD_0" in (prims[p].get("attributes") or {}) and not made_by_unwrap(asset, m, p, 0)
+                     for p, *_ in members)
         has_normals = all("NORMAL" in (prims[p].get("attributes") or {}) for p, *_ in members)
         uv = np.concatenate([_corner_attribute(asset, prims[p], "TEXCOORD_0", t[k], 2) for p, _, t, k in members]) \
             if has_uv else None

@@ -17,8 +17,7 @@ from baker.techniques.tam.kernel import check_options, generate_tam
 from baker.errors import BakerError
 from baker.techniques.tam import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_space import unwrap
-from baker.geometry.texture_target import reindex_primitive, material_groups
+from baker.geometry.texture_target import material_groups, unwrap_material
 
 TILES_PER_DIAGONAL = 6.0
 
@@ -63,10 +62,7 @@ def run(asset: Asset, options: TamOptions, seed: int = 0, progress: Progress = Q
         if all(0 in g.texcoords for g in geoms):
             texcoord = 0
         else:  # no UVs to tile along: unwrap, as the texture bakes do
-            texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
-            layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=512, seed=seed)
-            for (m, p), (vmap, faces, uv) in zip(members, layouts):
-                reindex_primitive(asset, m, p, vmap, faces, uv, texcoord)
+            texcoord, _ = unwrap_material(asset, material, members, seed)
             geoms = [asset.primitive(m, p) for m, p in members]
         scale = options.scale if options.scale is not None else auto_scale(geoms, texcoord, options.size)
         if textures is None:

@@ -67,12 +67,17 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
             # one sample per position, so split vertices agree
             vertex_values[m] = cast([m], mesh.positions, normals, f"thickness mesh {m} vertices")
             values = vertex_values[m][mesh.inverse]
+            positions_of = {}  # material -> welded vertices of its primitives in this mesh
             for i, p in enumerate(prims):
                 per_vertex = values[mesh.offsets[i]: mesh.offsets[i + 1]]
                 ext.write_vertex_thickness(doc, m, p, per_vertex)
-                s = sums[material_of[(m, p)]]
-                s[0] += float(per_vertex.sum())
-                s[1] += len(per_vertex)
+                positions_of.setdefault(material_of[(m, p)], []).append(mesh.inverse[mesh.offsets[i]: mesh.offsets[i + 1]])
+            for material, ids in positions_of.items():
+                # the mean over positions, each once: copies split at seams (an unwrap's, if one ran first) do not
+                # weigh twice
+                ids = np.unique(np.concatenate(ids))
+                sums[material][0] += float(vertex_values[m][ids].sum())
+                sums[material][1] += len(ids)
 
     textured, texel_rule = {}, None
     if options.per_texel:
