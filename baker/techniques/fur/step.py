@@ -14,7 +14,7 @@ from baker.techniques.fur.kernel import bake_fur_textures
 from baker.techniques.fur import extension as ext
 from baker.progress import QUIET, Progress
 from baker.geometry.texture_space import unwrap
-from baker.geometry.texture_target import material_groups, reindex_primitive
+from baker.geometry.texture_target import material_groups, reindex_primitive, unwrap_material
 
 
 def _fins(asset: Asset, m: int, prims: list, tile_size: float):
@@ -51,7 +51,11 @@ def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = Q
     for material, members in groups.items():
         members = [(m, p) for m, p in members if len(asset.primitive(m, p).faces)]
         bare = [(m, p) for m, p in members if 0 not in asset.primitive(m, p).texcoords]
-        if bare:  # no UVs to tile along (glTF's sets start at 0: these have none): unwrap, as tam does
+        if bare and len(bare) == len(members):
+            # no UVs to tile along: the layout the texture bakes and tam share (once per asset, whichever bake runs
+            # first), so fur's output does not depend on which other bakes ran; with no UVs at all it is TEXCOORD_0
+            unwrap_material(asset, material, members, seed)
+        elif bare:  # some primitives of the material have UVs: only the others get a TEXCOORD_0 of their own
             geoms = [asset.primitive(m, p) for m, p in bare]
             layouts = unwrap([(g.positions, g.faces) for g in geoms], resolution=512, seed=seed)
             for (m, p), (vmap, faces, uv) in zip(bare, layouts):
