@@ -1,17 +1,20 @@
 """Hair cards (`baker cards`, RTR4 14.7.1) against the strands they stand for, as a function of the card count.
 
-    python benchmarks/cards.py [--section cards|coverage|all] [--strands 4000] [--cards 16 32 64 128 256]
+    python benchmarks/cards.py [--section cards|coverage|all] [--groom head curly] [--cards 0 32 64 128]
                                [--atlas-size 1024] [--size 160] [--repeat 3]
 
-The groom is written here by pxr (tests/techniques/cards_groom.py: a head of clumped, partly curly strands, not
-baker's grower). One section per part of issue 30, each a function; `main` runs them:
+The grooms are written here by pxr, not by baker's grower: `head` (tests/techniques/cards_groom.py, seed 11: 4000
+strands in 120 narrow clumps, some curly) and `curly` (tests/techniques/curly_groom.py, seed 23: 6000 strands in 50
+wide clumps, all curly: the held-out groom of issue 39). One section per part of issue 30, each a function; `main`
+runs them:
 
-- `cards_section`: per card count, the silhouette IoU between the strands and the cards from three views (coverage
-  images rendered the same way for both: tests/techniques/cards_views.py, orthographic, 4 x 4 supersampled, a pixel
-  covered when any sub-sample is), the share of strand points within 5 % of the mean strand length of their card,
-  the quads, and the time of the bake (clustering, ribbons, atlas; no file I/O). Peers in the same run: the same
-  card triangles drawn opaque (what the alpha-tested atlas buys), and the clustering alone (the k-medoids of
-  `baker guides`, which the cards reuse) for time.
+- `cards_section`: per card count (0: baker's default, the count chosen from the groom), the silhouette IoU between
+  the strands and the cards from three views (coverage images rendered the same way for both:
+  tests/techniques/cards_views.py, orthographic, 4 x 4 supersampled, a pixel covered when any sub-sample is), the
+  share of strand points within 5 % of the mean strand length of their card, the quads, and the time of the bake
+  (clustering, ribbons, atlas; no file I/O). Peers in the same run: the same card triangles drawn opaque (what the
+  alpha-tested atlas buys), and the clustering alone (the k-medoids of `baker guides`, which the cards reuse) for
+  time.
 - `coverage_per_mip`: for baker's fur shells (the defaults: 16 shells of 128^2; the innermost, a middle and an outer
   shell), the fur fin texture and a synthetic hair-card texture (60 antialiased strands 0.6-1.2 texels wide on 256^2),
   the fraction of texels whose alpha passes the cutoff (0.5) at every level, for the chain baker ships
@@ -40,6 +43,7 @@ from baker.techniques.cards.options import CardsOptions  # noqa: E402
 from baker.techniques.hair.groom import clean_groom, read_groom  # noqa: E402
 from baker.techniques.hair.guide_solver import resample_strands, select_guides  # noqa: E402
 from techniques.cards_groom import make_groom, write_groom_usd  # noqa: E402
+from techniques.curly_groom import make_curly_groom  # noqa: E402
 from techniques.cards_views import card_silhouette, coverage_image, strand_silhouette, view_basis  # noqa: E402
 from baker.gltf.alpha_mips import (alpha_mip_chain, bilinear_coverage, level_sizes,  # noqa: E402
                                    levels_off_coverage)
@@ -84,13 +88,13 @@ def cards_section(curves, groom_path: Path, counts, atlas_size: int, size: int) 
         seconds = time.perf_counter() - start
         start = time.perf_counter()
         roots = strands[:, 0]
-        select_guides(strands - roots[:, None], roots, lengths, n, locality=options.locality, iterations=8,
-                      seed=options.seed)
+        select_guides(strands - roots[:, None], roots, lengths, result.card_count, locality=options.locality,
+                      iterations=8, seed=options.seed)
         clustering = time.perf_counter() - start
         cards = {"positions": result.positions.astype(np.float64), "uv": result.texcoords.astype(np.float64),
                  "triangles": result.indices.astype(np.int64).reshape(-1, 3), "color": result.base_color}
         opaque = dict(cards, color=np.full_like(result.base_color, 255))
-        rows.append({"cards": n, "quads": result.stats["quadCount"],
+        rows.append({"requested": n, "cards": result.card_count, "quads": result.stats["quadCount"],
                      "iou": silhouettes_iou(curves, cards, size, options.alpha_cutoff),
                      "iou_opaque": silhouettes_iou(curves, opaque, size, options.alpha_cutoff),
                      "near": result.stats["cardDistance"]["within5Percent"],
@@ -100,15 +104,21 @@ def cards_section(curves, groom_path: Path, counts, atlas_size: int, size: int) 
     return rows
 
 
-def print_cards_table(rows, strands: int, atlas_size: int, size: int) -> None:
-    print(f"groom: {strands} strands (tests/techniques/cards_groom.py, seed 11, 120 clumps); atlas {atlas_size}^2; "
+GROOMS = {"head": ("tests/techniques/cards_groom.py, seed 11: 4000 strands, 120 narrow clumps",
+                   lambda: make_groom(strands=4000, clumps=120, seed=11)),
+          "curly": ("tests/techniques/curly_groom.py, seed 23: 6000 strands, 50 wide curly clumps",
+                    lambda: make_curly_groom())}
+
+
+def print_cards_table(rows, groom: str, atlas_size: int, size: int) -> None:
+    print(f"groom `{groom}` ({GROOMS[groom][0]}); atlas {atlas_size}^2; "
           f"silhouettes {size}^2 ({SUPERSAMPLE}x{SUPERSAMPLE} supersampled), mean IoU over views (az, el) "
           f"{', '.join(map(str, VIEWS))}; 2 shared cores\n")
-    print("| cards | quads | silhouette IoU (alpha-tested) | IoU, same cards opaque | points within 5 % of a card "
+    print("| --cards | cards | quads | silhouette IoU (alpha-tested) | IoU, same cards opaque | points within 5 % of a card "
           "| points on opaque texels | bake s | clustering alone s | ratio |")
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
-        print(f"| {r['cards']} | {r['quads']} | {r['iou']:.3f} | {r['iou_opaque']:.3f} | {100 * r['near']:.1f}% | "
+        print(f"| {r['requested'] or 'default'} | {r['cards']} | {r['quads']} | {r['iou']:.3f} | {r['iou_opaque']:.3f} | {100 * r['near']:.1f}% | "
               f"{100 * r['opaque_texels']:.1f}% | {r['seconds']:.2f} | {r['clustering']:.2f} | "
               f"{r['seconds'] / max(r['clustering'], 1e-9):.1f}x |", flush=True)
 
@@ -180,19 +190,22 @@ def print_coverage_table(rows, repeat: int) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--section", choices=("cards", "coverage", "all"), default="all")
-    parser.add_argument("--strands", type=int, default=4000)
-    parser.add_argument("--cards", type=int, nargs="+", default=[16, 32, 64, 128, 256])
+    parser.add_argument("--groom", choices=tuple(GROOMS), nargs="+", default=["head", "curly"])
+    parser.add_argument("--cards", type=int, nargs="+", default=[0, 32, 64, 128],
+                        help="card counts; 0: the default, chosen from the groom")
     parser.add_argument("--atlas-size", type=int, default=1024)
     parser.add_argument("--size", type=int, default=160, help="silhouette image size (pixels)")
     parser.add_argument("--repeat", type=int, default=3, help="coverage section: best of this many chain builds")
     args = parser.parse_args()
     if args.section in ("cards", "all"):
-        curves, widths = make_groom(strands=args.strands, clumps=120, seed=11)
-        with tempfile.TemporaryDirectory() as folder:
-            path = write_groom_usd(Path(folder) / "groom.usda", curves, widths)
-            make_cards(*read_strands(path, 8)[:3], CardsOptions(cards=4, atlas_size=64))  # numba compiled outside timing
-            rows = cards_section(curves, path, args.cards, args.atlas_size, args.size)
-        print_cards_table(rows, args.strands, args.atlas_size, args.size)
+        for groom in args.groom:
+            curves, widths = GROOMS[groom][1]()
+            with tempfile.TemporaryDirectory() as folder:
+                path = write_groom_usd(Path(folder) / "groom.usda", curves, widths)
+                make_cards(*read_strands(path, 8)[:3], CardsOptions(cards=4, atlas_size=64))  # numba compiled
+                rows = cards_section(curves, path, args.cards, args.atlas_size, args.size)
+            print_cards_table(rows, groom, args.atlas_size, args.size)
+            print()
     if args.section in ("coverage", "all"):
         print_coverage_table(coverage_per_mip(args.repeat), args.repeat)
 

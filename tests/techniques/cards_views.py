@@ -28,8 +28,9 @@ def strand_silhouette(curves, basis, box, size):
     for c in curves:
         xy = (np.stack([c @ basis[0], c @ basis[1]], 1) - lo) / span * size
         steps = np.maximum(np.ceil(np.linalg.norm(np.diff(xy, axis=0), axis=1) * 4).astype(int), 1)
-        t = np.concatenate([np.linspace(0, 1, s, endpoint=False) for s in steps])
         seg = np.repeat(np.arange(len(steps)), steps)
+        # k / steps for k = 0 .. steps - 1 along each segment (np.linspace(0, 1, steps, endpoint=False), at once)
+        t = (np.arange(len(seg)) - np.repeat(np.cumsum(steps) - steps, steps)) / np.repeat(steps, steps)
         pts = xy[seg] + t[:, None] * (xy[seg + 1] - xy[seg])
         ij = np.clip(pts.astype(int), 0, size - 1)
         image[ij[:, 1], ij[:, 0]] = True

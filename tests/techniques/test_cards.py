@@ -22,6 +22,7 @@ from baker.cli import main as cli_main
 from baker.validate import validate_file
 from conftest import assert_khronos_clean
 from techniques.cards_groom import make_groom, write_groom_usd
+from techniques.curly_groom import make_curly_groom
 from techniques.cards_views import alpha_at, card_silhouette, coverage_image, strand_silhouette, view_basis
 
 CARDS = 96
@@ -412,6 +413,87 @@ def test_segments_follow_curvature():
     n_curl = len(build_card(curl, curl[None], np.array([0.0, 0.0, 1.0]), **kw).kept) - 1
     n_gentle = len(build_card(gentle, gentle[None], np.array([0.0, 0.0, 1.0]), **kw).kept) - 1
     assert n_gentle <= 4 < 16 <= n_curl
+
+
+def test_fit_splits_two_sheets_one_card_cannot_cover():
+    """Two parallel sheets of straight strands, 0.2 x their length apart along z, roots interleaved in x: the first
+    clusters mix the sheets, and the fit splits them (by depth along the card normal) until every point lies on
+    its card."""
+    from baker.techniques.cards.fit import fit_clumps
+
+    v, per_sheet = 16, 150
+    x = np.linspace(-0.3, 0.3, per_sheet)
+    down = -np.linspace(0.0, 1.0, v)
+    sheets = [np.stack([np.broadcast_to(x[:, None], (per_sheet, v)), np.broadcast_to(down, (per_sheet, v)),
+                        np.full((per_sheet, v), z)], axis=2) for z in (0.0, 0.2)]
+    strands = np.concatenate(sheets)
+    lengths = np.ones(len(strands))
+    fit = fit_clumps(strands, lengths, target=1.0, locality=1.0, seed=0,
+                     card_options=dict(coverage=1.0, min_half_width=1e-3, tolerance=0.005, max_segments=8))
+    assert fit.rounds >= 1 and fit.near == 1.0
+    assert fit.clumps.count <= 2 * fit.first_count  # a split per mixed clump, nothing more
+    # the split itself: members at two depths (with noise) part exactly; members of one depth profile do not
+    from baker.techniques.cards.clumps import split_by_depth
+
+    rng = np.random.default_rng(4)
+    group = rng.random(40) < 0.3
+    depth = np.where(group[:, None], 0.1, -0.05) * np.linspace(1.0, 0.5, v) + rng.normal(0, 0.01, (40, v))
+    side = split_by_depth(depth)
+    assert np.array_equal(side, group) or np.array_equal(~side, group)
+    assert split_by_depth(np.zeros((5, v))) is None and split_by_depth(depth[:1]) is None
+
+
+@pytest.fixture(scope="module")
+def curly(tmp_path_factory):
+    """The held-out groom: 3000 strands in 30 wide, curly clumps (curly_groom.py), not the groom of the tests above."""
+    folder = tmp_path_factory.mktemp("curly")
+    curves, widths = make_curly_groom(strands=3000, clumps=30, seed=5)
+    path = write_groom_usd(folder / "curly.usda", curves, widths)
+    out = folder / "cards.glb"
+    with contextlib.redirect_stdout(io.StringIO()) as buffer:
+        assert cli_main(["cards", str(path), "-o", str(out), "--format", "json"]) == 0
+    return {"curves": curves, "points": np.concatenate(curves), "path": path, "cards": cards_from_glb(out),
+            "summary": json.loads(buffer.getvalue()),
+            "mean_length": float(np.mean([np.linalg.norm(np.diff(c, axis=0), axis=1).sum() for c in curves]))}
+
+
+def test_default_count_holds_a_curly_wide_clump_groom(curly):
+    """No --cards: the count comes from the groom, and the cards hold 90 % of the strand points within 5 % of the
+    mean strand length (distances measured here, to any card) and match the strands' silhouettes."""
+    distance, _, _ = nearest_card_points(curly["points"], curly["cards"])
+    near = (distance <= 0.05 * curly["mean_length"]).mean()
+    assert near >= 0.90, near
+    summary = curly["summary"]
+    assert summary["cardCountFrom"]["source"] == "groom" and summary["cardCountFrom"]["splitRounds"] >= 1
+    assert summary["cards"] == curly["cards"]["ext"]["cardCount"] <= 3000 // 8
+    for view in [(0, 0), (90, 10), (200, 35)]:
+        basis = view_basis(*view)
+        xy = np.stack([curly["points"] @ basis[0], curly["points"] @ basis[1]], 1)
+        lo = xy.min(0) - 0.01
+        box = (lo, float((xy.max(0) + 0.01 - lo).max()))
+        strands = coverage_image(strand_silhouette(curly["curves"], basis, box, 640), 160)
+        cards = coverage_image(card_silhouette(curly["cards"], basis, box, 640,
+                                               curly["cards"]["material"]["alphaCutoff"]), 160)
+        iou = (strands & cards).sum() / (strands | cards).sum()
+        assert iou >= 0.8, (view, iou)
+
+
+def test_fitted_cards_beat_one_clustering_of_the_same_count(curly):
+    """Splitting where a card cannot cover the cross-section holds more points than the k-medoids alone at the
+    same card count; and an explicit --cards is used exactly as given."""
+    from baker.techniques.cards.kernel import make_cards
+    from baker.techniques.cards.options import CardsOptions
+    from baker.techniques.hair.groom import clean_groom, read_groom
+    from baker.techniques.hair.guide_solver import resample_strands
+
+    groom = clean_groom(read_groom(curly["path"]), curly["path"])
+    strands, lengths, widths = resample_strands(groom.points, groom.counts, 32, groom.widths)
+    fitted = make_cards(strands, lengths, widths, CardsOptions(atlas_size=256))
+    count = fitted.card_count
+    assert count == curly["summary"]["cards"]  # the atlas size does not change the count
+    fixed = make_cards(strands, lengths, widths, CardsOptions(cards=count, atlas_size=256))
+    assert fixed.card_count == count and fixed.stats["cardCountFrom"] == {"source": "option"}
+    assert fitted.stats["cardDistance"]["within5Percent"] > fixed.stats["cardDistance"]["within5Percent"]
 
 
 # -------------------------------------------------------------------------------------- formats, bytes, errors

@@ -55,6 +55,18 @@ def root_surface_normals(roots: np.ndarray, growth: np.ndarray, at: np.ndarray, 
     return np.where(planar[:, None], normal, g)
 
 
+def describe_clumps(strands: np.ndarray, lengths: np.ndarray, labels: np.ndarray) -> Clumps:
+    """The :class:`Clumps` of strands (S, V, 3) grouped by ``labels`` (S,: 0..K-1, every number used)."""
+    roots = strands[:, 0]
+    k = int(labels.max()) + 1
+    curves = mean_curves(strands, labels, k)
+    growth = np.zeros((k, 3))
+    np.add.at(growth, labels, strands[:, 1] - strands[:, 0])
+    normals = root_surface_normals(roots, growth, curves[:, 0])
+    distance = np.linalg.norm(strands - curves[labels], axis=2) / np.maximum(lengths, 1e-300)[:, None]
+    return Clumps(labels, curves, normals, float(np.sqrt(np.mean(distance ** 2))), float(distance.max()))
+
+
 def cluster_strands(strands: np.ndarray, lengths: np.ndarray, count: int, *, locality: float, seed: int,
                     iterations: int = 8) -> Clumps:
     """Group resampled strands (S, V, 3) into at most ``count`` clumps (fewer when strands coincide)."""
@@ -63,12 +75,31 @@ def cluster_strands(strands: np.ndarray, lengths: np.ndarray, count: int, *, loc
     _, medoid = select_guides(shapes, roots, lengths, min(count, len(strands)), locality=locality,
                               iterations=iterations, seed=seed)
     _, labels = np.unique(medoid, return_inverse=True)  # clump numbers in the order of their medoid strands
-    labels = labels.reshape(-1).astype(np.int64)
-    k = int(labels.max()) + 1
-    curves = mean_curves(strands, labels, k)
-    growth = np.zeros((k, 3))
-    np.add.at(growth, labels, strands[:, 1] - strands[:, 0])
-    root_mean = curves[:, 0]
-    normals = root_surface_normals(roots, growth, root_mean)
-    distance = np.linalg.norm(strands - curves[labels], axis=2) / np.maximum(lengths, 1e-300)[:, None]
-    return Clumps(labels, curves, normals, float(np.sqrt(np.mean(distance ** 2))), float(distance.max()))
+    return describe_clumps(strands, lengths, labels.reshape(-1).astype(np.int64))
+
+
+def split_by_depth(depth: np.ndarray, iterations: int = 8) -> np.ndarray | None:
+    """Two groups of a clump's members whose offsets along the card normal (n, V: per member and station) one card
+    cannot hold: 2-means on those depth profiles, started from the sign of their principal component (PCA of the
+    members' offsets from the clump's mean curve, seen along the card normal). Returns a bool mask (n,) of the
+    second group, or None when the members do not separate."""
+    n = len(depth)
+    if n < 2:
+        return None
+    centred = depth - depth.mean(axis=0)
+    # the principal axis by power iteration on the (V, V) covariance, from the member farthest from the mean
+    covariance = np.einsum("nv,nw->vw", centred, centred)
+    axis = centred[int(np.argmax(np.einsum("nv,nv->n", centred, centred)))]
+    for _ in range(24):
+        axis = covariance @ axis
+        axis = axis / max(float(np.sqrt(axis @ axis)), 1e-300)
+    side = centred @ axis > 0
+    for _ in range(iterations):
+        if side.all() or not side.any():
+            return None
+        a, b = depth[~side].mean(axis=0), depth[side].mean(axis=0)
+        new = ((depth - b) ** 2).sum(axis=1) < ((depth - a) ** 2).sum(axis=1)
+        if np.array_equal(new, side):
+            break
+        side = new
+    return None if side.all() or not side.any() else side

@@ -10,6 +10,7 @@ import numpy as np
 
 from baker.techniques.cards.atlas import closest_on_cards, pack_regions, rasterize_strands
 from baker.techniques.cards.clumps import cluster_strands
+from baker.techniques.cards.fit import fit_clumps
 from baker.techniques.cards.options import CardsOptions
 from baker.techniques.cards.ribbon import build_card, draw_order
 
@@ -97,11 +98,20 @@ def make_cards(strands: np.ndarray, lengths: np.ndarray, widths: np.ndarray | No
     mean_length = float(lengths.mean())
     if widths is None or not (widths.max(initial=0.0) > 0):
         widths = np.full((s, v), float(np.median(lengths)) / 300.0)
-    clumps = cluster_strands(strands, lengths, options.cards, locality=options.locality, seed=options.seed)
     min_half = max(float(np.median(widths)), 2e-3 * mean_length)
-    cards = [build_card(clumps.curves[k], strands[clumps.labels == k], clumps.scalp_normals[k],
-                        coverage=options.coverage, min_half_width=min_half, tolerance=options.tolerance,
-                        max_segments=options.max_segments) for k in range(clumps.count)]
+    card_options = dict(coverage=options.coverage, min_half_width=min_half, tolerance=options.tolerance,
+                        max_segments=options.max_segments)
+    if options.cards:  # an explicit count: one clustering, one card per clump
+        clumps = cluster_strands(strands, lengths, options.cards, locality=options.locality, seed=options.seed)
+        cards = [build_card(clumps.curves[k], strands[clumps.labels == k], clumps.scalp_normals[k], **card_options)
+                 for k in range(clumps.count)]
+        count_from = {"source": "option"}
+    else:  # from the groom: split clumps until the cards hold the strands
+        fit = fit_clumps(strands, lengths, target=options.fit, locality=options.locality, seed=options.seed,
+                         card_options=card_options)
+        clumps, cards = fit.clumps, fit.cards
+        count_from = {"source": "groom", "target": float(options.fit), "firstCount": int(fit.first_count),
+                      "splitRounds": int(fit.rounds), "cap": int(fit.cap)}
     order = draw_order(cards, strands[:, 0])
     rank = np.empty_like(order)
     rank[order] = np.arange(len(order))
@@ -168,7 +178,7 @@ def make_cards(strands: np.ndarray, lengths: np.ndarray, widths: np.ndarray | No
     texel = np.clip(np.floor(uv * size).astype(np.int64), 0, size - 1)
     passes = base_color[texel[:, 1], texel[:, 0], 3] >= np.rint(options.alpha_cutoff * 255.0)
     stats = {"strandCount": int(s), "verticesPerStrand": int(v), "meanStrandLength": mean_length,
-             "cardCount": int(len(cards)), "quadCount": int(len(indices) // 6),
+             "cardCount": int(len(cards)), "cardCountFrom": count_from, "quadCount": int(len(indices) // 6),
              "vertexCount": int(len(positions)), "clusteringError": {"rms": clumps.error_rms,
                                                                      "max": clumps.error_max},
              "cardDistance": {"rms": float(np.sqrt(np.mean(distance ** 2)) / mean_length),

@@ -10,7 +10,10 @@ from baker.options import opt
 class CardsOptions:
     """Options of the groom -> hair cards bake (``baker cards``)."""
 
-    cards: int = opt(64, "number of cards: one per clump of strands", min=1, max=65536)
+    cards: int = opt(0, "number of cards, one per clump of strands; 0: from the groom, clumps split until --fit of "
+                        "the strand points lie within 5 % of the mean strand length of their card (at most one "
+                        "card per 8 strands)", min=0, max=65536)
+    fit: float = opt(0.9, "with --cards 0: the share of strand points the cards must hold", min=0.5, max=1.0)
     atlas_size: int = opt(1024, "atlas width and height in texels (a power of two)", min=64, max=4096)
     vertices_per_strand: int = opt(32, "vertices of every strand after resampling at equal arc-length steps "
                                        "(card segments are chosen among them)", min=4, max=256)

@@ -85,14 +85,16 @@ def run(args) -> int:
     seconds["write"] = time.perf_counter() - start
     s = result.stats
     info = {"input": str(args.input), "output": str(args.output), "strands": counts["strandCount"],
-            "skippedCurves": counts["skippedCurves"], "cards": result.card_count, "quads": s["quadCount"],
+            "skippedCurves": counts["skippedCurves"], "cards": result.card_count,
+            "cardCountFrom": s["cardCountFrom"], "quads": s["quadCount"],
             "atlasSize": options.atlas_size, "clusteringError": s["clusteringError"],
             "cardDistance": s["cardDistance"], "pointsOnOpaqueTexels": s["pointsOnOpaqueTexels"],
             "seconds": {k: round(v, 3) for k, v in seconds.items()}}
     if args.format == "json":
         print(json.dumps(info, indent=2, sort_keys=True))
     elif not args.quiet:
-        print(f"cards: {info['strands']} strands -> {info['cards']} cards, {info['quads']} quads, atlas "
+        chosen = " (count from the groom)" if s["cardCountFrom"]["source"] == "groom" else ""
+        print(f"cards: {info['strands']} strands -> {info['cards']} cards{chosen}, {info['quads']} quads, atlas "
               f"{options.atlas_size}², {100 * s['cardDistance']['within5Percent']:.1f} % of strand points within "
               f"5 % of the mean length of a card, {100 * s['pointsOnOpaqueTexels']:.1f} % on opaque texels -> "
               f"{args.output}", file=sys.stderr)

@@ -1,0 +1,124 @@
+"""The default card count: as many cards as the groom needs (issue 30's measure, RTR4 14.7.1's aim of cards that
+stand for the strands).
+
+Start from a few clumps (the guides' k-medoids, :func:`.clumps.cluster_strands`), build their ribbons and measure
+every strand point's distance to its own card's surface; while fewer than ``target`` of the points lie within
+``NEAR`` x the mean strand length, split the clumps holding the most points that are off their card. A clump is
+split where a single card cannot cover its cross-section: by its members' offsets along the card normal
+(:func:`.clumps.split_by_depth`), so the two halves get cards of their own, each oriented by its members' spread.
+The count stops at ``cap`` (from the strand count) whatever the share.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from baker.techniques.cards.atlas import closest_on_cards
+from baker.techniques.cards.clumps import Clumps, cluster_strands, describe_clumps, split_by_depth
+from baker.techniques.cards.ribbon import Card, build_card
+
+NEAR = 0.05  # a strand point is held by its card within this fraction of the mean strand length (issue 30)
+STRANDS_PER_CARD = 8  # the cap: on average at least this many strands per card
+FIRST_STRANDS_PER_CARD = 250  # the first clustering: about one clump per this many strands (at least 4)
+GROWTH = 0.25  # at most this share of the clumps is split per round
+
+
+@dataclass
+class Fit:
+    clumps: Clumps
+    cards: list
+    rounds: int  # split rounds after the first clustering
+    first_count: int  # clumps of the first clustering
+    cap: int
+    near: float  # share of strand points within NEAR x mean length of their card
+
+
+def card_count_cap(strands: int) -> int:
+    return max(1, strands // STRANDS_PER_CARD)
+
+
+def card_triangles(card: Card) -> np.ndarray:
+    """(2 (n - 1), 3, 3) corners of the card's triangles (the quads between its kept stations), as written."""
+    j = card.kept
+    side = card.width_axis[j] * card.half_width[j, None]
+    left, right = card.centre[j] - side, card.centre[j] + side
+    a, b, c, d = left[:-1], left[1:], right[1:], right[:-1]
+    return np.stack([np.stack([a, b, c], 1), np.stack([a, c, d], 1)], 1).reshape(-1, 3, 3)
+
+
+def card_distances(strands: np.ndarray, labels: np.ndarray, triangles: list) -> np.ndarray:
+    """(S, V) distance of every strand point (S, V, 3) to its clump's card (``labels`` (S,) index ``triangles``)."""
+    s, v, _ = strands.shape
+    count = np.array([len(t) for t in triangles], np.int64)
+    start = np.concatenate([[0], np.cumsum(count)[:-1]]).astype(np.int64)
+    _, _, distance = closest_on_cards(strands.reshape(-1, 3), np.repeat(labels, v), start, count,
+                                      np.concatenate(triangles))
+    return distance.reshape(s, v)
+
+
+def fit_clumps(strands: np.ndarray, lengths: np.ndarray, *, target: float, locality: float, seed: int,
+               card_options: dict) -> Fit:
+    """Clumps and their cards, split until ``target`` of the strand points lie near their card (see the module
+    docstring). ``card_options``: the keywords of :func:`.ribbon.build_card` besides the curve, members and normal."""
+    s, v, _ = strands.shape
+    cap = card_count_cap(s)
+    first = min(cap, max(4, math.ceil(s / FIRST_STRANDS_PER_CARD)))
+    clumps = cluster_strands(strands, lengths, first, locality=locality, seed=seed)
+    first = clumps.count
+    labels = clumps.labels.copy()
+
+    def card_of(k: int) -> Card:
+        return build_card(clumps.curves[k], strands[labels == k], clumps.scalp_normals[k], **card_options)
+
+    cards = [card_of(k) for k in range(clumps.count)]
+    triangles = [card_triangles(c) for c in cards]
+    whole = np.ones(clumps.count, bool)  # False: the clump would not split
+    tolerance = NEAR * float(lengths.mean())
+    rounds = 0
+    distance = card_distances(strands, labels, triangles)
+    while True:
+        far = distance > tolerance
+        near = 1.0 - float(far.mean())
+        count = clumps.count
+        if near >= target or count >= cap:
+            break
+        far_points = np.bincount(labels, weights=far.sum(axis=1), minlength=count)
+        excess = far.sum() - math.floor((1.0 - target) * far.size)
+        budget = min(max(1, int(GROWTH * count)), cap - count)
+        chosen, held = [], 0.0
+        for k in np.lexsort((np.arange(count), -far_points)).tolist():
+            if far_points[k] <= 0 or len(chosen) >= budget or held >= excess:
+                break
+            if whole[k]:
+                chosen.append(k)
+                held += far_points[k]
+        split = []
+        for k in chosen:
+            members = np.flatnonzero(labels == k)
+            card = cards[k]
+            depth = np.einsum("nvi,vi->nv", strands[members] - card.centre[None, :v], card.normal[:v])
+            side = split_by_depth(depth)
+            if side is None:
+                whole[k] = False
+                continue
+            labels[members[side]] = count + len(split)
+            split.append(k)
+        if not split:
+            break
+        rounds += 1
+        clumps = describe_clumps(strands, lengths, labels)
+        whole = np.concatenate([whole, np.ones(len(split), bool)])
+        changed = split + list(range(count, clumps.count))
+        for k in changed:
+            card = card_of(k)
+            if k < count:
+                cards[k], triangles[k] = card, card_triangles(card)
+            else:
+                cards.append(card)
+                triangles.append(card_triangles(card))
+        # only the strands of split clumps moved to other cards: measure those again
+        moved = np.flatnonzero(np.isin(labels, changed))
+        distance[moved] = card_distances(strands[moved], labels[moved], triangles)
+    return Fit(clumps, cards, rounds, first, cap, near)
