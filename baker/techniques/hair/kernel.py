@@ -486,6 +486,7 @@ class InsideTest:
     run) every fraction of a second: a compiled call cannot be interrupted."""
 
     BLOCK = 16384
+    AMBIGUOUS = 0.15
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray):
         from baker.geometry.raycast import RayScene
@@ -502,7 +503,7 @@ class InsideTest:
             return np.zeros(0, bool)
         points = np.ascontiguousarray(points, np.float64)
         if not self.closed:
-            return np.concatenate([self.winding(points[i:i + self.BLOCK]) > 0.5
+            return np.concatenate([self._winding_inside(points[i:i + self.BLOCK])
                                    for i in range(0, len(points), self.BLOCK)])
         # one ray per point; only the (rare) odd ones get two more rays and a majority vote, which guards against a
         # ray grazing an edge and counting it twice or not at all
@@ -513,6 +514,18 @@ class InsideTest:
                 + self._parity(points[suspects], _PARITY_DIRECTIONS[2])
             odd[suspects] = votes >= 2
         return odd
+
+    def _winding_inside(self, points: np.ndarray) -> np.ndarray:
+        """Winding number > 0.5: the tree's estimate, and the exact sum where the estimate is within ``AMBIGUOUS``
+        of the threshold. The estimate's error was at most 0.071 on the Stanford bunny (4000 points in and around
+        it, the largest deep inside, where w is near 1) and 0.05 on the test's open dome; only points near a hole's
+        rim land in the band."""
+        w = self.winding(points)
+        near = np.flatnonzero(np.abs(w - 0.5) < self.AMBIGUOUS)
+        for i in range(0, len(near), self.BLOCK // 64):  # brute force: ~64x the cost per point
+            part = near[i:i + self.BLOCK // 64]
+            w[part] = winding_numbers(points[part], self.vertices, self.faces)
+        return w > 0.5
 
     def _parity(self, points: np.ndarray, direction: np.ndarray) -> np.ndarray:
         d = (direction / np.linalg.norm(direction)).astype(np.float32)
