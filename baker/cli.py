@@ -4,14 +4,17 @@ Exit codes: 0 success, 1 validation errors found, 2 bad input or usage, 130 inte
 terminated (SIGTERM). An interrupted or terminated run unwinds like an error: every output is written to a
 temporary file beside its target and renamed only when complete (baker.gltf.atomic), so the unwinding removes the
 temporary files and leaves any earlier output as it was.
+
+SIGINT is always turned into KeyboardInterrupt while a command runs, also when baker was started with SIGINT ignored:
+a shell without job control (``sh -c 'baker ... &'``, most CI scripts) starts background commands that way, and
+Python then leaves SIGINT ignored, so ``kill -INT`` did nothing. The handlers are installed before the commands are
+imported; a signal in the first few tenths of a second (the interpreter starting, ``import baker``) still ends the
+process by the signal's default action: nothing written, a shell reports it as 130 / 143, but no message.
 """
 from __future__ import annotations
 
 import signal
 import sys
-
-from baker import commands
-from baker.errors import BakerError
 
 
 class Terminated(BaseException):
@@ -25,12 +28,17 @@ def _terminate(signum, frame):
 
 
 def main(argv=None) -> int:
-    previous = None
+    previous = {}
     try:
-        previous = signal.signal(signal.SIGTERM, _terminate)
+        previous[signal.SIGTERM] = signal.signal(signal.SIGTERM, _terminate)
+        previous[signal.SIGINT] = signal.signal(signal.SIGINT, signal.default_int_handler)
     except ValueError:  # not the main thread (main() called from a thread): leave signals alone
         pass
+    from baker.errors import BakerError
+
     try:
+        from baker import commands  # after the handlers: a signal while the commands load is handled too
+
         return commands.run(sys.argv[1:] if argv is None else argv)
     except BakerError as exc:
         print(f"baker: error: {exc}", file=sys.stderr)
@@ -47,8 +55,8 @@ def main(argv=None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error when Python flushes at exit
         return 141
     finally:
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, signal.SIG_DFL if handler is None else handler)
 
 
 def entry() -> None:
