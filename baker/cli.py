@@ -23,15 +23,43 @@ class Terminated(BaseException):
     handlers around a reader do not swallow it."""
 
 
+def _swallowing(frame) -> bool:
+    """Whether an exception raised in ``frame`` would be printed and dropped rather than unwind the command: inside
+    a ``__del__`` or a ctypes callback (llvmlite's object-cache hooks run while numba compiles; a KeyboardInterrupt
+    there was reported as "Exception ignored on calling ctypes callback function" and left the compilation broken,
+    exit 1 instead of 130)."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_name == "__del__" or "llvmlite" in code.co_filename.replace("\\", "/").split("/"):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _raise_when_safe(signum, frame, exception) -> None:
+    if _swallowing(frame):
+        # send the signal again a moment later, when the main thread is (almost surely) back in baker's own code
+        import os
+        import threading
+
+        threading.Timer(0.02, os.kill, (os.getpid(), signum)).start()
+        return
+    raise exception
+
+
 def _terminate(signum, frame):
-    raise Terminated()
+    _raise_when_safe(signum, frame, Terminated())
+
+
+def _interrupt(signum, frame):
+    _raise_when_safe(signum, frame, KeyboardInterrupt())
 
 
 def main(argv=None) -> int:
     previous = {}
     try:
         previous[signal.SIGTERM] = signal.signal(signal.SIGTERM, _terminate)
-        previous[signal.SIGINT] = signal.signal(signal.SIGINT, signal.default_int_handler)
+        previous[signal.SIGINT] = signal.signal(signal.SIGINT, _interrupt)
     except ValueError:  # not the main thread (main() called from a thread): leave signals alone
         pass
     from baker.errors import BakerError
