@@ -4,15 +4,18 @@ Exit codes: 0 success, 1 validation errors found, 2 bad input or usage, 130 inte
 terminated (SIGTERM). An interrupted or terminated run unwinds like an error: every output is written to a
 temporary file beside its target and renamed only when complete (baker.gltf.atomic), so the unwinding removes the
 temporary files and leaves any earlier output as it was.
+
+SIGINT is always turned into KeyboardInterrupt while a command runs, also when baker was started with SIGINT ignored:
+a shell without job control (``sh -c 'baker ... &'``, most CI scripts) starts background commands that way, and
+Python then leaves SIGINT ignored, so ``kill -INT`` did nothing. The handlers are installed before the commands are
+imported; a signal in the first few tenths of a second (the interpreter starting, ``import baker``) still ends the
+process by the signal's default action: nothing written, a shell reports it as 130 / 143, but no message.
 """
 from __future__ import annotations
 
 import signal
 import sys
 import warnings
-
-from baker import commands
-from baker.errors import BakeNote, BakerError
 
 
 class Terminated(BaseException):
@@ -21,13 +24,43 @@ class Terminated(BaseException):
     handlers around a reader do not swallow it."""
 
 
+def _swallowing(frame) -> bool:
+    """Whether an exception raised in ``frame`` would be printed and dropped rather than unwind the command: inside
+    a ``__del__`` or a ctypes callback (llvmlite's object-cache hooks run while numba compiles; a KeyboardInterrupt
+    there was reported as "Exception ignored on calling ctypes callback function" and left the compilation broken,
+    exit 1 instead of 130)."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_name == "__del__" or "llvmlite" in code.co_filename.replace("\\", "/").split("/"):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _raise_when_safe(signum, frame, exception) -> None:
+    if _swallowing(frame):
+        # send the signal again a moment later, when the main thread is (almost surely) back in baker's own code
+        import os
+        import threading
+
+        threading.Timer(0.02, os.kill, (os.getpid(), signum)).start()
+        return
+    raise exception
+
+
 def _terminate(signum, frame):
-    raise Terminated()
+    _raise_when_safe(signum, frame, Terminated())
+
+
+def _interrupt(signum, frame):
+    _raise_when_safe(signum, frame, KeyboardInterrupt())
 
 
 def _one_line_notes(show):
     """``warnings.showwarning`` printing a :class:`BakeNote` as ``baker: <label>: ...`` (what ``baker bake`` prints),
     so every command that loads an asset (inspect, preview, hair, ...) says a missing MTL the same way."""
+    from baker.errors import BakeNote
+
     def showwarning(message, category, filename, lineno, file=None, line=None):
         if issubclass(category, BakeNote):
             print(f"baker: {category.label}: {message}", file=sys.stderr)
@@ -38,12 +71,17 @@ def _one_line_notes(show):
 
 
 def main(argv=None) -> int:
-    previous = None
+    previous = {}
     try:
-        previous = signal.signal(signal.SIGTERM, _terminate)
+        previous[signal.SIGTERM] = signal.signal(signal.SIGTERM, _terminate)
+        previous[signal.SIGINT] = signal.signal(signal.SIGINT, _interrupt)
     except ValueError:  # not the main thread (main() called from a thread): leave signals alone
         pass
+    from baker.errors import BakerError
+
     try:
+        from baker import commands  # after the handlers: a signal while the commands load is handled too
+
         with warnings.catch_warnings():  # restores showwarning
             warnings.showwarning = _one_line_notes(warnings.showwarning)
             return commands.run(sys.argv[1:] if argv is None else argv)
@@ -62,8 +100,8 @@ def main(argv=None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error when Python flushes at exit
         return 141
     finally:
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, signal.SIG_DFL if handler is None else handler)
 
 
 def entry() -> None:

@@ -95,6 +95,66 @@ def test_spot_nothing_inside_by_winding_number():
         assert trimesh.proximity.closest_point(mesh, strands.positions[:, 0])[1].max() < 1e-9
 
 
+@pytest.fixture(scope="module")
+def dome():
+    """An open mesh: the upper half of an icosphere (a bowl upside down, boundary at z = 0), plus a flap sharing one
+    of its edges (a non-manifold edge used by three triangles)."""
+    m = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
+    v, f = np.asarray(m.vertices, np.float64), np.asarray(m.faces, np.int64)
+    f = f[v[f].mean(axis=1)[:, 2] > 0.0]
+    a, b = f[0, 0], f[0, 1]
+    tip = len(v)
+    v = np.concatenate([v, [v[a] + v[b] - v[f[0, 2]] + 0.3 * (v[a] + v[b])]])
+    f = np.concatenate([f, [[b, a, tip]]])
+    return v, f
+
+
+def test_fast_winding_numbers_match_brute_force(dome):
+    v, f = dome
+    assert hair.boundary_edge_count(f) > 0
+    rng = np.random.default_rng(5)
+    box = rng.uniform(-1.5, 1.5, (1500, 3))
+    near = v[f[rng.integers(0, len(f), 1500)]].mean(axis=1) + rng.normal(0.0, 0.02, (1500, 3))
+    points = np.concatenate([box, near, v[:50]])  # and exactly on vertices
+    truth = winding_number(points, v, f)
+    fast = hair.WindingTree(v, f)(points)
+    assert np.abs(fast - truth).max() < 0.05
+    decided = np.abs(truth - 0.5) > 0.05
+    assert np.array_equal((fast > 0.5)[decided], (truth > 0.5)[decided])
+    assert 200 < (truth > 0.5).sum() < len(points) - 200  # both sides are exercised
+    # the compiled brute force agrees with the numpy truth
+    assert np.allclose(hair.winding_numbers(points, v, f), truth, atol=1e-9)
+    # a single triangle (one leaf: a dipole far from it, exact near it) and an empty mesh
+    one, one_truth = hair.WindingTree(v, f[:1])(points), winding_number(points, v, f[:1])
+    assert np.abs(one - one_truth).max() < 1e-3
+    centre = v[f[0]].mean(axis=0)
+    close = np.linalg.norm(points - centre, axis=1) < 0.1
+    assert close.sum() > 3 and np.allclose(one[close], one_truth[close], atol=1e-12)
+    assert np.array_equal(hair.WindingTree(v, f[:0])(points), np.zeros(len(points)))
+
+
+DOME_HAIR = dict(guides=150, children=6, segments=16, gravity=2.0, stiffness=0.0, iterations=20,
+                 gravity_direction=(0.0, 0.0, -1.0))
+
+
+def test_open_dome_nothing_inside_by_winding_number(dome):
+    v, f = dome
+    result = generate_hair(_emitter(v, f), HairOptions(length=2.0, **DOME_HAIR), seed=2)
+    assert not result.stats["closed_emitter"]
+    for strands in _all_strands(result):
+        assert np.abs(segment_lengths(strands.positions) / strands.rest_lengths[:, None] - 1.0).max() < 0.01
+        wn = winding_number(strands.positions[:, 1:].reshape(-1, 3), v, f)
+        assert wn.max() <= 0.5, f"{int((wn > 0.5).sum())} strand vertices inside the open dome"
+
+
+def test_open_dome_push_out_is_what_keeps_strands_outside(dome, monkeypatch):
+    v, f = dome
+    monkeypatch.setattr(hair, "push_out", lambda *a, **k: 0)
+    result = generate_hair(_emitter(v, f), HairOptions(length=2.0, **DOME_HAIR), seed=2)
+    wn = winding_number(result.guides.positions[:, 1:].reshape(-1, 3), v, f)
+    assert (wn > 0.5).sum() > 50
+
+
 def test_roots_are_blue_noise(sphere):
     v, f = sphere
     rng = np.random.default_rng(0)

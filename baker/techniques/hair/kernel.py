@@ -333,7 +333,8 @@ def boundary_edge_count(faces: np.ndarray) -> int:
 @numba.njit(cache=True, nogil=True, parallel=True)
 def winding_numbers(points, vertices, faces):
     """Generalized winding number (Jacobson et al. 2013) of each point: the signed solid angle of all triangles
-    over 4 pi (van Oosterom & Strackee 1983). Brute force, O(points x triangles); used for open emitters."""
+    over 4 pi (van Oosterom & Strackee 1983). Brute force, O(points x triangles): the reference that
+    :class:`WindingTree` is tested against."""
     out = np.zeros(points.shape[0])
     for p in numba.prange(points.shape[0]):
         total = 0.0
@@ -358,6 +359,121 @@ def winding_numbers(points, vertices, faces):
     return out
 
 
+class WindingTree:
+    """Fast generalized winding numbers (Barill, Dickson, Schmidt, Levin & Jacobson, "Fast Winding Numbers for
+    Soups and Clouds", SIGGRAPH 2018), first order: a tree over the triangles, each node summarised by its
+    area-weighted centre and summed area vector (a dipole); a node farther from the query point than ``beta``
+    times its radius contributes its dipole's solid angle, A . (c - q) / |c - q|^3, a nearer one is opened, and the
+    leaves are summed exactly (van Oosterom & Strackee). Near the surface, where the 0.5 threshold is decided, the
+    sum is exact; far from it the error of a node is O((r / d)^2) of its share.
+
+    The tree is implicit and balanced: node n = 2^l + k covers the sorted triangles [k F / 2^l, (k + 1) F / 2^l),
+    and its two halves are its children."""
+
+    LEAF = 8
+    BETA = 2.0
+
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
+        v = np.asarray(vertices, np.float64)[np.asarray(faces, np.int64)]  # (F, 3, 3)
+        count = len(v)
+        centroids = v.mean(axis=1)
+        self.depth = max(0, int(math.ceil(math.log2(max(count, 1) / self.LEAF))))
+        # median splits along each node's longest axis: every level sorts each node's range by that coordinate
+        # (one stable lexsort per level), so the halves by index are the halves in space
+        order = np.arange(count)
+        for level in range(self.depth):
+            width = 2 ** level
+            starts = (np.arange(width, dtype=np.int64) * count) // width
+            owner = np.repeat(np.arange(width), np.diff(np.append(starts, count)))
+            c = centroids[order]
+            lo, hi = np.minimum.reduceat(c, starts), np.maximum.reduceat(c, starts)
+            axis = (hi - lo).argmax(axis=1)
+            extent = np.maximum((hi - lo)[np.arange(width), axis], 1e-300)
+            along = (c[np.arange(count), axis[owner]] - lo[owner, axis[owner]]) / extent[owner]  # 0..1 in its node
+            order = order[np.argsort(owner + 0.5 * along, kind="stable")]
+        v, centroids = v[order], centroids[order]
+        area_vectors = 0.5 * np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
+        areas = np.linalg.norm(area_vectors, axis=1)
+        nodes = 2 ** (self.depth + 1)
+        self.centre = np.zeros((nodes, 3))
+        self.area_vector = np.zeros((nodes, 3))
+        self.radius = np.zeros(nodes)
+        for level in range(self.depth + 1):
+            width = 2 ** level
+            starts = (np.arange(width, dtype=np.int64) * count) // width
+            ends = (np.arange(1, width + 1, dtype=np.int64) * count) // width
+            filled = ends > starts
+            starts, ends, ids = starts[filled], ends[filled], width + np.flatnonzero(filled)
+            size = ends - starts
+            weight = np.add.reduceat(areas, starts)
+            centre = np.add.reduceat(areas[:, None] * centroids, starts) / np.maximum(weight, 1e-300)[:, None]
+            plain = np.add.reduceat(centroids, starts) / size[:, None]
+            centre = np.where((weight > 0)[:, None], centre, plain)  # all-degenerate node: the plain mean
+            owner = np.repeat(np.arange(len(starts)), size)
+            offsets = v - centre[owner][:, None, :]
+            reach = np.sqrt(np.einsum("fvd,fvd->fv", offsets, offsets).max(axis=1))
+            self.centre[ids] = centre
+            self.area_vector[ids] = np.add.reduceat(area_vectors, starts)
+            self.radius[ids] = np.maximum.reduceat(reach, starts)
+        self.triangles = np.ascontiguousarray(v.reshape(count, 9))
+        self.count = count
+
+    def __call__(self, points: np.ndarray, beta: float | None = None) -> np.ndarray:
+        """Winding numbers at ``points``; a larger ``beta`` opens more nodes (error ~ 1 / beta^2, cost ~ beta^2)."""
+        points = np.ascontiguousarray(points, np.float64)
+        if self.count == 0 or len(points) == 0:
+            return np.zeros(len(points))
+        return _fast_winding_numbers(points, self.triangles, self.centre, self.area_vector, self.radius,
+                                     self.depth, self.BETA if beta is None else beta)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _solid_angle(px, py, pz, t):
+    """Signed solid angle of triangle ``t`` (9 coordinates) seen from (px, py, pz) (van Oosterom & Strackee)."""
+    ax, ay, az = t[0] - px, t[1] - py, t[2] - pz
+    bx, by, bz = t[3] - px, t[4] - py, t[5] - pz
+    cx, cy, cz = t[6] - px, t[7] - py, t[8] - pz
+    la = math.sqrt(ax * ax + ay * ay + az * az)
+    lb = math.sqrt(bx * bx + by * by + bz * bz)
+    lc = math.sqrt(cx * cx + cy * cy + cz * cz)
+    det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
+    div = la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (bx * cx + by * cy + bz * cz) * la \
+        + (cx * ax + cy * ay + cz * az) * lb
+    return 2.0 * math.atan2(det, div)
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _fast_winding_numbers(points, triangles, centre, area_vector, radius, depth, beta):
+    count = triangles.shape[0]
+    first_leaf = 1 << depth
+    out = np.zeros(points.shape[0])
+    for p in numba.prange(points.shape[0]):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        stack = np.empty(2 * depth + 4, np.int64)
+        top = 0
+        stack[0] = 1
+        total = 0.0
+        while top >= 0:
+            node = stack[top]
+            top -= 1
+            dx, dy, dz = centre[node, 0] - px, centre[node, 1] - py, centre[node, 2] - pz
+            d2 = dx * dx + dy * dy + dz * dz
+            r = beta * radius[node]
+            if d2 > r * r:
+                total += (dx * area_vector[node, 0] + dy * area_vector[node, 1] + dz * area_vector[node, 2]) \
+                    / (d2 * math.sqrt(d2))
+            elif node >= first_leaf:
+                k = node - first_leaf
+                for f in range((k * count) >> depth, ((k + 1) * count) >> depth):
+                    total += _solid_angle(px, py, pz, triangles[f])
+            else:
+                stack[top + 1] = 2 * node
+                stack[top + 2] = 2 * node + 1
+                top += 2
+        out[p] = total / (4.0 * math.pi)
+    return out
+
+
 # three fixed, irrational-looking directions: a ray grazing an edge along one rarely grazes along all three
 _PARITY_DIRECTIONS = np.array([[0.5773502, 0.5773503, 0.5773502], [-0.6712, 0.2183, 0.7083],
                                [0.1236, -0.8944, -0.4298]])
@@ -365,7 +481,13 @@ _PARITY_DIRECTIONS = np.array([[0.5773502, 0.5773503, 0.5773502], [-0.6712, 0.21
 
 class InsideTest:
     """Which points are inside the emitter: ray parity (majority of 3 rays, Embree) for a closed mesh, the
-    generalized winding number (> 0.5) for an open one, where parity is meaningless."""
+    generalized winding number (> 0.5, :class:`WindingTree`) for an open one, where parity is meaningless.
+
+    Points go to the winding-number kernel in blocks, so the main thread returns to Python (where signal handlers
+    run) every fraction of a second: a compiled call cannot be interrupted."""
+
+    BLOCK = 4096
+    AMBIGUOUS = 0.15
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray):
         from baker.geometry.raycast import RayScene
@@ -375,13 +497,15 @@ class InsideTest:
         self.closed = boundary_edge_count(self.faces) == 0
         self.diag = float(np.linalg.norm(vertices.max(0) - vertices.min(0))) or 1.0
         self.scene = RayScene(vertices, faces) if self.closed else None
+        self.winding = None if self.closed else WindingTree(self.vertices, self.faces)
 
     def __call__(self, points: np.ndarray) -> np.ndarray:
         if len(points) == 0:
             return np.zeros(0, bool)
         points = np.ascontiguousarray(points, np.float64)
         if not self.closed:
-            return winding_numbers(points, self.vertices, self.faces) > 0.5
+            return np.concatenate([self._winding_inside(points[i:i + self.BLOCK])
+                                   for i in range(0, len(points), self.BLOCK)])
         # one ray per point; only the (rare) odd ones get two more rays and a majority vote, which guards against a
         # ray grazing an edge and counting it twice or not at all
         odd = self._parity(points, _PARITY_DIRECTIONS[0])
@@ -391,6 +515,21 @@ class InsideTest:
                 + self._parity(points[suspects], _PARITY_DIRECTIONS[2])
             odd[suspects] = votes >= 2
         return odd
+
+    def _winding_inside(self, points: np.ndarray) -> np.ndarray:
+        """Winding number > 0.5: the tree's estimate (beta 2), again with beta 8 where it is within
+        ``AMBIGUOUS`` of the threshold, and the exact sum where that one is within ``AMBIGUOUS / 8``. The error of
+        the beta-2 estimate was at most 0.071 on the Stanford bunny (4000 points in and around it, the largest deep
+        inside, where w is near 1) and 0.05 on the test's open dome, and it falls as 1 / beta^2; only points near a
+        hole's rim, where w passes 0.5 away from the surface, come to the later steps."""
+        w = self.winding(points)
+        near = np.flatnonzero(np.abs(w - 0.5) < self.AMBIGUOUS)
+        w[near] = self.winding(points[near], 4.0 * self.winding.BETA)
+        near = near[np.abs(w[near] - 0.5) < self.AMBIGUOUS / 8.0]
+        for i in range(0, len(near), 64):  # brute force: a block of 64 takes ~0.05 s on the bunny
+            part = near[i:i + 64]
+            w[part] = winding_numbers(points[part], self.vertices, self.faces)
+        return w > 0.5
 
     def _parity(self, points: np.ndarray, direction: np.ndarray) -> np.ndarray:
         d = (direction / np.linalg.norm(direction)).astype(np.float32)
