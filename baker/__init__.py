@@ -25,6 +25,7 @@ class _NumbaCacheLocatorHook:
     def find_spec(self, name, path, target=None):
         if name != "numba.core.caching":
             return None
+        import importlib
         import importlib.machinery
 
         spec = importlib.machinery.PathFinder.find_spec(name, path)
@@ -35,18 +36,15 @@ class _NumbaCacheLocatorHook:
         def exec_module(module):
             execute(module)
             sys.meta_path[:] = [f for f in sys.meta_path if f is not self]
-            from baker.numba_cache import register
-
-            register()
+            # importing it registers the locator (at its end, also when it is the module importing numba now)
+            importlib.import_module("baker.numba_cache")
 
         spec.loader.exec_module = exec_module
         return spec
 
 
 if "numba.core.caching" in sys.modules:  # numba came first: its kernels' caches are made, baker's are not yet
-    from baker.numba_cache import register as _register_numba_cache_locator
-
-    _register_numba_cache_locator()
+    import baker.numba_cache  # noqa: F401 (registers the locator)
 else:
     sys.meta_path.insert(0, _NumbaCacheLocatorHook())
 

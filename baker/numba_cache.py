@@ -121,6 +121,10 @@ class BakerCacheLocator(_CacheLocator):
 
 def register() -> None:
     """Put :class:`BakerCacheLocator` first in numba's locator list (idempotent). Every ``cache=True`` kernel
-    decorated afterwards uses it; :mod:`baker` calls this as ``numba.core.caching`` is imported."""
+    decorated afterwards uses it; importing this module does it, which :mod:`baker` makes happen as
+    ``numba.core.caching`` is imported."""
     if BakerCacheLocator not in CacheImpl._locator_classes:
         CacheImpl._locator_classes.insert(0, BakerCacheLocator)
+
+
+register()

@@ -61,8 +61,9 @@ def main(build_lib: str) -> int:
     shutil.rmtree(seed, ignore_errors=True)
     seed.mkdir(parents=True)
     env = {**os.environ, "PYTHONPATH": str(build_lib), "BAKER_NUMBA_SEED_BUILD": str(seed)}
+    # run from elsewhere: `python -c` puts the current folder (the checkout, where pip builds) first on sys.path
     where = subprocess.run([sys.executable, "-c", "import baker; print(baker.__file__)"], env=env,
-                           capture_output=True, text=True)
+                           capture_output=True, text=True, cwd=tempfile.gettempdir())
     if where.returncode != 0 or not Path(where.stdout.strip()).is_relative_to(build_lib):
         print(f"seed_numba_cache: {sys.executable} cannot import baker's dependencies from {build_lib} "
               f"({where.stderr.strip().splitlines()[-1:] or where.stdout.strip()}); build with the project's "
