@@ -68,8 +68,10 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--no-fresh", action="store_true", help="skip the first/second runs in a fresh install")
     ap.add_argument("--wheel", type=Path, help="a built baker wheel for the fresh installs (default: build one)")
+    ap.add_argument("--no-seed", action="store_true", help="build the wheel without compiled kernels "
+                    "(BAKER_NUMBA_SEED=0: numba compiles what each command uses on its first run), for comparison")
     args = ap.parse_args(argv)
-    fresh_ok = True if args.no_fresh else fresh_install_runs(args.wheel)
+    fresh_ok = True if args.no_fresh else fresh_install_runs(args.wheel, seed=not args.no_seed)
     with tempfile.TemporaryDirectory() as d:
         work = Path(d)
         # a cold numba cache for the first glyphs run, then the same cache for the measured ones (baker keeps its
@@ -136,7 +138,7 @@ def fresh_venv(wheel: Path, root: Path, read_only: bool) -> Path:
     return root
 
 
-def fresh_install_runs(wheel: Path | None) -> bool:
+def fresh_install_runs(wheel: Path | None, seed: bool = True) -> bool:
     """Print the first/second-run table of a fresh install; True when every first run is at most 1.5x its second."""
     user = pwd.getpwnam("nobody") if os.geteuid() == 0 else None
     with tempfile.TemporaryDirectory() as d:
@@ -145,7 +147,7 @@ def fresh_install_runs(wheel: Path | None) -> bool:
         if wheel is None:
             began = time.perf_counter()
             subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(work / "wheel"),
-                            str(ROOT)], check=True)
+                            str(ROOT)], check=True, env={**os.environ, "BAKER_NUMBA_SEED": "1" if seed else "0"})
             [wheel] = (work / "wheel").glob("baker-*.whl")
             print(f"wheel built in {time.perf_counter() - began:.0f} s, {wheel.stat().st_size / 2**20:.1f} MiB")
         setups = {"writable": (fresh_venv(wheel, work / "venv", False), None),
@@ -165,8 +167,8 @@ def fresh_install_runs(wheel: Path | None) -> bool:
                 shutil.chown(home / "cache", runner.pw_uid, runner.pw_gid)
             homes[setup] = home
         clean = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "NUMBA_CACHE_DIR")}
-        for run in ("first", "second"):  # the setups interleaved within each round
-            for name, args in commands.items():
+        for name, args in commands.items():  # a command's first and second runs close in time, setups interleaved
+            for run in ("first", "second"):
                 for setup, (venv, runner) in setups.items():
                     home = homes[setup]
                     env = {**clean, "HOME": str(home), "XDG_CACHE_HOME": str(home / "cache")}
