@@ -10,8 +10,8 @@ fresh process, interleaved, so a busy machine slows them alike. Also lists the h
 
 First run vs second in a fresh install (issue 35; skip with --no-fresh): the checkout is built into a wheel
 (`pip wheel`, which compiles the kernels into the wheel's seed: baker/numba_cache.py) and installed into two new
-virtual environments, one left writable and one made read-only (chmod -R a-w, and run as the unprivileged user
-`nobody` when this runs as root, whom chmod would not stop); each command then runs twice per environment with an
+virtual environments, one left writable and one made read-only (chmod -R a-w; when this runs as root, whom chmod
+would not stop, its commands also run in a mount namespace where site-packages is a read-only bind mount); each command then runs twice per environment with an
 empty HOME and XDG_CACHE_HOME, first runs and second runs interleaved. Whole processes: wall time and peak memory
 (the child's maximum resident set). Target: first run at most 1.5x the second. `--wheel PATH` reuses a built wheel.
 """
@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import pwd
 import shutil
 import statistics
 import subprocess
@@ -100,15 +99,14 @@ def main(argv=None) -> int:
     return 0 if worst <= 2.5 and not heavy and fresh_ok else 1
 
 
-def measured(cmd, env, cwd, user=None) -> tuple[float, float]:
-    """Wall seconds and peak resident MiB of one whole process (wait4 reports the child's own maximum)."""
-    def drop_privileges():
-        os.setgroups([])
-        os.setgid(user.pw_gid)
-        os.setuid(user.pw_uid)
+def measured(cmd, env, cwd, read_only: Path | None = None) -> tuple[float, float]:
+    """Wall seconds and peak resident MiB of one whole process (wait4 reports the child's own maximum); with
+    ``read_only`` (as root) the command runs where that folder is a read-only bind mount (the shell execs it)."""
+    if read_only is not None:
+        cmd = ["unshare", "-m", "sh", "-c", 'mount --bind "$0" "$0" && mount -o remount,bind,ro "$0" && exec "$@"',
+               str(read_only), *cmd]
     start = time.perf_counter()
-    proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            preexec_fn=drop_privileges if user else None)
+    proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     stderr = proc.stderr.read()
     _, status, usage = os.wait4(proc.pid, 0)
     elapsed = time.perf_counter() - start
@@ -118,7 +116,7 @@ def measured(cmd, env, cwd, user=None) -> tuple[float, float]:
     return elapsed, usage.ru_maxrss / 1024
 
 
-def fresh_venv(wheel: Path, root: Path, read_only: bool) -> Path:
+def fresh_venv(wheel: Path, root: Path, read_only: bool) -> tuple[Path, Path]:
     """A new virtual environment holding the wheel; the dependencies come from this interpreter's site-packages
     through a .pth file (as tests/test_wheel.py does)."""
     import site
@@ -135,23 +133,24 @@ def fresh_venv(wheel: Path, root: Path, read_only: bool) -> Path:
     (purelib / "zz_dependencies.pth").write_text("\n".join(sorted(p for p in ours if Path(p).is_dir())) + "\n")
     if read_only:
         subprocess.run(["chmod", "-R", "a-w", str(purelib)], check=True)
-    return root
+    return root, purelib
 
 
 def fresh_install_runs(wheel: Path | None, seed: bool = True) -> bool:
     """Print the first/second-run table of a fresh install; True when every first run is at most 1.5x its second."""
-    user = pwd.getpwnam("nobody") if os.geteuid() == 0 else None
+    root_user = os.geteuid() == 0
     with tempfile.TemporaryDirectory() as d:
         work = Path(d)
-        os.chmod(work, 0o755)
         if wheel is None:
             began = time.perf_counter()
             subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(work / "wheel"),
                             str(ROOT)], check=True, env={**os.environ, "BAKER_NUMBA_SEED": "1" if seed else "0"})
             [wheel] = (work / "wheel").glob("baker-*.whl")
             print(f"wheel built in {time.perf_counter() - began:.0f} s, {wheel.stat().st_size / 2**20:.1f} MiB")
-        setups = {"writable": (fresh_venv(wheel, work / "venv", False), None),
-                  "read-only, user nobody" if user else "read-only": (fresh_venv(wheel, work / "venv_ro", True), user)}
+        (venv, _), (venv_ro, purelib_ro) = fresh_venv(wheel, work / "venv", False), fresh_venv(wheel, work / "venv_ro",
+                                                                                               True)
+        setups = {"writable": (venv, None),
+                  "read-only (mount)" if root_user else "read-only": (venv_ro, purelib_ro if root_user else None)}
         commands = {
             f"baker bake spot.obj --bakes {ALL_BAKES}": ["bake", str(SPOT), "-o", "spot_all.glb", "--bakes", ALL_BAKES,
                                                          "-q"],
@@ -159,20 +158,16 @@ def fresh_install_runs(wheel: Path | None, seed: bool = True) -> bool:
                                                                         "label.glb", "-q"],
         }
         homes, runs = {}, {}
-        for setup, (venv, runner) in setups.items():
-            home = work / f"home_{venv.name}"  # HOME and XDG_CACHE_HOME empty, writable by whoever runs baker
-            (home / "cache").mkdir(parents=True)
-            if runner:
-                shutil.chown(home, runner.pw_uid, runner.pw_gid)
-                shutil.chown(home / "cache", runner.pw_uid, runner.pw_gid)
-            homes[setup] = home
+        for setup, (venv, _) in setups.items():
+            homes[setup] = work / f"home_{venv.name}"  # HOME and XDG_CACHE_HOME: empty
+            (homes[setup] / "cache").mkdir(parents=True)
         clean = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "NUMBA_CACHE_DIR")}
         for name, args in commands.items():  # a command's first and second runs close in time, setups interleaved
             for run in ("first", "second"):
-                for setup, (venv, runner) in setups.items():
+                for setup, (venv, read_only) in setups.items():
                     home = homes[setup]
                     env = {**clean, "HOME": str(home), "XDG_CACHE_HOME": str(home / "cache")}
-                    runs[name, setup, run] = measured([str(venv / "bin" / "baker"), *args], env, home, runner)
+                    runs[name, setup, run] = measured([str(venv / "bin" / "baker"), *args], env, home, read_only)
     print("\n| work (fresh venv from the wheel, empty HOME and XDG_CACHE_HOME) | site-packages | first run (s) | "
           "second run (s) | ratio | peak memory first / second (MiB) |")
     print("|---|---|---:|---:|---:|---:|")
