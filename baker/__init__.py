@@ -11,7 +11,9 @@ from baker.version import __version__
 
 # numba caches compiled kernels (cache=True) beside their source by default, which fails silently for a package
 # folder that is read-only (a wheel installed by root, a container image) and recompiles on every run; a user cache
-# folder works for every install. Set before numba is imported; an explicit NUMBA_CACHE_DIR wins.
+# folder works for every install. baker's own kernels go to $XDG_CACHE_HOME/baker/numba/<build> whatever this says
+# (baker/numba_cache.py, registered below); NUMBA_CACHE_DIR still places any other cached function and the warm
+# stamp of `baker build`. Set before numba is imported; an explicit NUMBA_CACHE_DIR wins.
 if "NUMBA_CACHE_DIR" not in os.environ:
     os.environ["NUMBA_CACHE_DIR"] = os.path.join(
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"), "baker", "numba")
