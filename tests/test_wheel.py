@@ -113,25 +113,40 @@ def test_installed_wheel_bakes_validates_previews_and_makes_glyphs(venv, tmp_pat
     assert json.loads((work / "atlas.json").read_text())["glyphs"]
 
 
-def test_kernels_are_cached_in_the_user_cache_not_the_package(venv, tmp_path):
-    """numba's compiled kernels go to $XDG_CACHE_HOME/baker/numba (a package folder may be read-only), and a second
-    run compiles nothing: the cache files are neither added nor rewritten."""
+def test_wheel_ships_compiled_kernels_and_a_first_run_compiles_nothing(wheel, venv, tmp_path):
+    """The wheel carries numba's compiled kernels (baker/numba_seed, built by setup.py on this machine), a first
+    `baker glyphs` with an empty $XDG_CACHE_HOME copies them into $XDG_CACHE_HOME/baker/numba/<version>-<seed id>
+    and compiles nothing (every cache file there is byte-identical to the shipped one), a second run changes no
+    cache file, and nothing is written into the package (it may be read-only)."""
+    names = set(zipfile.ZipFile(wheel).namelist())
+    assert "baker/numba_seed/SEED_ID" in names
+    assert any(n.startswith("baker/numba_seed/baker.techniques.glyphs/") and n.endswith(".nbc") for n in names)
     cache = tmp_path / "cache"
     env = {**{k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NUMBA_CACHE_DIR")},
-           "XDG_CACHE_HOME": str(cache)}
+           "XDG_CACHE_HOME": str(cache), "HOME": str(tmp_path)}
     package = Path(subprocess.check_output([str(venv / "bin" / "python"), "-c", "import baker, os; "
                                             "print(os.path.dirname(baker.__file__))"], text=True, env=env,
                                            cwd=tmp_path).strip())
     assert package.is_relative_to(venv)
+    seed = package / "numba_seed"
+    build = cache / "baker" / "numba" / f"0.1.0-{(seed / 'SEED_ID').read_text().strip()}"
+
+    def files(root: Path) -> dict:
+        return {p: p.stat().st_mtime_ns for p in root.rglob("*") if p.is_file()}
 
     def glyphs():
         result = subprocess.run([str(venv / "bin" / "baker"), "glyphs", str(FONT), "-o", str(tmp_path / "a"),
                                  "--charset", "str:cache", "--size", "16", "-q"], cwd=tmp_path, env=env,
                                 capture_output=True, text=True, timeout=600)
         assert result.returncode == 0, result.stderr
-        return {p: p.stat().st_mtime_ns for p in (cache / "baker" / "numba").rglob("*.nb*")}
+        return files(cache / "baker" / "numba")
 
+    installed = files(package)
     first = glyphs()
-    assert any(p.suffix == ".nbc" for p in first), "no compiled kernel was cached"
+    assert any(p.suffix == ".nbc" and p.is_relative_to(build / "baker.techniques.glyphs") for p in first), first
+    for path in first:
+        assert path.is_relative_to(build), path
+        shipped = seed / path.relative_to(build)
+        assert shipped.is_file() and shipped.read_bytes() == path.read_bytes(), f"{path} was compiled, not shipped"
     assert glyphs() == first
-    assert not list(package.rglob("*.nbc")) and not list(package.rglob("*.nbi"))
+    assert files(package) == installed
