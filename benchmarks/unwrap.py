@@ -1,15 +1,22 @@
 """Unwrapping a mesh without UVs: its cost in whole bakes and the quality of the layout (issue 35).
 
     python benchmarks/unwrap.py [--mesh /work/shared/assets/meshes/stanford-bunny.obj] [--repeat 1]
-                                [--section time,layout] [--unbounded] [--markdown]
+                                [--section time,layout,error] [--unbounded] [--markdown]
 
 - time: whole processes, interleaved, best of ``--repeat``: ``baker bake MESH --bakes thickness --thickness-per-texel
-  false`` (per-vertex work only, no unwrap) against ``--bakes tam`` and ``--bakes thickness`` (each unwraps).
+  false`` (per-vertex work only, no unwrap) against ``--bakes tam`` and ``--bakes thickness`` (each unwraps), and
+  thickness at 2048^2 (the bunny's automatic size before thickness's stopped at 1024^2).
 - layout: :func:`baker.geometry.texture_space.unwrap` as the bakes call it (padding for the automatic texture size S):
   its time, the charts, texel utilisation (texel centres covered at S x S / all texels), the L2 stretch of Sander et
   al., "Texture Mapping Progressive Meshes" (SIGGRAPH 2001), normalised so that 1 is no stretch, and the spread of
   the 3D-area / UV-area ratio (5th and 95th percentiles, 1 = the mean density). ``--unbounded`` also measures
   xatlas with unbounded charts (the layout before issue 35; minutes on the bunny).
+- error: what a renderer reads from ``--bakes thickness`` (the written GLB: the PNG decoded by Pillow, bilinear with
+  repeat wrapping at the points' UVs, times thicknessFactor; and the per-vertex ``_THICKNESS`` interpolated) at
+  ``--points`` random surface points (area-weighted, seed 0), against a converged reference traced at the points
+  themselves (``--reference-rays``, the bake's other options and smooth normals): relative RMS and 99th percentile
+  of |error|, over the reference's RMS. Layout-agnostic, so it compares texture sizes and layouts; the texture's own
+  resolution is part of its error. Textures at each of ``--sizes`` (0: the automatic size).
 """
 from __future__ import annotations
 
@@ -25,6 +32,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 BUNNY = Path("/work/shared/assets/meshes/stanford-bunny.obj")
 
 
@@ -78,6 +86,87 @@ def layout_row(mesh: Path, unbounded: bool) -> list:
             f"{covered / size ** 2:.3f}", f"{l2:.3f}", f"{low:.2f}-{high:.2f}"]
 
 
+def surface_points(positions: np.ndarray, faces: np.ndarray, count: int, seed: int = 0):
+    """(triangle, barycentrics) of ``count`` points uniform on the surface."""
+    from baker.geometry.texture_space import triangle_areas
+
+    rng = np.random.default_rng(seed)
+    areas = triangle_areas(positions, faces)
+    triangle = rng.choice(len(faces), size=count, p=areas / areas.sum())
+    r1, r2 = rng.random(count), rng.random(count)
+    s = np.sqrt(r1)
+    return triangle, np.stack([1 - s, s * (1 - r2), s * r2], axis=1)
+
+
+def reference_thickness(mesh: Path, triangle: np.ndarray, bary: np.ndarray, rays: int) -> np.ndarray:
+    from baker.geometry.asset import Asset
+    from baker.geometry.raycast import RayScene
+    from baker.geometry.texture_target import smooth_normals
+    from baker.techniques.thickness.kernel import default_max_distance, local_thickness
+
+    geometry = Asset.load(mesh).primitive(0, 0)
+    corners = geometry.faces[triangle]
+    points = np.einsum("ki,kij->kj", bary, geometry.positions[corners])
+    normals = np.einsum("ki,kij->kj", bary, smooth_normals(geometry)[corners])
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    diagonal = default_max_distance(geometry.positions)
+    return local_thickness(RayScene(geometry.positions, geometry.faces), points, normals, rays=rays,
+                           max_distance=diagonal, bias=1e-5 * diagonal, seed=1)
+
+
+def baked_at_points(glb: Path, triangle: np.ndarray, bary: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
+    """(texture values, per-vertex values interpolated, texture size) of a baked GLB at the points. The unwrap
+    keeps the triangles' order (it splits vertices only), so triangle k of the source is triangle k here."""
+    from baker.geometry.asset import Asset
+    from texel import baker_thickness_images
+
+    asset = Asset.load(glb)
+    geometry = asset.primitive(0, 0)
+    primitive = asset.meshes()[0]["primitives"][0]
+    material = asset.doc.json["materials"][primitive["material"]]
+    info = material["extensions"]["KHR_materials_volume"]["thicknessTexture"]
+    image, = baker_thickness_images(glb)
+    uv = np.einsum("ki,kij->kj", bary, geometry.texcoords[info.get("texCoord", 0)][geometry.faces[triangle]])
+    size = image.shape[0]
+    x, y = uv[:, 0] * size - 0.5, uv[:, 1] * size - 0.5  # texel centres at (i + 0.5) / size
+    x0, y0 = np.floor(x).astype(np.int64), np.floor(y).astype(np.int64)
+    fx, fy = x - x0, y - y0
+    at = lambda r, c: image[r % size, c % size]  # noqa: E731 (the glTF default sampler repeats)
+    texture = ((1 - fy) * ((1 - fx) * at(y0, x0) + fx * at(y0, x0 + 1))
+               + fy * ((1 - fx) * at(y0 + 1, x0) + fx * at(y0 + 1, x0 + 1)))
+    per_vertex = asset.doc.accessor(primitive["attributes"]["_THICKNESS"])[:, 0]  # VEC3 (x: the thickness)
+    vertex = np.einsum("ki,ki->k", bary, per_vertex[geometry.faces[triangle]])
+    return texture, vertex, size
+
+
+def relative_errors(values: np.ndarray, reference: np.ndarray) -> tuple[float, float]:
+    diff = np.abs(values - reference)
+    scale = np.sqrt(np.mean(reference ** 2))
+    return float(np.sqrt(np.mean(diff ** 2)) / scale), float(np.percentile(diff, 99) / scale)
+
+
+def error_rows(mesh: Path, sizes: list[int], points: int, reference_rays: int) -> list:
+    from baker.geometry.asset import Asset
+
+    geometry = Asset.load(mesh).primitive(0, 0)
+    triangle, bary = surface_points(geometry.positions, geometry.faces, points)
+    reference = reference_thickness(mesh, triangle, bary, reference_rays)
+    rows = []
+    with tempfile.TemporaryDirectory() as folder:
+        for size in sizes:
+            out = Path(folder) / f"thickness{size}.glb"
+            forced = ["--thickness-texture-size", str(size)] if size else []
+            seconds = bake_seconds(mesh, ["--bakes", "thickness", *forced], out)
+            texture, vertex, written = baked_at_points(out, triangle, bary)
+            if not rows:
+                rms, p99 = relative_errors(vertex, reference)
+                rows.append(["per-vertex `_THICKNESS`, interpolated", "-", "-", f"{rms:.4f}", f"{p99:.4f}"])
+            rms, p99 = relative_errors(texture, reference)
+            rows.append([f"texture {written}² ({'automatic' if not size else 'forced'})", f"{seconds:.1f}",
+                         written, f"{rms:.4f}", f"{p99:.4f}"])
+    return rows
+
+
 def table(header: list, rows: list, markdown: bool) -> str:
     if markdown:
         lines = ["| " + " | ".join(map(str, header)) + " |", "|" + "---|" * len(header)]
@@ -92,10 +181,15 @@ def main() -> None:
     parser.add_argument("--section", default="time,layout")
     parser.add_argument("--unbounded", action="store_true")
     parser.add_argument("--markdown", action="store_true")
+    parser.add_argument("--sizes", default="0,2048")
+    parser.add_argument("--points", type=int, default=4000)
+    parser.add_argument("--reference-rays", type=int, default=2048)
     args = parser.parse_args()
     sections = set(args.section.split(","))
     if "time" in sections:
-        runs = {"--bakes thickness --thickness-per-texel false": [], "--bakes tam": [], "--bakes thickness": []}
+        # the last: the automatic thickness size before it stopped at 1024^2 (the bunny's)
+        runs = {"--bakes thickness --thickness-per-texel false": [], "--bakes tam": [], "--bakes thickness": [],
+                "--bakes thickness --thickness-texture-size 2048": []}
         with tempfile.TemporaryDirectory() as folder:
             for _ in range(args.repeat):
                 for command, times in runs.items():
@@ -107,6 +201,11 @@ def main() -> None:
     if "layout" in sections:
         rows = [layout_row(args.mesh, False)] + ([layout_row(args.mesh, True)] if args.unbounded else [])
         print(table(["unwrap", "time", "size S", "texel utilisation", "L2 stretch", "3D/UV area p5-p95"], rows,
+                    args.markdown))
+    if "error" in sections:
+        print()
+        rows = error_rows(args.mesh, [int(s) for s in args.sizes.split(",")], args.points, args.reference_rays)
+        print(table(["thickness, at surface points", "bake seconds", "size", "relative RMS", "p99 |error|"], rows,
                     args.markdown))
 
 

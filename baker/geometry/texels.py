@@ -17,7 +17,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from baker.geometry.asset import Asset, PrimitiveGeometry
-from baker.geometry.texture_space import dilate, interpolate, window_mean
+from baker.geometry.texture_space import AUTO_SIZE_RANGE, dilate, interpolate, window_mean
 from baker.geometry.texture_target import MaterialTarget, PrimitiveTexels, material_targets
 
 
@@ -155,14 +155,14 @@ class TexelSets:
 
 
 def gather_texels(asset: Asset, size: int | None = None, density: float | None = None, seed: int = 0,
-                  layouts: dict | None = None) -> TexelSets:
+                  layouts: dict | None = None, auto_range: tuple[int, int] = AUTO_SIZE_RANGE) -> TexelSets:
     """Texels of every material's texture (layouts chosen or unwrapped by
     :func:`baker.geometry.texture_target.material_targets`): ``size`` forces the width and height, else ``density``
-    texels per mesh unit, else the automatic density. ``layouts`` ({material: (texcoord, size)}) bakes only those
+    texels per mesh unit, else the automatic density (its size within ``auto_range``). ``layouts`` ({material: (texcoord, size)}) bakes only those
     materials, in the UV set and size given."""
     sets, positions, normals, mesh, material, rows, cols = [], [], [], [], [], [], []
     start = 0
-    for target in material_targets(asset, size, seed, density=density, layouts=layouts):
+    for target in material_targets(asset, size, seed, density=density, layouts=layouts, auto_range=auto_range):
         for pt in target.primitives:
             g, t = pt.geometry, pt.texels
             positions.append(interpolate(g.positions, g.faces, t.triangle, t.bary))

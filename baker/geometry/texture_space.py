@@ -416,13 +416,15 @@ def power_of_two(value: float, lo: int, hi: int) -> int:
     return int(min(hi, max(lo, 1 << int(round(np.log2(value))))))
 
 
-def size_for_density(stats: SurfaceStatistics, density: float | None = None) -> int:
+def size_for_density(stats: SurfaceStatistics, density: float | None = None,
+                     auto_range: tuple[int, int] = AUTO_SIZE_RANGE) -> int:
     """Texture width (= height) giving ``density`` texels per mesh unit on the surface: the layout spends
     ``uv_coverage * size^2`` texels on ``area`` square units, so size = density * sqrt(area / uv_coverage).
 
-    ``density`` None: :meth:`SurfaceStatistics.auto_density`, the result clamped to :data:`AUTO_SIZE_RANGE`;
-    otherwise clamped to :data:`DENSITY_SIZE_RANGE`. Rounded to a power of two (mipmaps, block compression)."""
-    lo, hi = AUTO_SIZE_RANGE if density is None else DENSITY_SIZE_RANGE
+    ``density`` None: :meth:`SurfaceStatistics.auto_density`, the result clamped to ``auto_range`` (a bake may
+    ask for less than :data:`AUTO_SIZE_RANGE`); otherwise clamped to :data:`DENSITY_SIZE_RANGE`. Rounded to a power
+    of two (mipmaps, block compression)."""
+    lo, hi = auto_range if density is None else DENSITY_SIZE_RANGE
     if density is None:
         density = stats.auto_density()
     if stats.area <= 0 or stats.uv_coverage <= 0 or density <= 0:

@@ -16,8 +16,8 @@ from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.geometry.normals import vertex_normals
 from baker.geometry.welding import weld
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER
-from baker.geometry.texture_space import (SurfaceStatistics, TexelSamples, rasterize_uv, size_for_density, unwrap,
-                                          usable_layout_texels)
+from baker.geometry.texture_space import (AUTO_SIZE_RANGE, SurfaceStatistics, TexelSamples, rasterize_uv,
+                                          size_for_density, unwrap, usable_layout_texels)
 
 
 @dataclass
@@ -100,10 +100,11 @@ def smooth_normals(geometry: PrimitiveGeometry) -> np.ndarray:
 
 
 def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
-                     density: float | None = None, layouts: dict | None = None) -> list[MaterialTarget]:
+                     density: float | None = None, layouts: dict | None = None,
+                     auto_range: tuple[int, int] = AUTO_SIZE_RANGE) -> list[MaterialTarget]:
     """One target per material with triangles. ``size`` forces every texture's width and height; None sizes each
     from its surface (:func:`baker.geometry.texture_space.size_for_density`, ``density`` texels per mesh unit or,
-    when None, the automatic density).
+    when None, the automatic density within ``auto_range``). The unwrap's layout does not depend on these.
 
     ``layouts`` ({material: (texcoord, size)}) instead bakes only those materials, each into the UV set and size
     given, as it is (no overlap test, no unwrap): a bake whose output pairs texel for texel with an existing
@@ -133,7 +134,7 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
             texcoord, vmaps = unwrap_material(asset, material, [(g.mesh, g.primitive) for g in geoms], seed)
             geoms = [asset.primitive(m, p) for m, p in vmaps]
             unwrapped = True
-        chosen = size or size_for_density(_statistics(geoms, texcoord), density)
+        chosen = size or size_for_density(_statistics(geoms, texcoord), density, auto_range)
         if not unwrapped and tested.width == chosen:
             # the test rasterized every primitive's triangles at this size already: each takes its share
             starts = np.cumsum([0] + [len(g.faces) for g in geoms])

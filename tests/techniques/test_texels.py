@@ -335,6 +335,34 @@ def test_curvature_texture_from_the_engine_matches_the_sphere(tmp_path):
     assert np.abs(covered - 2.0).max() < 0.05
 
 
+def test_thickness_automatic_size_stops_at_its_own_bound(tmp_path, monkeypatch):
+    """The automatic thickness texture is clamped to thickness's range (1024^2 at most), the other texture bakes'
+    to AUTO_SIZE_RANGE; a forced size or density is not clamped by it. The step's bound, lowered here below the
+    sphere's automatic size, decides the thickness texture's size, not the curvature texture's."""
+    from baker.geometry.texture_space import AUTO_SIZE_RANGE
+    from baker.techniques.thickness import step
+
+    mesh = uv_sphere(radius=0.5, segments=48, rings=24)
+    stats = SurfaceStatistics.of([(mesh.vertices, mesh.faces, mesh.visual.uv)])
+    dense = SurfaceStatistics(stats.area, stats.uv_coverage, stats.mean_edge / 8)  # 64x the triangles
+    assert size_for_density(dense) == AUTO_SIZE_RANGE[1] == 2048
+    assert size_for_density(dense, auto_range=step.AUTO_TEXTURE_SIZE_RANGE) == 1024
+    assert size_for_density(dense, 1e6, auto_range=step.AUTO_TEXTURE_SIZE_RANGE) == 8192
+    path = tmp_path / "sphere.glb"
+    mesh.export(str(path))
+    automatic = size_for_density(stats)
+    assert automatic == 256
+    monkeypatch.setattr(step, "AUTO_TEXTURE_SIZE_RANGE", (16, automatic // 2))
+    asset = baker.bake(path, bakes=["thickness", "curvature"],
+                       options={"thickness": {"rays": 16}, "curvature": {"per_texel": True}})
+    extensions = asset.doc.json["materials"][0]["extensions"]
+    sizes = {}
+    for name, slot in (("BAKER_thickness", "thicknessTexture"), ("BAKER_curvature", "curvatureTexture")):
+        source = asset.doc.json["textures"][extensions[name][slot]["index"]]["source"]
+        sizes[name] = decode_image(asset.doc.image_bytes(source)).shape[:2]
+    assert sizes == {"BAKER_thickness": (automatic // 2,) * 2, "BAKER_curvature": (automatic,) * 2}
+
+
 def test_texel_tolerance_is_recorded_in_the_extension(spheres):
     """BAKER_thickness says when texels stopped on the per-vertex prior, and by which rule; a bake that traced
     every ray of every texel (tolerance 0, or no more rays than the first ones) carries none of it."""

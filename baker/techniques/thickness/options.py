@@ -27,7 +27,7 @@ class ThicknessOptions:
                                          "density, per material)", min=4, max=16384)
     texel_density: float | None = opt(None, "texels per mesh unit (metre) of the thickness texture, sizing each "
                                             "material's texture to a power of two in [16, 8192] (default: 8 texels "
-                                            "along the mean triangle edge, in [64, 2048])", min=1e-9)
+                                            "along the mean triangle edge, in [64, 1024])", min=1e-9)
     tolerance: float = opt(0.25, "texels whose first 12 rays agree within +-tolerance (relative) with the thickness "
                                  "interpolated from the per-vertex solution take that value, corrected by "
                                  "their neighbours (--thickness-texel-window); the others trace all "
