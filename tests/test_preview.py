@@ -527,11 +527,12 @@ def _scaled_obj(source: Path, out: Path, extent: float) -> Path:
 def test_skin_reddens_the_terminator_of_a_15mm_suzanne(tmp_path):
     """Suzanne scaled to 15 mm (median convex radius ~4 mm, where d'Eon's profile matters), curvature + skin with
     their defaults: in the terminator band (reference luminance 0.02-0.25) the skin panel's mean R - G exceeds the
-    reference's. The LUT's axis is fitted to the asset (label: rows in use, the scale assumed).
+    reference's by at least 0.01 (issue 39). The LUT's axis is fitted to the asset (label: rows in use, the scale
+    assumed).
 
-    Measured: +0.0050 (issue 39 asks for +0.01). The band is mostly shadow lit by the panel's ambient term only
-    (86% of its pixels), where the LUT wraps little light; Penner's table at 1/r = 0.26/mm and N.L = 0 has R - G of
-    only 0.012. Mean curvature also halves the curvature across cylinder-like parts (ears, brow)."""
+    Measured: +0.034 (the LUT's ring profile integrated across the ring, the curvature along the light from the
+    principal curvatures); +0.033 with the mean curvature; +0.005 with Penner's radial ring profile, whose broad red
+    lobes weigh 1/sigma."""
     source = _scaled_obj(MESHES / "suzanne.obj", tmp_path / "suzanne15.obj", 0.015)
     out = tmp_path / "suzanne15.glb"
     save(baker.bake(source, bakes=["curvature", "skin"]), out)
@@ -546,5 +547,5 @@ def test_skin_reddens_the_terminator_of_a_15mm_suzanne(tmp_path):
     label = next(label for name, label, _ in result.panels if name == "skin")
     print("terminator band R - G: skin", redness(skin), "reference", redness(reference), int(band.sum()), label)
     assert band.sum() > 1000
-    assert redness(skin) > redness(reference) + 0.004
+    assert redness(skin) > redness(reference) + 0.01
     assert "1 unit = 1000 mm" in label and "LUT rows 0-" in label and "clamped" not in label
