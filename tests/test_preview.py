@@ -1,6 +1,7 @@
 """``baker preview``: panels render with the runtime shaders and show their effect (pixel statistics per panel)."""
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -429,7 +430,7 @@ MESHES = Path("/work/shared/assets/meshes")
 @pytest.fixture(scope="module", params=["bunny", "spot"])
 def toon_caustics_sheet(request, tmp_path_factory):
     """Toon and caustics baked with their defaults (fewer, smaller caustic frames) on the Stanford bunny (0.2 units
-    tall: the default 2-unit caustic tile is 10x the asset) and spot."""
+    tall) and spot: the caustic tile defaults to half the asset's bounding-box diagonal, the water scaled with it."""
     source = MESHES / "stanford-bunny.obj" if request.param == "bunny" else SPOT
     out = tmp_path_factory.mktemp("scale") / f"{request.param}.glb"
     save(baker.bake(source, bakes=["toon", "caustics"], seed=1, options={"caustics": {"size": 128, "frames": 2}}), out)
@@ -450,7 +451,8 @@ def test_toon_shows_every_band(toon_caustics_sheet):
 
 def test_caustics_detail_at_the_asset_scale(toon_caustics_sheet):
     """The caustic network shows on the object at its scale: the mean luminance gradient inside the object, over
-    its mean luminance, is at least 1.5x the reference panel's; the label says at which tile size."""
+    its mean luminance, is at least 1.5x the reference panel's; the label says at which tile size: the baked
+    default, half the asset's diagonal, shown unclamped."""
     _, inside = _object(toon_caustics_sheet, "lambert")
 
     def detail(image):
@@ -462,7 +464,8 @@ def test_caustics_detail_at_the_asset_scale(toon_caustics_sheet):
     label = next(label for name, label, _ in toon_caustics_sheet.panels if name == "caustics")
     print("detail reference", reference, "caustics", caustics, label)
     assert caustics >= 1.5 * reference
-    assert "tile 2" in label
+    tile, extent = (float(v) for v in re.fullmatch(r"caustics \(tile ([0-9.e+-]+), asset ([0-9.e+-]+)\)", label).groups())
+    assert tile == pytest.approx(0.5 * extent, rel=5e-3)  # 3 significant digits in the label
 
 
 def test_caustics_do_not_stretch_on_vertical_faces(tmp_path):
