@@ -87,7 +87,7 @@ def write_label_and_groom(root):
 
 # a 4 m square floor 1.5 m under the water (the baked depth), seen by the viewer's default camera; the frames small
 CAUSTIC_FLOOR_OBJ = "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nvn 0 1 0\nf 1//1 4//1 3//1 2//1\n"
-CAUSTIC_OPTIONS = {"size": 64, "frames": 4, "waves": 16, "tile_size": 1.0, "water_level": 1.5}
+CAUSTIC_OPTIONS = {"size": 64, "frames": 4, "waves": 16, "tile_size": 1.0, "water_level": 1.5, "depth": 1.5}
 
 
 def write_caustic_floor(root):
