@@ -27,7 +27,7 @@ sys.path.insert(0, str(ROOT))
 
 from baker.techniques.caustics.kernel import irradiance  # noqa: E402
 from baker.techniques.caustics.light import sun_direction  # noqa: E402
-from baker.techniques.caustics.options import CausticsOptions  # noqa: E402
+from baker.techniques.caustics.options import CausticsOptions, at_scale  # noqa: E402
 from baker.techniques.caustics.spectrum import wave_spectrum  # noqa: E402
 from common import best_of  # noqa: E402
 
@@ -52,7 +52,7 @@ def main() -> None:
     parser.add_argument("--reference-samples", type=int, default=16)
     args = parser.parse_args()
 
-    options = CausticsOptions()
+    options = at_scale(CausticsOptions())[0]  # the default water at scale 1 (tile 2 m)
     spectrum = wave_spectrum(options, seed=0)
     times = [f * options.period / 4 for f in range(4)]
     n = args.error_size

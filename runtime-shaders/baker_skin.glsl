@@ -12,6 +12,8 @@
 //   texture   BAKER_skin_lut.lutTexture        RGB; u = N.L * 0.5 + 0.5, v = curvature over curvatureRange
 //   texture   BAKER_skin_lut.penumbraTexture   RGB; u = shadow (0 shadowed), v = 1/width over penumbraWidthRange
 //   attribute BAKER_skin_lut.curvatureAttribute (_CURVATURE), mean curvature in 1 / mesh units (convex > 0)
+//   attribute BAKER_curvature.principalCurvaturesAttribute (_PRINCIPAL_CURVATURES) and principalDirectionAttribute
+//             (_PRINCIPAL_DIRECTION), when baked: the curvature along the light (baker_skin_curvature_along_light)
 //   params    curvatureRange, curvatureScale, penumbraWidthRange, normalBlend, wrap, scatterWidth, scatterColor
 //             -> the fields of struct BakerSkin below, same names
 // LUT texels are endpoint-aligned (column 0 is exactly N.L = -1): baker_skin_lut_coord maps t in [0, 1] to the
@@ -54,6 +56,33 @@ float baker_skin_curvature(float meshCurvature, float curvatureScale) {
 // fwidth(P) of the interpolated normal and position (mesh units). Returns 1 / mesh units.
 float baker_skin_curvature_from_derivatives(vec3 fwidthN, vec3 fwidthP) {
     return length(fwidthN) / max(length(fwidthP), 1e-20);
+}
+
+// The normal curvature along the light (1 / mesh units): Penner's LUT wants the curvature across the terminator,
+// which the mean curvature halves on cylinder-like parts (a finger, an ear's rim). Euler's formula
+// k(L) = k1 cos^2(a) + k2 sin^2(a) = (k1 + k2) / 2 + (k1 - k2) / 2 cos(2a), a the angle in the tangent plane between
+// L's projection and the k1 direction (Penner 2011 reads the curvature in the light's plane; do Carmo 3.2).
+// principal = (k1, k2) of _PRINCIPAL_CURVATURES, direction = _PRINCIPAL_DIRECTION in the space of N and L (see
+// baker_skin_direction_to). The direction is a line field whose sign may differ between vertices, so interpolated it
+// can shorten: the cos(2a) term shrinks with its squared length, down to the mean curvature where it vanishes, and
+// the same where L is along N (a undefined, the terminator far).
+float baker_skin_curvature_along_light(vec2 principal, vec3 direction, vec3 N, vec3 L) {
+    vec3 t = L - N * dot(N, L);                   // L in the tangent plane, length sin(L, N)
+    vec3 d1 = direction - N * dot(N, direction);  // interpolated directions leave the tangent plane
+    vec3 d2 = cross(N, d1);
+    float c = dot(t, d1);
+    float s = dot(t, d2);
+    // c^2 - s^2 = |t|^2 |d1|^2 cos(2a): the ratio stays in [-1, 1]. float32 leaves |t|^2 ~ 1e-16 for L = N, so
+    // below 1e-6 (L within 0.06 degrees of N, where the LUT is flat anyway) the term fades to the mean
+    float cos2a = (c * c - s * s) / max(dot(t, t), 1e-6);
+    return 0.5 * (principal.x + principal.y) + 0.5 * (principal.x - principal.y) * cos2a;
+}
+
+// Vertex stage: a principal direction (mesh space) into shading space by the linear part of the model(-view)
+// matrix, its length kept (a shortened or zero direction stays so, see baker_skin_curvature_along_light).
+vec3 baker_skin_direction_to(mat3 linear, vec3 direction) {
+    vec3 d = linear * direction;
+    return d * (length(direction) / max(length(d), 1e-20));
 }
 
 // LUT texture coordinates for N.L and a curvature in the LUT's unit.

@@ -14,7 +14,9 @@ import subprocess
 import threading
 from pathlib import Path
 
+import numpy as np
 import pytest
+from scipy import ndimage
 
 import baker
 from baker.cli import main as baker_main
@@ -87,7 +89,7 @@ def write_label_and_groom(root):
 
 # a 4 m square floor 1.5 m under the water (the baked depth), seen by the viewer's default camera; the frames small
 CAUSTIC_FLOOR_OBJ = "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nvn 0 1 0\nf 1//1 4//1 3//1 2//1\n"
-CAUSTIC_OPTIONS = {"size": 64, "frames": 4, "waves": 16, "tile_size": 1.0, "water_level": 1.5}
+CAUSTIC_OPTIONS = {"size": 64, "frames": 4, "waves": 16, "tile_size": 1.0, "water_level": 1.5, "depth": 1.5}
 
 
 def write_caustic_floor(root):
@@ -178,6 +180,37 @@ def write_blurred_sphere(root, bakes=("normal-blur",), metallic: bool = False):
     options = {"skin": {"width": 64, "height": 64, "penumbra_size": 32}}
     save(baker.bake(source, bakes=bakes, options=options), root / f"{stem}.glb")
     return f"{stem}.glb"
+
+
+MESHES = Path("/work/shared/assets/meshes")
+
+
+def write_small_suzanne(root, extent=0.015):
+    """Suzanne centred and scaled to ``extent`` metres (15 mm: convex radii of a few mm, where d'Eon's profile
+    matters), baked with curvature and skin at their defaults: root/suzanne15.glb."""
+    lines = (MESHES / "suzanne.obj").read_text().splitlines()
+    points = np.array([[float(x) for x in line.split()[1:4]] for line in lines if line.startswith("v ")])
+    centre, scale = (points.min(0) + points.max(0)) / 2, extent / (points.max(0) - points.min(0)).max()
+    obj = root / "suzanne15.obj"
+    obj.write_text("\n".join("v %.9g %.9g %.9g" % tuple((np.array([float(x) for x in line.split()[1:4]]) - centre)
+                                                      * scale) if line.startswith("v ") else line
+                             for line in lines) + "\n")
+    save(baker.bake(obj, bakes=("curvature", "skin")), root / "suzanne15.glb")
+    return "suzanne15.glb"
+
+
+def terminator_redness(on, off, background):
+    """(mean R - G with the technique on minus off, pixel count) over the terminator band of the picture without
+    it: linear luminance 0.02-0.25 inside the object (issue 39's measure, on sRGB screenshots decoded to linear)."""
+    def linear(c):
+        return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+    on, off, background = linear(on), linear(off), linear(np.asarray(background, np.float64))
+    inside = ndimage.binary_erosion(np.abs(off - background).max(axis=2) > 0.01, iterations=2)
+    luminance = off @ np.array([0.299, 0.587, 0.114])
+    band = inside & (luminance > 0.02) & (luminance < 0.25)
+    red = [(image[..., 0] - image[..., 1])[band].mean() for image in (on, off)]
+    return float(red[0] - red[1]), int(band.sum())
 
 
 def write_blender_head(root):

@@ -491,7 +491,8 @@ def test_addon_shows_caustics_on_a_floor(blender_python, tmp_path):
     obj, glb, out = tmp_path / "floor.obj", tmp_path / "floor.glb", tmp_path / "render.npz"
     obj.write_text(CAUSTIC_FLOOR_OBJ)
     bake("bake", obj, "--bakes", "caustics", "--caustics-size", "64", "--caustics-frames", "2", "--caustics-waves", "16",
-         "--caustics-tile-size", "1.0", "--caustics-water-level", "1.8", "-o", glb)
+         "--caustics-tile-size", "1.0", "--caustics-water-level", "1.8", "--caustics-depth", "1.5",
+         "--caustics-fade-distance", "1.0", "-o", glb)
     doc = GltfDocument.load(glb)
     ext = doc.json["materials"][0]["extensions"]["BAKER_caustics"]
     source = doc.json["textures"][ext["frameTextures"][0]["index"]]["source"]

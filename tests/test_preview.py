@@ -1,6 +1,7 @@
 """``baker preview``: panels render with the runtime shaders and show their effect (pixel statistics per panel)."""
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -429,7 +430,7 @@ MESHES = Path("/work/shared/assets/meshes")
 @pytest.fixture(scope="module", params=["bunny", "spot"])
 def toon_caustics_sheet(request, tmp_path_factory):
     """Toon and caustics baked with their defaults (fewer, smaller caustic frames) on the Stanford bunny (0.2 units
-    tall: the default 2-unit caustic tile is 10x the asset) and spot."""
+    tall) and spot: the caustic tile defaults to half the asset's bounding-box diagonal, the water scaled with it."""
     source = MESHES / "stanford-bunny.obj" if request.param == "bunny" else SPOT
     out = tmp_path_factory.mktemp("scale") / f"{request.param}.glb"
     save(baker.bake(source, bakes=["toon", "caustics"], seed=1, options={"caustics": {"size": 128, "frames": 2}}), out)
@@ -450,7 +451,8 @@ def test_toon_shows_every_band(toon_caustics_sheet):
 
 def test_caustics_detail_at_the_asset_scale(toon_caustics_sheet):
     """The caustic network shows on the object at its scale: the mean luminance gradient inside the object, over
-    its mean luminance, is at least 1.5x the reference panel's; the label says at which tile size."""
+    its mean luminance, is at least 1.5x the reference panel's; the label says at which tile size: the baked
+    default, half the asset's diagonal, shown unclamped."""
     _, inside = _object(toon_caustics_sheet, "lambert")
 
     def detail(image):
@@ -462,7 +464,8 @@ def test_caustics_detail_at_the_asset_scale(toon_caustics_sheet):
     label = next(label for name, label, _ in toon_caustics_sheet.panels if name == "caustics")
     print("detail reference", reference, "caustics", caustics, label)
     assert caustics >= 1.5 * reference
-    assert "tile 2" in label
+    tile, extent = (float(v) for v in re.fullmatch(r"caustics \(tile ([0-9.e+-]+), asset ([0-9.e+-]+)\)", label).groups())
+    assert tile == pytest.approx(0.5 * extent, rel=5e-3)  # 3 significant digits in the label
 
 
 def test_caustics_do_not_stretch_on_vertical_faces(tmp_path):
@@ -527,11 +530,12 @@ def _scaled_obj(source: Path, out: Path, extent: float) -> Path:
 def test_skin_reddens_the_terminator_of_a_15mm_suzanne(tmp_path):
     """Suzanne scaled to 15 mm (median convex radius ~4 mm, where d'Eon's profile matters), curvature + skin with
     their defaults: in the terminator band (reference luminance 0.02-0.25) the skin panel's mean R - G exceeds the
-    reference's. The LUT's axis is fitted to the asset (label: rows in use, the scale assumed).
+    reference's by at least 0.01 (issue 39). The LUT's axis is fitted to the asset (label: rows in use, the scale
+    assumed).
 
-    Measured: +0.0050 (issue 39 asks for +0.01). The band is mostly shadow lit by the panel's ambient term only
-    (86% of its pixels), where the LUT wraps little light; Penner's table at 1/r = 0.26/mm and N.L = 0 has R - G of
-    only 0.012. Mean curvature also halves the curvature across cylinder-like parts (ears, brow)."""
+    Measured: +0.034 (the LUT's ring profile integrated across the ring, the curvature along the light from the
+    principal curvatures); +0.033 with the mean curvature; +0.005 with Penner's radial ring profile, whose broad red
+    lobes weigh 1/sigma."""
     source = _scaled_obj(MESHES / "suzanne.obj", tmp_path / "suzanne15.obj", 0.015)
     out = tmp_path / "suzanne15.glb"
     save(baker.bake(source, bakes=["curvature", "skin"]), out)
@@ -546,5 +550,5 @@ def test_skin_reddens_the_terminator_of_a_15mm_suzanne(tmp_path):
     label = next(label for name, label, _ in result.panels if name == "skin")
     print("terminator band R - G: skin", redness(skin), "reference", redness(reference), int(band.sum()), label)
     assert band.sum() > 1000
-    assert redness(skin) > redness(reference) + 0.004
+    assert redness(skin) > redness(reference) + 0.01
     assert "1 unit = 1000 mm" in label and "LUT rows 0-" in label and "clamped" not in label

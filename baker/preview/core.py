@@ -164,6 +164,14 @@ def transform_normals(normals, world) -> np.ndarray:
     return (n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-20)).astype(np.float32)
 
 
+def transform_directions(directions, world) -> np.ndarray:
+    """Tangent directions (n, 3) to world space with their lengths kept (a zero direction stays zero)."""
+    d = np.asarray(directions, np.float64)[:, :3]
+    moved = d @ world[:3, :3].T
+    scale = np.linalg.norm(d, axis=1, keepdims=True) / np.maximum(np.linalg.norm(moved, axis=1, keepdims=True), 1e-20)
+    return (moved * scale).astype(np.float32)
+
+
 def world_tangents(tangents, world, count: int) -> np.ndarray | None:
     """glTF TANGENT (xyz, w handedness) in world space; None when it does not match the vertices."""
     tangents = np.asarray(tangents, np.float64)
@@ -329,6 +337,8 @@ def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
                           if k.startswith("_")}
             if "_OUTLINE_NORMAL" in attributes:
                 attributes["_OUTLINE_NORMAL"] = transform_normals(attributes["_OUTLINE_NORMAL"], world)
+            if "_PRINCIPAL_DIRECTION" in attributes:
+                attributes["_PRINCIPAL_DIRECTION"] = transform_directions(attributes["_PRINCIPAL_DIRECTION"], world)
             texcoords = {int(k.split("_")[1]): doc.accessor(a).astype(np.float32)
                          for k, a in prim["attributes"].items() if k.startswith("TEXCOORD_")}
             index = g.material if g.material is not None and g.material < len(materials) else None
@@ -486,6 +496,10 @@ class Panel:
     def textures(self, scene: Scene, ctx, item: DrawItem) -> dict:
         return {}
 
+    def vertex_arrays(self, item: DrawItem) -> dict:
+        """Per-vertex arrays bound to the vertex stage's inputs of the same names (``vertex_declarations``)."""
+        return {}
+
     # scene hooks
     def read_item(self, doc, item: DrawItem) -> None:
         pass
@@ -611,7 +625,7 @@ def draw_surfaces(ctx, panel: Panel, scene, camera: Camera, size: int, extra: di
         uv = item.texcoords.get(use.texcoord(item), np.zeros((n, 2), np.float32))
         outline = item.attributes.get("_OUTLINE_NORMAL", item.normals)
         arrays = {"POSITION": item.positions, "NORMAL": item.normals, "a_scalar": scalar, "TEXCOORD_0": uv,
-                  "a_outline": outline, **material_arrays}
+                  "a_outline": outline, **material_arrays, **use.vertex_arrays(item)}
         corners = item.faces.reshape(-1)
         if use.expand:
             arrays = {k: v[corners] for k, v in arrays.items()}

@@ -59,10 +59,10 @@ def test_floor_render_matches_twins(gl_context):
 
     from baker.techniques.caustics.extension import frame_pixels, to_gltf_axes
     from baker.techniques.caustics.kernel import caustic_frames
-    from baker.techniques.caustics.options import CausticsOptions
+    from baker.techniques.caustics.options import CausticsOptions, at_scale
 
     ctx = gl_context
-    options = CausticsOptions(size=32, frames=4, waves=16, samples=2)
+    options = at_scale(CausticsOptions(size=32, frames=4, waves=16, samples=2))[0]  # the lengths at scale 1
     baked = caustic_frames(options, seed=3)
     pixels, scale = frame_pixels(baked)
     frames = [(p.astype(np.float32) / 65535.0)[..., None] for p in pixels]

@@ -37,14 +37,21 @@ VS = """
 in vec3 POSITION;
 in vec3 NORMAL;
 in float _CURVATURE;
+in vec2 _PRINCIPAL_CURVATURES;
+in vec3 _PRINCIPAL_DIRECTION;
 uniform mat4 u_viewProjection;
 out vec3 v_position;
 out vec3 v_normal;
 out float v_curvature;
+out vec2 v_principal;
+out vec3 v_direction;
 void main() {
     v_position = POSITION;
     v_normal = NORMAL;
     v_curvature = _CURVATURE;
+    v_principal = _PRINCIPAL_CURVATURES;
+    // the mesh is drawn untransformed: the identity keeps the direction, as a host's model matrix would rotate it
+    v_direction = baker_skin_direction_to(mat3(1.0), _PRINCIPAL_DIRECTION);
     gl_Position = u_viewProjection * vec4(POSITION, 1.0);
 }
 """
@@ -53,25 +60,34 @@ INPUTS_FS = """
 in vec3 v_position;
 in vec3 v_normal;
 in float v_curvature;
+in vec2 v_principal;
+in vec3 v_direction;
 layout(location = 0) out vec4 o_normalCurvature;
 layout(location = 1) out vec4 o_positionCovered;
 layout(location = 2) out vec4 o_fwidthN;
 layout(location = 3) out vec4 o_fwidthP;
+layout(location = 4) out vec4 o_principal;
+layout(location = 5) out vec4 o_direction;
 void main() {
     o_normalCurvature = vec4(v_normal, v_curvature);
     o_positionCovered = vec4(v_position, 1.0);
     o_fwidthN = vec4(fwidth(v_normal), 0.0);
     o_fwidthP = vec4(fwidth(v_position), 0.0);
+    o_principal = vec4(v_principal, 0.0, 0.0);
+    o_direction = vec4(v_direction, 0.0);
 }
 """
 
 # u_variant: 0 LUT with the baked curvature, 1 normal blending + penumbra (struct path), 2 wrap lighting,
 # 3 LUT with the per-pixel derivative curvature, 4 per-channel diffuse normals (BAKER_normal_blur's maps, here three
-# detail normals of decreasing amplitude, red smoothest)
+# detail normals of decreasing amplitude, red smoothest), 5 LUT with the curvature along the light (principal
+# curvatures and direction)
 SHADE_FS = """
 in vec3 v_position;
 in vec3 v_normal;
 in float v_curvature;
+in vec2 v_principal;
+in vec3 v_direction;
 uniform vec3 u_light;
 uniform BakerSkin u_skin;
 uniform sampler2D u_lut;
@@ -98,6 +114,9 @@ void main() {
         vec3 NdotL = vec3(dot(normalize(N + 0.1 * bump), L), dot(normalize(N + 0.25 * bump), L),
                           dot(normalize(N + 0.35 * bump), L));
         rgb = baker_skin_diffuse_normals(u_skin, u_lut, NdotL, v_curvature);
+    } else if (u_variant == 5) {
+        float k = baker_skin_curvature_along_light(v_principal, v_direction, N, L);
+        rgb = baker_skin_lut(u_lut, dot(N, L), baker_skin_curvature(k, u_skin.curvatureScale), u_skin.curvatureRange);
     } else {
         float k = baker_skin_curvature_from_derivatives(fwidth(v_normal), fwidth(v_position));
         rgb = baker_skin_lut(u_lut, dot(N, L), baker_skin_curvature(k, u_skin.curvatureScale), u_skin.curvatureRange);
@@ -107,7 +126,7 @@ void main() {
 """
 
 PROGRAMS = {"inputs": (VS, INPUTS_FS), "shade": (VS, SHADE_FS)}
-VARIANTS = {"lut": 0, "blend_penumbra": 1, "wrap": 2, "derivatives": 3, "diffuse_normals": 4}
+VARIANTS = {"lut": 0, "blend_penumbra": 1, "wrap": 2, "derivatives": 3, "diffuse_normals": 4, "along_light": 5}
 
 
 def source(version: str, body: str) -> str:
@@ -150,6 +169,8 @@ def baked(tmp_path_factory):
         "curvature": doc.accessor(prim["attributes"][params["curvatureAttribute"]]).astype(np.float32)[:, 0],
         # as written: FLOAT VEC3 with H in x, bound as "3f" to `in float _CURVATURE` (GL reads x)
         "curvature_vec3": doc.accessor(prim["attributes"][params["curvatureAttribute"]]).astype(np.float32),
+        "principal": doc.accessor(prim["attributes"]["_PRINCIPAL_CURVATURES"]).astype(np.float32),
+        "direction": doc.accessor(prim["attributes"]["_PRINCIPAL_DIRECTION"]).astype(np.float32),
         "indices": doc.accessor(prim["indices"]).astype(np.uint32),
         "params": params,
         "lut": image("lutTexture"),
@@ -194,8 +215,10 @@ def renders(gl_context, baked):
     ctx = gl_context
     matrix = (perspective(40.0, 1.0, 0.01, 1.0) @ look_at(EYE, np.zeros(3), np.array([0.0, 1.0, 0.0])))
     matrix = matrix.T.astype(np.float32).tobytes()
-    buffers = [ctx.buffer(np.ascontiguousarray(baked[k]).tobytes()) for k in ("positions", "normals", "curvature_vec3")]
-    layout = list(zip(buffers, ("3f", "3f", "3f"), ("POSITION", "NORMAL", "_CURVATURE")))
+    names = ("positions", "normals", "curvature_vec3", "principal", "direction")
+    buffers = [ctx.buffer(np.ascontiguousarray(baked[k]).tobytes()) for k in names]
+    layout = list(zip(buffers, [f"{baked[k].shape[1]}f" for k in names],
+                      ("POSITION", "NORMAL", "_CURVATURE", "_PRINCIPAL_CURVATURES", "_PRINCIPAL_DIRECTION")))
     index_buffer = ctx.buffer(baked["indices"].tobytes())
     size = (SIZE, SIZE)
     depth = ctx.depth_renderbuffer(size)
@@ -204,13 +227,13 @@ def renders(gl_context, baked):
 
     inputs = program(ctx, "inputs")
     inputs["u_viewProjection"].write(matrix)
-    targets = [ctx.texture(size, 4, dtype="f4") for _ in range(4)]
+    targets = [ctx.texture(size, 4, dtype="f4") for _ in range(6)]
     fbo = ctx.framebuffer(targets, depth)
     fbo.use()
     fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
     ctx.vertex_array(inputs, layout, index_buffer=index_buffer, index_element_size=4).render(moderngl.TRIANGLES)
     ctx.finish()
-    names = ("normal_curvature", "position_covered", "fwidth_n", "fwidth_p")
+    names = ("normal_curvature", "position_covered", "fwidth_n", "fwidth_p", "principal", "direction")
     out = {n: np.frombuffer(t.read(), np.float32).reshape(SIZE, SIZE, 4) for n, t in zip(names, targets)}
 
     p = baked["params"]
@@ -265,6 +288,10 @@ def twin_image(renders, baked, variant):
             ndotl3 = np.stack([twins._dot(twins.normalize(N + np.float32(a) * bump), L) for a in (0.1, 0.25, 0.35)],
                               axis=-1)
             rgb = twins.baker_skin_diffuse_normals(p, lut, ndotl3, nc[..., 3])
+        elif variant == "along_light":
+            k = twins.baker_skin_curvature_along_light(renders["principal"][..., :2], renders["direction"][..., :3], N, L)
+            rgb = twins.baker_skin_lut(lut, ndotl, twins.baker_skin_curvature(k, p["curvatureScale"]),
+                                       p["curvatureRange"])
         elif variant == "wrap":
             rgb = twins.baker_skin_wrap(ndotl, p["wrap"], p["scatterWidth"], p["scatterColor"])
         else:
@@ -314,3 +341,53 @@ def test_render_shows_the_technique(renders, baked):
     estimate = np.linalg.norm(fw_n, axis=1) / np.linalg.norm(fw_p, axis=1)
     baked_k = renders["normal_curvature"][..., 3][covered]
     assert abs(np.median(estimate / baked_k) - 1.0) < 0.25
+
+
+def test_curvature_along_the_light_is_eulers_formula():
+    """The twin of baker_skin_curvature_along_light against the shape operator S = k1 d1 d1^T + k2 d2 d2^T read along
+    the light's tangent projection t (the normal curvature t^T S t / |t|^2, do Carmo 3.2): equal for unit directions
+    whatever the light; k1 along d1, k2 across it; the mean curvature where the direction is zero or L is the normal;
+    and the cos(2a) term scaled by the squared length of a shortened (interpolated) direction."""
+    rng = np.random.default_rng(7)
+    N = rng.normal(size=(500, 3))
+    N /= np.linalg.norm(N, axis=1, keepdims=True)
+    d1 = np.cross(N, rng.normal(size=(500, 3)))
+    d1 /= np.linalg.norm(d1, axis=1, keepdims=True)
+    d2 = np.cross(N, d1)
+    L = rng.normal(size=(500, 3))
+    L /= np.linalg.norm(L, axis=1, keepdims=True)
+    k = np.sort(rng.uniform(-5.0, 20.0, size=(500, 2)), axis=1)[:, ::-1]
+    t = L - N * np.sum(N * L, axis=1, keepdims=True)
+    S = k[:, 0, None, None] * d1[:, :, None] * d1[:, None, :] + k[:, 1, None, None] * d2[:, :, None] * d2[:, None, :]
+    truth = np.einsum("ni,nij,nj->n", t, S, t) / np.sum(t * t, axis=1)
+    along = twins.baker_skin_curvature_along_light(k, d1, N, L)
+    np.testing.assert_allclose(along, truth, rtol=1e-4, atol=1e-4)
+    # the sign of the line field does not matter
+    np.testing.assert_allclose(twins.baker_skin_curvature_along_light(k, -d1, N, L), along, rtol=1e-5, atol=1e-5)
+    # k1 along d1, k2 along d2 (lights tilted off the surface keep their tangent direction)
+    np.testing.assert_allclose(twins.baker_skin_curvature_along_light(k, d1, N, 0.6 * d1 + 0.8 * N), k[:, 0], rtol=1e-4)
+    np.testing.assert_allclose(twins.baker_skin_curvature_along_light(k, d1, N, 0.6 * d2 - 0.8 * N), k[:, 1], rtol=1e-4,
+                               atol=1e-4)
+    mean = k.mean(axis=1)
+    np.testing.assert_allclose(twins.baker_skin_curvature_along_light(k, 0.0 * d1, N, L), mean, rtol=1e-5, atol=1e-5)
+    np.testing.assert_allclose(twins.baker_skin_curvature_along_light(k, d1, N, N), mean, rtol=1e-5, atol=1e-5)
+    half = twins.baker_skin_curvature_along_light(k, 0.5 * d1, N, L)
+    np.testing.assert_allclose(half - mean, 0.25 * (along - mean), rtol=1e-3, atol=1e-3)
+    # into another space by a rotation and uniform scale: the length is kept, the direction rotated
+    rotation = np.linalg.qr(rng.normal(size=(3, 3)))[0]
+    moved = twins.baker_skin_direction_to(3.0 * rotation, 0.5 * d1)
+    np.testing.assert_allclose(moved, 0.5 * d1 @ rotation.T, rtol=1e-5, atol=1e-6)
+
+
+def test_curvature_along_the_light_on_the_ellipsoid(renders, baked):
+    """On the rendered ellipsoid the curvature along the light lies between k2 and k1 and differs from the mean
+    curvature where the light crosses a principal direction (more than 10% of H on a fifth of the pixels at least)."""
+    covered = renders["position_covered"][..., 3] > 0.5
+    principal = renders["principal"][..., :2][covered]
+    n = renders["normal_curvature"][..., :3][covered]
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    L = np.broadcast_to(LIGHT / np.linalg.norm(LIGHT), n.shape)
+    k = twins.baker_skin_curvature_along_light(principal, renders["direction"][..., :3][covered], n, L)
+    assert np.all(k <= principal[:, 0] + 1e-3 * np.abs(principal[:, 0])) and np.all(k >= principal[:, 1] - 1e-3 * np.abs(principal[:, 1]))
+    mean = principal.mean(axis=1)
+    assert np.mean(np.abs(k - mean) > 0.1 * np.abs(mean)) > 0.2

@@ -61,6 +61,24 @@ def baker_skin_curvature_from_derivatives(fwidth_n, fwidth_p):
     return np.sqrt(_dot(fwidth_n, fwidth_n)) / np.maximum(np.sqrt(_dot(fwidth_p, fwidth_p)), F32(1e-20))
 
 
+def baker_skin_curvature_along_light(principal, direction, N, L):
+    N, L, direction, principal = _f(N), _f(L), _f(direction), _f(principal)
+    t = L - N * _dot(N, L)[..., None]
+    d1 = direction - N * _dot(N, direction)[..., None]
+    d2 = np.cross(N, d1).astype(F32)
+    c = _dot(t, d1)
+    s = _dot(t, d2)
+    cos2a = (c * c - s * s) / np.maximum(_dot(t, t), F32(1e-6))
+    k1, k2 = principal[..., 0], principal[..., 1]
+    return F32(0.5) * (k1 + k2) + F32(0.5) * (k1 - k2) * cos2a
+
+
+def baker_skin_direction_to(linear, direction):
+    direction = _f(direction)
+    d = direction @ _f(linear).T
+    return d * (np.sqrt(_dot(direction, direction)) / np.maximum(np.sqrt(_dot(d, d)), F32(1e-20)))[..., None]
+
+
 def baker_skin_lut_uv(ndotl, curvature, curvature_range, lut_size):
     u = _f(ndotl) * F32(0.5) + F32(0.5)
     lo, hi = _f(curvature_range[0]), _f(curvature_range[1])

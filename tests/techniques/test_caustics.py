@@ -10,6 +10,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -190,11 +191,60 @@ def baked(tmp_path_factory):
     floor.apply_translation((0.0, -1.55, 0.0))
     source = folder / "pool.glb"
     trimesh.Scene([floor, trimesh.creation.icosphere(subdivisions=2, radius=0.5)]).export(str(source))
+    # the tile given as 2 m: the other lengths follow it at scale 1, the defaults of ``baker caustics``
     asset = baker.bake(str(source), bakes=["caustics"], seed=4,
-                       options={"caustics": {"size": 32, "frames": 4, "waves": 16}})
+                       options={"caustics": {"size": 32, "frames": 4, "waves": 16, "tile_size": 2.0}})
     out = folder / "pool_caustics.glb"
     save(asset, out)
     return out
+
+
+def _bake_sphere(folder, radius, **options):
+    """An icosphere of ``radius`` metres baked with small caustics; (BAKER_caustics JSON, irradiance frames)."""
+    source = folder / f"sphere_{radius:g}.glb"
+    trimesh.creation.icosphere(subdivisions=2, radius=radius).export(str(source))
+    out = folder / f"sphere_{radius:g}_{len(options)}_caustics.glb"
+    save(baker.bake(str(source), bakes=["caustics"], seed=5,
+                    options={"caustics": {"size": 64, "frames": 4, "waves": 16, **options}}), out)
+    doc = GltfDocument.load(out)
+    ext = doc.json["materials"][0]["extensions"]["BAKER_caustics"]
+    frames = np.stack([decode_image(doc.image_bytes(doc.json["textures"][t["index"]]["source"])).astype(np.float64)
+                       / 65535.0 * ext["intensityScale"] for t in ext["frameTextures"]])
+    return ext, frames
+
+
+def test_lengths_default_at_the_assets_scale(tmp_path):
+    """A sphere and the same sphere 10x smaller: the default tile is half the bounding-box diagonal (10x smaller),
+    depth, fade and wave height follow it, the wind sqrt(10) slower, all recorded; the water is then geometrically
+    similar, so the caustic pattern relative to the tile is the same: frame 0 (t = 0, the same phases) equal, and
+    the contrast of every frame alike."""
+    large, large_frames = _bake_sphere(tmp_path, 0.5)
+    small, small_frames = _bake_sphere(tmp_path, 0.05)
+    diagonal = 2 * 0.5 * math.sqrt(3)  # the icosphere's vertices reach the box's faces (within 1e-3)
+    assert large["tileSize"] == pytest.approx(0.5 * diagonal, rel=2e-2)
+    for key, factor in (("tileSize", 10.0), ("depth", 10.0), ("fadeDistance", 10.0), ("amplitude", 10.0),
+                        ("waterScale", 10.0), ("windSpeed", math.sqrt(10.0))):
+        assert large[key] == pytest.approx(factor * small[key], rel=1e-6), key  # float32 positions
+    assert large["depth"] == pytest.approx(0.75 * large["tileSize"]) and large["windSpeed"] == pytest.approx(
+        3.0 * math.sqrt(large["waterScale"]))
+    print("tile", large["tileSize"], small["tileSize"], "max |frame 0 difference|",
+          np.abs(large_frames[0] - small_frames[0]).max())
+    np.testing.assert_allclose(small_frames[0], large_frames[0], atol=2e-3 * large_frames[0].max())
+
+    def contrast(frames):
+        return frames.std(axis=(1, 2, 3)) / frames.mean(axis=(1, 2, 3))
+
+    print("contrast large", contrast(large_frames), "small", contrast(small_frames))
+    assert contrast(large_frames).min() > 0.2  # a caustic network, not a grey tile
+    np.testing.assert_allclose(contrast(small_frames), contrast(large_frames), rtol=0.05)
+
+
+def test_explicit_lengths_are_kept(tmp_path):
+    """Given values are written exactly; the unset ones follow the given tile's scale (tile / 2 m)."""
+    ext, _ = _bake_sphere(tmp_path, 0.05, tile_size=0.3, depth=0.7, wind_speed=2.5)
+    assert ext["tileSize"] == 0.3 and ext["depth"] == 0.7 and ext["windSpeed"] == 2.5
+    assert ext["waterScale"] == pytest.approx(0.15) and ext["fadeDistance"] == pytest.approx(0.15)
+    assert ext["amplitude"] == pytest.approx(0.012 * 0.15)
 
 
 def test_baked_asset_validates_and_reads_back(baked, written):

@@ -28,15 +28,18 @@ def lut():
     return S.diffusion_lut()  # defaults: 256 x 256, radii 1 mm .. 100 mm, d'Eon skin, 256 samples
 
 
-def brute_force(cos_theta, curvature, profile, samples):
+def brute_force(cos_theta, curvature, profile, samples, ring="line"):
     """Independent reference: a plain midpoint sum over the whole ring x in [-pi, pi] with ``samples`` points, all
-    columns at once as one matrix product (no per-Gaussian ranges, no trapezoid ends)."""
+    columns at once as one matrix product (no per-Gaussian ranges, no trapezoid ends). ``ring``: "line" puts each
+    Gaussian's 1D form exp(-d^2 / 2v) / sqrt(2 pi v) on the ring (the 2D profile integrated across it), "radial"
+    the 2D form exp(-d^2 / 2v) / (2 pi v)."""
     v, w = profile.arrays()
     x = -math.pi + (np.arange(samples) + 0.5) * (2 * math.pi / samples)
     theta = np.arccos(np.clip(cos_theta, -1, 1))
     lit = np.maximum(np.cos(theta[:, None] + x[None, :]), 0.0)  # (cols, samples)
     d = 2.0 / curvature[None, :] * np.sin(x / 2)[:, None]  # (samples, rows)
-    kernel = (np.exp(-d[..., None] ** 2 / (2 * v)) / (2 * math.pi * v)) @ w.T  # (samples, rows, 3)
+    norm = np.sqrt(2 * math.pi * v) if ring == "line" else 2 * math.pi * v
+    kernel = (np.exp(-d[..., None] ** 2 / (2 * v)) / norm) @ w.T  # (samples, rows, 3)
     numerator = (lit @ kernel.reshape(samples, -1)).reshape(len(cos_theta), len(curvature), 3)
     return np.swapaxes(numerator / kernel.sum(axis=0)[None], 0, 1)
 
@@ -73,6 +76,31 @@ def test_matches_brute_force_at_8x_samples(lut):
     samples = 8 * len(S.DEON_SKIN.variances) * 256  # 8x the nodes the kernel spends per texel
     reference = brute_force(axes.ndotl, axes.curvature, S.DEON_SKIN, samples)
     assert np.abs(values - reference).max() < 0.5 * Q
+    radial = S.penner_integral(axes.ndotl[::8], axes.curvature[::8], ring="radial")
+    reference = brute_force(axes.ndotl[::8], axes.curvature[::8], S.DEON_SKIN, samples, ring="radial")
+    assert np.abs(radial - reference).max() < 0.5 * Q
+
+
+def test_line_profile_is_the_cylinder_integral():
+    """The line ring profile is what a cylinder lit across its axis receives: the 2D profile summed over the whole
+    surface (ring angle x and the axis coordinate z, Euclidean chord distances) at N.L = 0 matches it, and the radial
+    profile is far less red (the ratio the README quotes: 0.070 against 0.012 red - green at 1/r = 0.26/mm)."""
+    k = 0.26
+    r = 1.0 / k
+    x = np.linspace(-math.pi, math.pi, 4001)
+    z = np.linspace(-25.0, 25.0, 2001)
+    d2 = (2 * r * np.sin(x / 2))[:, None] ** 2 + z[None, :] ** 2
+    v, w = S.DEON_SKIN.arrays()
+    profile = np.einsum("cg,gxz->cxz", w, np.exp(-d2[None] / (2 * v[:, None, None])) / (2 * math.pi * v[:, None, None]))
+    lit = np.maximum(np.cos(math.pi / 2 + x), 0.0)[None, :, None]
+    surface = (profile * lit).sum(axis=(1, 2)) / profile.sum(axis=(1, 2))
+    line = S.penner_integral([0.0], [k])[0, 0]
+    radial = S.penner_integral([0.0], [k], ring="radial")[0, 0]
+    print("N.L = 0, 1/r = 0.26/mm: surface", surface, "line", line, "radial", radial)
+    np.testing.assert_allclose(line, surface, atol=2e-4)
+    assert line[0] - line[1] == pytest.approx(0.070, abs=0.002) and radial[0] - radial[1] == pytest.approx(0.012, abs=0.002)
+    with pytest.raises(ValueError):
+        S.penner_integral([0.0], [k], ring="ring")
 
 
 def test_flat_and_single_gaussian_limits():

@@ -28,11 +28,11 @@ def run_caustics(args) -> int:
     from baker.gltf.atomic import output_folder
     from baker.techniques.caustics.extension import write_caustics_directory
     from baker.techniques.caustics.kernel import caustic_frames, check_options
-    from baker.techniques.caustics.options import CausticsOptions
+    from baker.techniques.caustics.options import CausticsOptions, at_scale
 
     folder = output_folder(args.output)
     try:
-        options = from_args(CausticsOptions, "caustics", args)
+        options = at_scale(from_args(CausticsOptions, "caustics", args))[0]  # no asset: the tile's scale, else 1
         check_options(options)
     except ValueError as exc:
         raise BakerError(None, str(exc)) from None

@@ -39,12 +39,17 @@ def frame_pixels(frames) -> tuple[list, float]:
     return [c[..., 0] if c.shape[-1] == 1 else c for c in codes], scale
 
 
-def caustics_parameters(options: CausticsOptions, frames, scale: float) -> dict:
-    """The runtime parameters of ``BAKER_caustics`` (everything but the textures)."""
-    return {"tileSize": float(options.tile_size), "period": float(options.period), "intensityScale": scale,
-            "depth": float(options.depth), "waterLevel": float(options.water_level),
-            "fadeDistance": float(options.fade_distance), "strength": float(options.strength),
-            "projectionDirection": [round(v, 7) for v in to_gltf_axes(frames.projection)]}
+def caustics_parameters(options: CausticsOptions, frames, scale: float, water_scale: float | None = None) -> dict:
+    """The runtime parameters of ``BAKER_caustics`` (everything but the textures), with the water the bake used
+    (wind speed, RMS height and, when the lengths followed the asset, their scale)."""
+    params = {"tileSize": float(options.tile_size), "period": float(options.period), "intensityScale": scale,
+              "depth": float(options.depth), "waterLevel": float(options.water_level),
+              "fadeDistance": float(options.fade_distance), "strength": float(options.strength),
+              "projectionDirection": [round(v, 7) for v in to_gltf_axes(frames.projection)],
+              "windSpeed": float(options.wind_speed), "amplitude": float(options.amplitude)}
+    if water_scale is not None:
+        params["waterScale"] = float(water_scale)
+    return params
 
 
 def write_frame_textures(doc: GltfDocument, frames) -> tuple[list, float]:
@@ -58,9 +63,10 @@ def write_frame_textures(doc: GltfDocument, frames) -> tuple[list, float]:
 
 
 def write_caustics(doc: GltfDocument, material: int, options: CausticsOptions, frames, textures: list,
-                   scale: float) -> dict:
+                   scale: float, water_scale: float | None = None) -> dict:
     """``BAKER_caustics`` on ``material`` referencing the frame ``textures``; returns the extension object."""
-    ext = {"frameTextures": [{"index": int(t)} for t in textures], **caustics_parameters(options, frames, scale)}
+    ext = {"frameTextures": [{"index": int(t)} for t in textures],
+           **caustics_parameters(options, frames, scale, water_scale)}
     doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
     doc.use_extension(NAME)
     return ext

@@ -17,7 +17,7 @@ import numpy as np
 
 from baker.techniques.caustics.light import (flat_direction, floor_hits, rasterise_jacobian, splat_photons,
                                              sun_direction)
-from baker.techniques.caustics.options import CausticsOptions
+from baker.techniques.caustics.options import CausticsOptions, at_scale
 from baker.techniques.caustics.spectrum import WaveSpectrum, sample_surface, wave_spectrum
 
 CODE_MAX = 65535  # 16-bit PNG
@@ -66,7 +66,9 @@ def irradiance(spectrum: WaveSpectrum, time: float, *, size: int, samples: int =
 
 
 def caustic_frames(options: CausticsOptions = CausticsOptions(), seed: int = 0) -> CausticFrames:
-    """Every frame of the loop (see :class:`CausticFrames`)."""
+    """Every frame of the loop (see :class:`CausticFrames`); unset lengths at the tile's scale (scale 1 without a
+    tile: :func:`~baker.techniques.caustics.options.at_scale`)."""
+    options = at_scale(options)[0]
     check_options(options)
     spectrum = wave_spectrum(options, seed)
     sun = sun_direction(options.sun_elevation, options.sun_azimuth)

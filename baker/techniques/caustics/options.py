@@ -1,9 +1,16 @@
 """Options of the caustics technique: one frozen dataclass feeds the CLI flags, recipe keys and the Python API."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 
 from baker.options import opt
+
+# The water of the default scale (scale 1): a 2 m tile over a floor 1.5 m down, 3 m/s wind, 1.2 cm RMS waves. At
+# another scale s every length is s times these and the wind sqrt(s) times (Phillips' and JONSWAP's length scale
+# is V^2 / g), so the water is geometrically similar: the same rays, the same caustic pattern relative to the tile.
+REFERENCE = {"tile_size": 2.0, "depth": 1.5, "fade_distance": 1.0, "amplitude": 0.012, "wind_speed": 3.0}
+TILE_PER_DIAGONAL = 0.5  # default tile: half the asset's bounding-box diagonal (world units, metres in glTF)
 
 
 @dataclass(frozen=True)
@@ -12,15 +19,20 @@ class CausticsOptions:
 
     spectrum: str = opt("phillips", "wave spectrum of the water: Phillips (Tessendorf 2001) or JONSWAP",
                         choices=("phillips", "jonswap"))
-    wind_speed: float = opt(3.0, "wind speed in m/s (sets the dominant wavelength)", min=0.1, max=60.0)
+    wind_speed: float | None = opt(None, "wind speed in m/s (sets the dominant wavelength; default: 3 x "
+                                         "sqrt(scale), so the wavelengths follow the tile)", min=0.1, max=60.0)
     wind_direction: float = opt(30.0, "wind direction in degrees, from +x towards +y of the tile", min=-360.0,
                                 max=360.0)
-    amplitude: float = opt(0.012, "RMS wave height in metres (0 = flat water)", min=0.0, max=10.0)
+    amplitude: float | None = opt(None, "RMS wave height in metres (0 = flat water; default: 0.012 x scale)",
+                                  min=0.0, max=10.0)
     choppiness: float = opt(0.5, "horizontal displacement towards the crests (0 = pure height field)", min=0.0,
                             max=2.0)
     jonswap_gamma: float = opt(3.3, "JONSWAP peak enhancement factor", min=1.0, max=10.0)
-    tile_size: float = opt(2.0, "side of the square, periodic tile in metres", min=0.01, max=1e4)
-    depth: float = opt(1.5, "depth of the receiving floor below the mean water level, in metres", min=0.0, max=1e4)
+    tile_size: float | None = opt(None, "side of the square, periodic tile in metres (default: half the asset's "
+                                        "bounding-box diagonal; 2 for baker caustics). scale = tile / 2 m sets "
+                                        "every other unset length", min=1e-6, max=1e4)
+    depth: float | None = opt(None, "depth of the receiving floor below the mean water level, in metres "
+                                    "(default: 1.5 x scale)", min=0.0, max=1e4)
     period: float = opt(4.0, "loop period in seconds (wave frequencies are multiples of 2 pi / period)",
                         min=0.05, max=1e4)
     sun_elevation: float = opt(70.0, "sun elevation above the horizon in degrees", min=5.0, max=90.0)
@@ -36,6 +48,21 @@ class CausticsOptions:
                                  "surface-to-floor map (Wallace's WebGL Water)", choices=("photons", "jacobian"))
     samples: int = opt(3, "surface samples per texel side (photons, or Jacobian mesh vertices)", min=1, max=16)
     strength: float = opt(1.0, "runtime: scale of the caustic modulation (0 = off, 1 = physical)", min=0.0, max=10.0)
-    fade_distance: float = opt(1.0, "runtime: distance in metres from the baked depth over which the caustic fades",
-                               min=0.0, max=1e4)
+    fade_distance: float | None = opt(None, "runtime: distance in metres from the baked depth over which the "
+                                            "caustic fades (default: 1 x scale)", min=0.0, max=1e4)
     water_level: float = opt(0.0, "runtime: world height (glTF +Y) of the mean water surface, in metres")
+
+
+def at_scale(options: CausticsOptions, extent: float | None = None) -> tuple[CausticsOptions, float]:
+    """``options`` with every unset length filled at the water's scale, and that scale. The scale is the tile's
+    (tile / 2 m) when the tile is given, else half of ``extent`` (the asset's bounding-box diagonal) / 2 m, else 1.
+    Values the user gave are kept exactly."""
+    if options.tile_size is not None:
+        scale = options.tile_size / REFERENCE["tile_size"]
+    elif extent is not None and extent > 0.0:
+        scale = TILE_PER_DIAGONAL * extent / REFERENCE["tile_size"]
+    else:
+        scale = 1.0
+    filled = {name: REFERENCE[name] * scale for name in ("tile_size", "depth", "fade_distance", "amplitude")}
+    filled["wind_speed"] = REFERENCE["wind_speed"] * math.sqrt(scale)
+    return replace(options, **{k: v for k, v in filled.items() if getattr(options, k) is None}), float(scale)

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from baker.techniques.caustics.options import at_scale
+
 GRAVITY = 9.81  # m/s^2
 
 
@@ -85,8 +87,9 @@ def wave_spectrum(options, seed: int = 0) -> WaveSpectrum:
     """The random wave field of ``options`` (a CausticsOptions), its RMS height scaled to ``options.amplitude``.
 
     The RMS is the time average sqrt(sum_k |h0(k)|^2 + |h0(-k)|^2), fixed by the draw, so the same seed and options
-    give the same surface whatever ``amplitude`` is.
+    give the same surface whatever ``amplitude`` is. Unset lengths are filled at the tile's scale (``at_scale``).
     """
+    options = at_scale(options)[0]
     n = lattice(options.waves)
     kx, ky = 2.0 * np.pi * n / options.tile_size
     k = np.hypot(kx, ky)

@@ -55,6 +55,7 @@ def write_material_parameters(doc: GltfDocument, material: int, *, tables: SkinT
         "curvatureScale": 1.0 / float(options.unit_scale),
         "profile": {k: profile[k] for k in ("name", "variances", "red", "green", "blue")},
         "samples": int(options.samples),
+        "ringProfile": options.ring_profile,
         "normalBlend": [float(x) for x in tables.normal_blend],
         "wrap": float(options.wrap),
         "scatterWidth": float(options.scatter_width),

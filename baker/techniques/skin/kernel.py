@@ -8,6 +8,12 @@ and screen-space diffusion, all from one sum-of-Gaussians diffusion profile.
       D(theta, r) = int saturate(cos(theta + x)) R(2 r sin(x / 2)) dx / int R(2 r sin(x / 2)) dx,   x in [-pi, pi]
 
   per RGB channel. Axes: u = N.L * 0.5 + 0.5 (N.L = cos theta), v linear in the curvature 1/r.
+  R on the ring is by default the profile integrated across it (``ring="line"``): light that varies only along the
+  ring (a cylinder lit across its axis; a sphere near its terminator) diffuses with the 2D profile's line integral,
+  a sum of 1D Gaussians with the same weights and variances, as the penumbra LUT below does. Penner's text puts
+  the radial 2D profile itself on the ring (``ring="radial"``), which divides each Gaussian's weight by its
+  sigma: d'Eon's broad red lobes lose most of their weight, and at 1/r = 0.26/mm, N.L = 0 red - green is 0.012
+  against 0.070 with the line profile.
 - **Penumbra LUT** (same source): a shadow edge whose filtered shadow value s ramps linearly across a penumbra of
   width w; the light that diffuses across it, S(s, w) = int ramp(x(s) - y) R1(y) dy / int R1(y) dy, with R1 the
   profile integrated along the edge (a 2D Gaussian of variance v integrates to a 1D one of the same variance) and the
@@ -87,7 +93,11 @@ def _penner_components(cos_theta, curvature, variances, samples, num, den):
                 num[c, row, j] = acc
 
 
-def penner_integral(cos_theta, curvature, profile: Profile = DEON_SKIN, samples: int = 256) -> np.ndarray:
+RING_PROFILES = ("line", "radial")  # R on Penner's ring: the 2D profile integrated across the ring, or radial
+
+
+def penner_integral(cos_theta, curvature, profile: Profile = DEON_SKIN, samples: int = 256,
+                    ring: str = "line") -> np.ndarray:
     """Penner's pre-integrated diffuse D(theta, r) on the grid ``curvature`` x ``cos_theta``.
 
     Parameters
@@ -100,6 +110,9 @@ def penner_integral(cos_theta, curvature, profile: Profile = DEON_SKIN, samples:
         The diffusion profile (mm).
     samples : int
         Trapezoid nodes per Gaussian and row (>= 3).
+    ring : str
+        "line": R is the profile integrated across the ring (each 2D Gaussian becomes the 1D Gaussian of the same
+        variance and weight); "radial": the 2D profile R(d) itself, as Penner & Borshukov write it.
 
     Returns
     -------
@@ -107,7 +120,11 @@ def penner_integral(cos_theta, curvature, profile: Profile = DEON_SKIN, samples:
     """
     cos_theta = np.clip(np.ascontiguousarray(cos_theta, np.float64).reshape(-1), -1.0, 1.0)
     curvature = np.ascontiguousarray(curvature, np.float64).reshape(-1)
+    if ring not in RING_PROFILES:
+        raise ValueError(f"ring must be one of {RING_PROFILES}, not {ring!r}")
     variances, weights = profile.arrays()
+    if ring == "line":  # G1D(v, d) = G2D(v, d) * sqrt(2 pi v): the kernel integrates G2D, so reweight per Gaussian
+        weights = weights * np.sqrt(2.0 * math.pi * np.asarray(variances, np.float64))[None, :]
     num = np.empty((len(variances), len(curvature), len(cos_theta)))
     den = np.empty((len(variances), len(curvature)))
     _penner_components(cos_theta, curvature, np.ascontiguousarray(variances), int(max(3, samples)), num, den)
@@ -135,10 +152,10 @@ class LutAxes:
 
 
 def diffusion_lut(width: int = 256, height: int = 256, min_radius: float = 1.0, max_radius: float = 100.0,
-                  profile: Profile = DEON_SKIN, samples: int = 256) -> tuple[np.ndarray, LutAxes]:
+                  profile: Profile = DEON_SKIN, samples: int = 256, ring: str = "line") -> tuple[np.ndarray, LutAxes]:
     """Penner's 2D LUT: (height, width, 3) linear RGB, row 0 = the flattest curvature 1/max_radius (radii in mm)."""
     axes = LutAxes(int(width), int(height), (1.0 / max_radius, 1.0 / min_radius))
-    return penner_integral(axes.ndotl, axes.curvature, profile, samples), axes
+    return penner_integral(axes.ndotl, axes.curvature, profile, samples, ring), axes
 
 
 # ---------------------------------------------------------------------------------------------------- penumbra LUT
@@ -304,7 +321,7 @@ def skin_tables(options: SkinOptions, curvature: np.ndarray | None = None) -> Sk
     options = replace(options, min_radius=min_radius, max_radius=max_radius)
     profile = load_profile(options.profile) if options.profile else DEON_SKIN
     lut, axes = diffusion_lut(options.width, options.height, options.min_radius, options.max_radius, profile,
-                              options.samples)
+                              options.samples, options.ring_profile)
     penumbra = penumbra_range = None
     if options.penumbra:
         penumbra, penumbra_range = penumbra_lut(options.penumbra_size, options.penumbra_min_width,

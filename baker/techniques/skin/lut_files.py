@@ -49,6 +49,7 @@ def sidecar(tables, options: SkinOptions, lut_file: str, penumbra_file: str | No
             "texels": "endpoint-aligned: column 0 is N.L = -1, the last column N.L = +1; row 0 (top) is range[0]; "
                       "sample at (t * (size - 1) + 0.5) / size",
             "samples": int(options.samples),
+            "ringProfile": options.ring_profile,
         },
         "profile": tables.profile.as_json(),
         "curvatureScale": 1.0 / options.unit_scale,

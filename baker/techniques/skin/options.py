@@ -33,6 +33,10 @@ class SkinOptions:
                                          "curvature scale, at most 1000 x min-radius; 100 mm without baked "
                                          "curvature and for baker skin-lut)", min=1e-6)
     samples: int = opt(256, "integration samples per Gaussian and LUT row", min=3, max=65536)
+    ring_profile: str = opt("line", "the profile on Penner's ring: line (the 2D profile integrated across the ring, "
+                                    "as light varying along one direction diffuses; the penumbra LUT's too) or radial "
+                                    "(the 2D profile R(d) as Penner 2011 writes it: broad red lobes weigh 1/sigma, "
+                                    "several times less red at the terminator)", choices=("line", "radial"))
     profile: str | None = opt(None, "diffusion profile JSON (variances + red/green/blue weights; default: d'Eon & "
                                     "Luebke's skin)")
     bits: int = opt(16, "bits per channel of PNG LUTs (EXR output is always 32-bit float)", choices=(8, 16))

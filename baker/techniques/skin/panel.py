@@ -1,5 +1,6 @@
 """Preview panel of BAKER_skin_lut: Penner's pre-integrated skin (``runtime-shaders/baker_skin.glsl``), the LUT by
-N.L and the baked curvature (or the curvature estimated from screen-space derivatives when there is none), N.L per
+N.L and the baked curvature along the light (Euler's formula from BAKER_curvature's principal curvatures and
+direction when baked, else the mean curvature, else the curvature estimated from screen-space derivatives), N.L per
 channel from Penner's normal blending of the material's normal map with the interpolated normal; where the
 material also has BAKER_normal_blur, the LUT is read with its per-channel diffuse normals (``baker_normal_blur.glsl``,
 tangent frame from screen-space derivatives), as the three.js and Babylon.js hosts do."""
@@ -9,6 +10,7 @@ import numpy as np
 
 from baker.gltf.vertex_attributes import unpadded
 from baker.preview.core import DrawItem, Panel, Scene
+from baker.techniques.curvature.extension import DIRECTION, PRINCIPAL
 from baker.techniques.normal_blur.extension import read as read_normal_blur
 from baker.techniques.skin.extension import read
 
@@ -51,6 +53,17 @@ class SkinPanel(Panel):
     def attribute_of(self, item):
         return item.data["skin"].curvature_attribute
 
+    def principal(self, item):
+        """True when the primitive has the principal curvatures and direction (the curvature along the light)."""
+        return PRINCIPAL in item.attributes and DIRECTION in item.attributes
+
+    def vertex_arrays(self, item):
+        n = len(item.positions)
+        if not self.principal(item):
+            return {"a_principal": np.zeros((n, 2), np.float32), "a_direction": np.zeros((n, 3), np.float32)}
+        return {"a_principal": item.attributes[PRINCIPAL].reshape(n, -1)[:, :2],
+                "a_direction": item.attributes[DIRECTION].reshape(n, -1)[:, :3]}
+
     def diffuse_normals(self, item):
         """The material's BAKER_normal_blur when its UV set is on the primitive, else None."""
         blur = item.data.get("normal_blur")
@@ -71,6 +84,7 @@ class SkinPanel(Panel):
             "u_skin.scatterWidth": skin.scatter_width,
             "u_skin.scatterColor": skin.scatter_color,
             "u_hasCurvature": int(self.attribute_of(item) in item.attributes),
+            "u_hasPrincipal": int(self.principal(item)),
             "u_hasDiffuseNormals": int(self.diffuse_normals(item) is not None),
         }
 
@@ -88,8 +102,10 @@ PANELS = [
     SkinPanel("skin", "pre-integrated skin (LUT x curvature)", ("baker_skin.glsl", "baker_normal_blur.glsl"),
               "uniform BakerSkin u_skin;\nuniform sampler2D u_lut;\nuniform int u_hasCurvature;\n"
               "uniform int u_hasDiffuseNormals;\nuniform sampler2D u_diffuseRed;\nuniform sampler2D u_diffuseGreen;\n"
-              "uniform sampler2D u_diffuseBlue;",
-              "float k = u_hasCurvature != 0 ? scalar : baker_skin_curvature_from_derivatives(fwidth(N), fwidth(P));\n"
+              "uniform sampler2D u_diffuseBlue;\nuniform int u_hasPrincipal;",
+              "float k = u_hasCurvature != 0 ? scalar : baker_skin_curvature_from_derivatives(fwidth(Ng), fwidth(P));\n"
+              "    // the curvature of the surface, not of the normal map (Ng: the interpolated normal)\n"
+              "    if (u_hasPrincipal != 0) k = baker_skin_curvature_along_light(v_principal, v_direction, Ng, u_light);\n"
               "    // derivatives outside the branch: they are undefined in non-uniform control flow\n"
               "    mat3 tbn = baker_normal_blur_derivative_frame(Ng, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
               "    vec3 ndotl = baker_skin_blended_ndotl(Ng, N, u_light, u_skin.normalBlend);\n"
@@ -100,5 +116,7 @@ PANELS = [
               "            normalize(tbn * baker_normal_blur_decode(texture(u_diffuseBlue, v_uv).rgb, 1.0)), u_light);\n"
               "    }\n"
               "    color = albedo * (0.15 + 0.85 * baker_skin_diffuse_normals(u_skin, u_lut, ndotl, k));",
-              attribute="_CURVATURE", inputs="in vec2 v_uv;", order=30),
+              attribute="_CURVATURE", inputs="in vec2 v_uv;\nin vec2 v_principal;\nin vec3 v_direction;", order=30,
+              vertex_declarations="in vec2 a_principal;\nin vec3 a_direction;\nout vec2 v_principal;\nout vec3 v_direction;",
+              vertex_body="v_principal = a_principal;\n    v_direction = a_direction;"),
 ]

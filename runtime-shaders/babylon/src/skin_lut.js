@@ -8,12 +8,22 @@ export const BakerSkinLutExtension = surfaceExtension('skin', BAKER_SKIN_LUT, as
 	if (!lut) return null;
 	if (ext.encoding === 'srgb') lut.gammaSpace = true;
 	const size = ext.curvatureAttribute ? await setAttribute(this.loader, mesh, primitive, ext.curvatureAttribute, 'bakerSkinCurvature') : 0;
+	// BAKER_curvature's principal curvatures and direction (baker's names): the curvature along the light
+	const hasPrincipal = ['_PRINCIPAL_CURVATURES', '_PRINCIPAL_DIRECTION'].every((name) => primitive.attributes?.[name] !== undefined);
+	const kSize = hasPrincipal ? await setAttribute(this.loader, mesh, primitive, '_PRINCIPAL_CURVATURES', 'bakerSkinPrincipal') : 0;
+	const dSize = hasPrincipal ? await setAttribute(this.loader, mesh, primitive, '_PRINCIPAL_DIRECTION', 'bakerSkinDirection') : 0;
+	const principal = kSize >= 2 && dSize === 3;
+	const k = kSize === 2 ? 'v_bakerSkinPrincipal' : 'v_bakerSkinPrincipal.xy';
 	const v = (a, d) => (a ?? d).slice();
 	return {
 		glsl: requireShader(this.shaders, 'skin'),
-		attributes: size ? [['bakerSkinCurvature', size]] : [],
-		// without the baked attribute: the per-pixel estimate of RTR4 14.6.3 (screen-space derivatives)
-		curvature: size ? firstComponent('v_bakerSkinCurvature', size) : 'baker_skin_curvature_from_derivatives(fwidth(normalW), fwidth(vPositionW))',
+		// the direction into world space (the space of normalW and L) in the vertex stage, its length kept
+		attributes: [...(size ? [['bakerSkinCurvature', size]] : []), ...(principal ? [['bakerSkinPrincipal', kSize],
+			['bakerSkinDirection', 3, '(mat3(finalWorld) * bakerSkinDirection) * (length(bakerSkinDirection) / max(length(mat3(finalWorld) * bakerSkinDirection), 1e-20))']] : [])],
+		// of the surface normal N (not the bump's) and the light L: along the light from the principal curvatures,
+		// else the mean curvature, else the per-pixel estimate of RTR4 14.6.3 (screen-space derivatives)
+		curvature: (N, L) => (principal ? `baker_skin_curvature_along_light(${k}, v_bakerSkinDirection, ${N}, ${L})`
+			: size ? firstComponent('v_bakerSkinCurvature', size) : `baker_skin_curvature_from_derivatives(fwidth(${N}), fwidth(vPositionW))`),
 		struct: 'BakerSkin(u_bakerSkinCurvatureRange, u_bakerSkinCurvatureScale, u_bakerSkinPenumbraRange, u_bakerSkinNormalBlend, u_bakerSkinWrap, u_bakerSkinScatterWidth, u_bakerSkinScatterColor)',
 		samplers: { u_bakerSkinLut: lut },
 		uniforms: {

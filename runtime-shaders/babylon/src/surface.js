@@ -102,8 +102,9 @@ export class BakerSurfacePlugin extends MaterialPluginBase {
 
 	attributes() {
 		const out = new Map();
-		for (const p of Object.values(this.parts || {})) for (const [kind, size] of p.attributes || []) out.set(kind, size);
-		return [...out.entries()].sort((a, b) => (a[0] < b[0] ? -1 : 1));
+		// [kind, component count, optional vertex-stage expression of the varying (default: the attribute itself)]
+		for (const p of Object.values(this.parts || {})) for (const entry of p.attributes || []) out.set(entry[0], entry);
+		return [...out.values()].sort((a, b) => (a[0] < b[0] ? -1 : 1));
 	}
 
 	prepareDefinesBeforeAttributes(defines) {
@@ -171,7 +172,7 @@ export class BakerSurfacePlugin extends MaterialPluginBase {
 			return {
 				CUSTOM_VERTEX_DEFINITIONS: `${attributes.map(([kind, size]) => `in ${glslType(size)} ${kind};`).join('\n')}
 ${varyings}`,
-				CUSTOM_VERTEX_MAIN_END: `${attributes.map(([kind]) => `v_${kind} = ${kind};`).join('\n')}
+				CUSTOM_VERTEX_MAIN_END: `${attributes.map(([kind, , v]) => `v_${kind} = ${v ?? kind};`).join('\n')}
 #ifdef UV1
 v_bakerUv = uv;
 #else
@@ -190,10 +191,12 @@ if (u_baker_normalBlur_on > 0.5) {
 	f = clamp(bakerNdotL, 0.0, 1.0);
 	bakerReplaced = true;
 }`);
-		const skin = (normals) => `baker_skin_diffuse(${p.skin.struct}, u_bakerSkinLut, ${normals}, bakerL, ${p.skin.curvature})`;
+		const skin = (normals) => `baker_skin_diffuse(${p.skin.struct}, u_bakerSkinLut, ${normals}, bakerL, bakerSkinK)`;
+		// the curvature of the surface (geometricNormalW: before the bump) along L
 		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
+	float bakerSkinK = ${p.skin.curvature('geometricNormalW', 'bakerL')};
 	f = ${p.normalBlur ? `u_baker_normalBlur_on > 0.5
-		? baker_skin_diffuse_normals(${p.skin.struct}, u_bakerSkinLut, bakerNdotL, ${p.skin.curvature})
+		? baker_skin_diffuse_normals(${p.skin.struct}, u_bakerSkinLut, bakerNdotL, bakerSkinK)
 		: ${skin('normalW, normalW')}` : skin('normalW, normalW')};
 	bakerReplaced = true;
 }`);

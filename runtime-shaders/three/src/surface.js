@@ -43,8 +43,9 @@ export class BakerSurface {
 
 	attributes() {
 		const names = new Map();
-		for (const p of Object.values(this.parts)) for (const [name, type] of p.attributes || []) names.set(name, type);
-		return [...names.entries()].sort((a, b) => (a[0] < b[0] ? -1 : 1));
+		// [name, GLSL type, optional vertex-stage expression of the varying (default: the attribute itself)]
+		for (const p of Object.values(this.parts)) for (const entry of p.attributes || []) names.set(entry[0], entry);
+		return [...names.values()].sort((a, b) => (a[0] < b[0] ? -1 : 1));
 	}
 
 	inject(shader) {
@@ -62,7 +63,7 @@ export class BakerSurface {
 		shader.vertexShader = shader.vertexShader
 			.replace('#include <common>', `#include <common>\n${attributes.map(([n, t]) => `attribute ${t} ${n};`).join('\n')}
 ${varyings}\nvarying vec2 vBakerUv;`)
-			.replace('#include <begin_vertex>', `#include <begin_vertex>\n${attributes.map(([n]) => `vBaker${n} = ${n};`).join('\n')}
+			.replace('#include <begin_vertex>', `#include <begin_vertex>\n${attributes.map(([n, , v]) => `vBaker${n} = ${v ?? n};`).join('\n')}
 vBakerUv = uv;`)
 			.replace('#include <worldpos_vertex>', `#include <worldpos_vertex>\n${world ? WORLD_POSITION : ''}`);
 
@@ -73,11 +74,13 @@ vBakerUv = uv;`)
 			bakerNdotL = baker_normal_blur_ndotl(bakerNormalRed, bakerNormalGreen, bakerNormalBlue, L);
 			f = clamp(bakerNdotL, 0.0, 1.0);
 		}`);
+		// the curvature of the surface (nonPerturbedNormal: before the normal map) along L
 		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
+			float bakerSkinK = ${p.skin.curvature('nonPerturbedNormal', 'L')};
 			${p.normalBlur ? `f = u_baker_normalBlur_on > 0.5
-				? baker_skin_diffuse_normals(u_bakerSkin, u_bakerSkinLut, bakerNdotL, ${p.skin.curvature})
-				: baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, ${p.skin.curvature});`
-		: `f = baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, ${p.skin.curvature});`}
+				? baker_skin_diffuse_normals(u_bakerSkin, u_bakerSkinLut, bakerNdotL, bakerSkinK)
+				: baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, bakerSkinK);`
+		: 'f = baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, bakerSkinK);'}
 		}`);
 		if (p.toon) diffuse.push(`if (u_baker_toon_on > 0.5) {
 			// the ramp indexed by the lit shade so far (N.L, or the skin LUT's luminance mapped back to -1..1)
