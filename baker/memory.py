@@ -4,8 +4,8 @@ A job that would not fit is refused with one line (exit 2) before it starts, ins
 way. Two checks:
 
 - :func:`check_file` before the input is read: OBJ/PLY/STL parsing costs a multiple of the file size (trimesh reads
-  the text into arrays); a PLY or binary STL header gives the counts directly (already checked against the file size
-  by :mod:`baker.geometry.mesh_files`).
+  the text into arrays); a PLY or binary STL header gives the counts directly (read and checked against the file
+  size by the format's reader in :mod:`baker.readers`, which calls this).
 - :func:`check_bake` after loading, before any bake runs: bytes per triangle per requested bake, plus a fixed cost
   per bake and, for the texture bakes, a cost per texel of the texture asked for.
 
@@ -124,9 +124,9 @@ def _refuse(path, what: str, need: int, limit: int) -> None:
                            "or a larger --max-memory")
 
 
-def file_estimate(path) -> int:
+def file_estimate(path, counts: dict | None = None) -> int:
     """Peak bytes to read ``path`` (0 for formats read without a large parse: glTF/GLB buffers are read as they are,
-    USD by usd-core)."""
+    USD by usd-core). ``counts``: ``{"faces": m}`` from a PLY or binary STL header, when the reader has one."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in FILE_FACTOR:
@@ -136,19 +136,17 @@ def file_estimate(path) -> int:
     except OSError:
         return 0
     need = PROCESS + FILE_FACTOR[suffix] * size
-    if suffix in (".ply", ".stl"):
-        from baker.geometry.mesh_files import check_mesh_file
-
-        counts = check_mesh_file(path)  # also refuses a header that lies about its counts
+    if counts:
         need = max(need, PROCESS + FILE_PER_TRIANGLE * counts.get("faces", 0))
     return need
 
 
-def check_file(path, limit: int | None) -> None:
-    """Refuse reading a mesh file that would not fit in ``limit`` bytes (None: no limit)."""
+def check_file(path, limit: int | None, counts: dict | None = None) -> None:
+    """Refuse reading a mesh file that would not fit in ``limit`` bytes (None: no limit); ``counts`` as
+    :func:`file_estimate` takes them."""
     if limit is None:
         return
-    need = file_estimate(path)
+    need = file_estimate(path, counts)
     if need > limit:
         _refuse(path, f"reading this {Path(path).suffix.lower().lstrip('.').upper()} file", need, limit)
 
@@ -217,15 +215,3 @@ MAX_MEMORY_HELP = ("refuse a job whose estimated working memory is larger: bytes
 def add_argument(parser, help: str = MAX_MEMORY_HELP) -> None:
     """``--max-memory SIZE`` on a command's parser (read with :func:`parse_limit`)."""
     parser.add_argument("--max-memory", metavar="SIZE", help=help)
-
-
-def load_asset(path, limit: int | None, work=(), what: str | None = None, **load_options):
-    """``Asset.load(path, **load_options)`` under ``limit`` bytes: a mesh file is checked before it is read
-    (:func:`check_file`), the loaded mesh plus the cost of ``work`` (bake names whose per-triangle figures the job's
-    work resembles) before the work starts (:func:`check_bake`)."""
-    from baker.geometry.asset import Asset
-
-    check_file(path, limit)
-    asset = Asset.load(path, **load_options)
-    check_bake(asset, tuple(work), None, limit, what or "loading this asset")
-    return asset

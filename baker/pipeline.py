@@ -5,7 +5,7 @@ import warnings
 
 from pathlib import Path
 
-from baker import registry
+from baker import readers, registry
 from baker.errors import BakeNote, BakerError
 from baker.geometry.asset import Asset
 from baker.options import from_mapping
@@ -41,9 +41,7 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
         raise BakerError(None, str(exc)) from None
 
     order = registry.bake_order(bakes)
-    if not isinstance(path_or_asset, Asset):
-        memory.check_file(path_or_asset, max_memory)
-    asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset, allow_outside=allow_outside)
+    asset = path_or_asset if isinstance(path_or_asset, Asset) else readers.read(path_or_asset, allow_outside, max_memory)
     options = options or {}
     resolved = {name: resolve_options(name, options.get(name)) for name in order}
     memory.check_bake(asset, order, resolved, max_memory)

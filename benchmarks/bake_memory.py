@@ -18,8 +18,8 @@ from pathlib import Path
 REPO = Path(__file__).parents[1]
 CHILD = r'''
 import json, resource, sys
-from baker.geometry.asset import Asset
-asset = Asset.load(sys.argv[1])
+from baker import readers
+asset = readers.read(sys.argv[1])
 bakes = [b for b in sys.argv[2].split(",") if b]
 if bakes:
     from baker.pipeline import bake

@@ -30,7 +30,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from baker.geometry.asset import Asset  # noqa: E402
+from baker import readers  # noqa: E402
 from baker.geometry.frames import orthonormal_basis  # noqa: E402
 from baker.techniques.hair import kernel as hair  # noqa: E402
 from baker.techniques.hair.grow import emitter_from_asset  # noqa: E402
@@ -79,7 +79,7 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args(argv)
     opts = hair.HairOptions(guides=args.guides, children=0, length=0.3, clump=0.3, spread=0.5)
-    asset = Asset.load(args.mesh)
+    asset = readers.read(args.mesh)
     emitter = emitter_from_asset(asset, opts)
     result = hair.generate_hair(emitter, opts, seed=0)
     guides, rest = result.guides.positions, result.guides.rest_lengths

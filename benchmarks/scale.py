@@ -53,11 +53,11 @@ ms.current_mesh().vertex_scalar_array()
     "thickness": r'''
 import json, sys, time
 import numpy as np
-from baker.geometry.asset import Asset
+from baker import readers
 from baker.geometry.normals import vertex_normals
 from baker.geometry.raycast import RayScene
 from baker.techniques.thickness.kernel import default_max_distance, local_thickness
-asset = Asset.load(sys.argv[1])
+asset = readers.read(sys.argv[1])
 mesh = asset.welded(0, asset.triangle_primitives(0))
 normals = vertex_normals(mesh.positions, mesh.faces)
 diag = default_max_distance(mesh.positions)

@@ -41,7 +41,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from baker.geometry.asset import Asset  # noqa: E402
+from baker import readers  # noqa: E402
 from baker.geometry.texture_space import rasterize_uv  # noqa: E402
 from baker.gltf.document import GltfDocument  # noqa: E402
 from common import baker_cli, run_command  # noqa: E402
@@ -87,7 +87,7 @@ def baker_thickness_images(path: Path) -> list[np.ndarray]:
 
 
 def first_primitive(mesh: Path):
-    return Asset.load(mesh).primitive(0, 0)
+    return readers.read(mesh).primitive(0, 0)
 
 
 def uv_mask(mesh: Path, size: int) -> np.ndarray:

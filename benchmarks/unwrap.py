@@ -66,10 +66,10 @@ def stretch(positions: np.ndarray, uv: np.ndarray, faces: np.ndarray) -> tuple[f
 
 def layout_row(mesh: Path, unbounded: bool) -> list:
     from baker.geometry import texture_space
-    from baker.geometry.asset import Asset
+    from baker import readers
     from baker.geometry.texture_target import UNWRAP_COVERAGE, _statistics
 
-    geometry = Asset.load(mesh).primitive(0, 0)
+    geometry = readers.read(mesh).primitive(0, 0)
     size = texture_space.size_for_density(_statistics([geometry], None, UNWRAP_COVERAGE))
     limit = texture_space.CHART_LIMIT_FROM_FACES
     if unbounded:

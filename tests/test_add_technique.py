@@ -177,9 +177,10 @@ def run(args) -> int:
     import numpy as np
 
     from baker.geometry.asset import Asset
+    from baker import readers
     from baker_height.kernel import AXES
 
-    asset = Asset.load(args.input)
+    asset = readers.read(args.input)
     values = np.concatenate([asset.mesh_triangles(m)[0][:, AXES[args.axis]] for m in range(len(asset.meshes()))])
     print(json.dumps({"lowest": float(values.min()), "highest": float(values.max())}))
     return 0

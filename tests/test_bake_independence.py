@@ -10,7 +10,7 @@ import pytest
 
 import baker
 from baker.errors import BakeNote
-from baker.geometry.asset import Asset
+from baker import readers
 from baker.gltf.document import GltfDocument
 from baker.pipeline import save
 from baker.registry import bakes
@@ -133,7 +133,7 @@ def assert_same(alone, together, what):
 def test_each_bake_alone_writes_what_it_writes_with_all_others(tmp_path, with_uvs):
     source = SPOT if with_uvs else uv_less_spot(tmp_path)
     names = BAKES
-    plain = Asset.load(source).doc
+    plain = readers.read(source).doc
     assert len(plain.json["meshes"]) == 1 and len(plain.json["meshes"][0]["primitives"]) == INPUT_PRIMITIVES
     input_names = set(plain.json["meshes"][0]["primitives"][0]["attributes"])
     together = bake_file(source, names, tmp_path / "all.glb")

@@ -1,4 +1,4 @@
-"""The direct OBJ reader (baker/geometry/obj_files.py) against the trimesh path it replaces, an independent reader:
+"""The direct OBJ reader (baker/readers/obj.py) against the trimesh path it replaces, an independent reader:
 
 - every OBJ the tests write (material quads, degenerate meshes, the corpus' tetrahedra, trimesh's own export), the
   repository's spot and the shared meshes give the same document through both paths: names, materials, accessor
@@ -23,8 +23,10 @@ import pytest
 import trimesh
 
 from baker.errors import BakerError
-from baker.geometry import asset as asset_module
-from baker.geometry.obj_files import read_obj_groups
+from baker import readers
+from baker.readers.mtl import read_obj_materials
+from baker.readers.obj import non_finite_location, read_direct, read_obj_groups
+from baker.readers.trimesh_scene import LibraryResolver, doc_from_trimesh_scene, load_trimesh
 from test_materials import QUAD_OBJ
 from test_mesh_inputs import DEGENERATE, _obj
 
@@ -44,11 +46,13 @@ def quad(x, y, form="v/vt/vn", n=1):
 
 
 def trimesh_document(path):
-    return asset_module._doc_from_trimesh_scene(path, *asset_module._load_trimesh(path, None))
+    materials, libraries = read_obj_materials(path)
+    loaded = load_trimesh(path, resolver=LibraryResolver(libraries))
+    return doc_from_trimesh_scene(path, loaded, materials, non_finite_location)
 
 
 def assert_same_document(path, order_free=False):
-    direct = asset_module._read_obj(Path(path))
+    direct = read_direct(Path(path), read_obj_materials(Path(path))[0])
     assert direct is not None, "fell back to trimesh"
     reference = trimesh_document(Path(path))
     for item in reference.json["meshes"] + reference.json["nodes"]:  # trimesh names some meshes by the whole path
@@ -141,7 +145,7 @@ def test_negative_indices_are_relative(tmp_path):
 def test_bad_face_index_names_the_line(tmp_path, face, words):
     path = write(tmp_path, "bad.obj", TETRA + face + "\nvt 0 0\n")
     with pytest.raises(BakerError) as caught:
-        asset_module.Asset.load(path)
+        readers.read(path)
     assert all(w in str(caught.value) for w in ("bad.obj", *words)), str(caught.value)
 
 

@@ -162,7 +162,7 @@ def test_trimesh_path_gives_the_direct_readers_normals_across_materials(tmp_path
 
 @pytest.mark.parametrize("line", ["s 1 2", "s on", "s -1"])
 def test_unusual_smoothing_lines_fall_back_to_trimesh(tmp_path, line):
-    from baker.geometry.obj_files import read_obj_groups
+    from baker.readers.obj import read_obj_groups
 
     path = tmp_path / "odd.obj"
     path.write_text(CUBE + line + "\n" + "\n".join(f"f {f}" for f in SIDES + CAPS) + "\n")

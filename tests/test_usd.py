@@ -1,4 +1,4 @@
-"""USD input (read_usd through Asset.load) and output (write_usd through pipeline.save)."""
+"""USD input (read_usd through baker.readers.read) and output (write_usd through pipeline.save)."""
 from __future__ import annotations
 
 import zipfile
@@ -14,6 +14,7 @@ from pxr import Gf, Sdf, Usd, UsdGeom, UsdShade, Vt  # noqa: E402
 
 import baker  # noqa: E402
 from baker.geometry.asset import Asset  # noqa: E402
+from baker import readers  # noqa: E402
 from baker.errors import BakerError  # noqa: E402
 from baker.gltf.document import GltfDocument  # noqa: E402
 from baker.gltf.usd import node_matrix, write_usd  # noqa: E402
@@ -107,7 +108,7 @@ def test_output_is_deterministic(baked_sphere, tmp_path, suffix):
 def test_usd_output_reads_back(baked_sphere, tmp_path):
     out = tmp_path / "again.usdc"
     save(baked_sphere, out)
-    again = Asset.load(out)
+    again = readers.read(out)
     source = baked_sphere.primitive(0, 0)
     back = again.primitive(0, 0)
     # the glTF has no normals, so both formats mean flat shading: USD input splits vertices per face corner
@@ -168,7 +169,7 @@ def _quad_cube(path, translate=(10.0, 0.0, 0.0)):
 def test_usd_input(tmp_path):
     path = tmp_path / "cube.usda"
     points, _ = _quad_cube(path)
-    asset = Asset.load(path)
+    asset = readers.read(path)
     vertices, faces = asset.mesh_triangles(0)
     assert len(faces) == 12
     np.testing.assert_allclose(vertices.min(0), [9.5, -0.5, -0.5], atol=1e-6)
@@ -202,7 +203,7 @@ def test_usd_input_left_handed_and_holes(tmp_path):
     mesh.GetFaceVertexIndicesAttr().Set(Vt.IntArray.FromNumpy(quads.reshape(-1).astype(np.int32)))
     mesh.CreateOrientationAttr(UsdGeom.Tokens.leftHanded)
     stage.GetRootLayer().Save()
-    vertices, faces = Asset.load(path).mesh_triangles(0)
+    vertices, faces = readers.read(path).mesh_triangles(0)
     assert len(faces) == 10
     tri = vertices[faces]
     normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -216,14 +217,14 @@ def test_usd_without_meshes(tmp_path):
     UsdGeom.Sphere.Define(stage, "/World/Ball")  # an implicit surface is not a mesh
     stage.GetRootLayer().Save()
     with pytest.raises(BakerError, match="empty.usda"):
-        Asset.load(path)
+        readers.read(path)
 
 
 def test_unreadable_usd(tmp_path):
     path = tmp_path / "broken.usda"
     path.write_text("#usda 1.0\ndef Xform \"World\" {\n")
     with pytest.raises(BakerError, match="cannot open USD stage"):
-        Asset.load(path)
+        readers.read(path)
 
 
 def test_materials_and_custom_attributes(tmp_path):
@@ -278,7 +279,7 @@ def test_usd_input_skips_hidden_and_reads_instances(tmp_path):
         mesh.CreateFaceVertexIndicesAttr([0, 1, 2])
     stage.GetRootLayer().Save()
 
-    from baker.gltf.usd import read_usd
+    from baker.readers.usd import read_usd
 
     scene = read_usd(path)
     assert sorted(scene.geometry) == ["/Instances/A/Cube", "/Instances/B/Cube", "/World/Cube"]
@@ -292,7 +293,7 @@ def test_usd_input_broken_topology(tmp_path):
     UsdGeom.Mesh(stage.GetPrimAtPath("/World/Cube")).GetFaceVertexIndicesAttr().Set(Vt.IntArray([0, 1, 99] * 8))
     stage.GetRootLayer().Save()
     with pytest.raises(BakerError, match="/World/Cube.*out of range"):
-        Asset.load(path)
+        readers.read(path)
 
 
 def test_extension_textures_and_edge_curves_reach_usd(tmp_path):
@@ -326,7 +327,7 @@ def _textured_spot():
     bake runs (normal-blur needs the normal map) and every core texture has a UsdPreviewSurface input to reach."""
     from baker.gltf.images import encode_image
 
-    asset = Asset.load(Path(__file__).parents[1] / "examples" / "spot" / "spot.obj")
+    asset = readers.read(Path(__file__).parents[1] / "examples" / "spot" / "spot.obj")
     doc = asset.doc
     rng = np.random.default_rng(3)
     y, x = np.mgrid[0:64, 0:64] / 64.0

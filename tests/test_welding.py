@@ -1,7 +1,7 @@
 """The compiled weld against numpy's own arithmetic and a brute-force merge."""
 import numpy as np
 
-from baker.geometry.asset import Asset
+from baker import readers
 from baker.geometry.welding import position_cells
 from baker.geometry.welding import weld
 
@@ -43,7 +43,7 @@ def test_welded_mesh_of_an_unmerged_mesh_keeps_its_faces(tmp_path):
 
     path = tmp_path / "sphere.ply"
     trimesh.creation.icosphere(2).export(path)
-    asset = Asset.load(path)
+    asset = readers.read(path)
     mesh = asset.welded(0, [0])
     g = asset.primitive(0, 0)
     assert np.array_equal(mesh.faces, g.faces) and np.array_equal(mesh.positions, g.positions)
@@ -64,7 +64,7 @@ def test_assigning_the_default_material_keeps_the_decoded_primitive(tmp_path):
     # a glTF primitive without a material (mesh files now get baker's explicit dielectric when read)
     GltfDocument.from_triangles(path, "sphere", {"POSITION": sphere.vertices.astype(np.float32)},
                                 sphere.faces.reshape(-1), "test").save(path)
-    asset = Asset.load(path)
+    asset = readers.read(path)
     before = asset.primitive(0, 0)
     asset.welded(0, [0])
     assert before.material is None

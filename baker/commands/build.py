@@ -47,7 +47,6 @@ import sys
 import tempfile
 import time
 import tomllib
-import urllib.parse
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -259,39 +258,21 @@ def load_recipe(path) -> Recipe:
 
 
 def referenced_files(root: Path, rel: str) -> list[str]:
-    """Files an input references that change its result: a .gltf's external buffers and images, an .obj's .mtl
-    files and their textures."""
-    source = root / rel
+    """Files an input references that change its result (:func:`baker.readers.references`: a .gltf's external
+    buffers and images, an .obj's .mtl files and their textures), relative to the recipe's folder; those outside
+    it (files the recipe cannot hash and ship) and those missing are left out."""
+    from baker import readers
+
     refs = []
-    if not source.is_file():
-        return refs
-    if source.suffix.lower() == ".gltf":
-        try:
-            gltf = json.loads(source.read_text())
-        except (ValueError, UnicodeDecodeError):
-            return refs
-        for item in gltf.get("buffers", []) + gltf.get("images", []):
-            uri = item.get("uri") if isinstance(item, dict) else None
-            if uri and not uri.startswith("data:"):
-                refs.append((Path(rel).parent / urllib.parse.unquote(uri)).as_posix())
-    elif source.suffix.lower() == ".obj":
-        # the .mtl files and the textures they name, as the bake itself resolves them (baker.geometry.mtl)
-        import warnings
-
-        from baker.geometry.mtl import MissingFileWarning, read_obj_materials
-
-        try:
-            with warnings.catch_warnings():  # a missing file is the bake's warning to give, not the hashing's
-                warnings.simplefilter("ignore", MissingFileWarning)
-                materials, libraries = read_obj_materials(source)
-        except BakerError:  # the bake reports it, naming the line; the task keeps its other inputs
-            materials, libraries = {}, []
-        files = libraries + [t.path for m in materials.values() for t in m.textures.values()]
-        base = root.resolve()
-        for path in files:
+    base = None
+    for path in readers.references(root / rel):
+        try:  # as written beside the input when it is, else as resolved (an MTL's files are)
+            refs.append(path.relative_to(root).as_posix())
+        except ValueError:
+            base = base or root.resolve()
             try:
-                refs.append(Path(path).resolve().relative_to(base).as_posix())
-            except ValueError:  # outside the recipe's folder: not a file the recipe can hash and ship
+                refs.append(path.resolve().relative_to(base).as_posix())
+            except ValueError:
                 continue
     return sorted(r for r in set(refs) if (root / r).is_file())
 
@@ -432,7 +413,7 @@ def warm_kernels(bakes) -> None:
     before worker processes start: each worker then loads them instead of compiling the same code at once."""
     import trimesh
 
-    from baker.geometry.asset import Asset
+    from baker import readers
     from baker.pipeline import bake
 
     with tempfile.TemporaryDirectory(prefix="baker-warm-") as scratch:
@@ -440,7 +421,7 @@ def warm_kernels(bakes) -> None:
         trimesh.creation.icosphere(2).export(path)
         options = {"thickness": {"per_texel": False}} if "thickness" in bakes else {}
         try:
-            bake(Asset.load(path), bakes=list(bakes), options=options)
+            bake(readers.read(path), bakes=list(bakes), options=options)
         except BakerError:  # a bake that needs more than a plain sphere (e.g. UVs): it compiles in the workers
             pass
 

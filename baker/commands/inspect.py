@@ -37,11 +37,12 @@ def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
 
     from baker import registry
     from baker.gltf.vertex_attributes import used_columns
-    from baker.memory import load_asset
+    from baker import readers
+    from baker.memory import check_bake
 
     # a groom (lines or points only) is a good glTF too: listed, not refused
-    asset = load_asset(path, max_memory, what="inspecting this asset", allow_outside=allow_outside,
-                       require_triangles=False)
+    asset = readers.read(path, allow_outside, max_memory, require_triangles=False)
+    check_bake(asset, (), None, max_memory, "inspecting this asset")
     doc = asset.doc
     summaries = {name: ext.summary for name, ext in registry.extensions().items() if hasattr(ext, "summary")}
     meshes = []

@@ -22,9 +22,11 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    from baker import readers
     from baker.preview.core import main
 
     # preview() takes an Asset as well as a path: loaded here under the URI roots and the memory limit
-    args.input = memory.load_asset(args.input, memory.parse_limit(args.max_memory), what="previewing this asset",
-                                   allow_outside=args.allow_outside, require_triangles=False)  # a groom: lines
+    limit = memory.parse_limit(args.max_memory)
+    args.input = readers.read(args.input, args.allow_outside, limit, require_triangles=False)  # a groom: lines
+    memory.check_bake(args.input, (), None, limit, "previewing this asset")
     return main(args)

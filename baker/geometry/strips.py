@@ -29,24 +29,3 @@ def triangles_from_strips(indices: np.ndarray, restart: int = -1) -> np.ndarray:
     faces = np.stack([a, b, c], axis=1)
     keep = (a != b) & (b != c) & (a != c)
     return faces[keep]
-
-
-def ply_strip_indices(elements: dict) -> np.ndarray | None:
-    """The concatenated ``vertex_indices`` of a PLY ``tristrips`` element as parsed by trimesh (its ``_ply_raw``
-    metadata), strips separated by -1; None when the file has no such element."""
-    strips = elements.get("tristrips")
-    if not strips or not strips.get("length"):
-        return None
-    data = strips["data"]
-    # binary files parse to a structured array, ASCII ones to a dict of columns
-    names = data.keys() if isinstance(data, dict) else (data.dtype.names or ())
-    name = next((n for n in ("vertex_indices", "vertex_index") if n in names), None)
-    if name is None:
-        return None
-    parts = []
-    for row in data[name]:
-        # a binary list is stored as (count, values); an ASCII one as the values
-        values = row["f1"] if getattr(row, "dtype", None) is not None and row.dtype.names else row
-        parts.append(np.asarray(values, dtype=np.int64).reshape(-1))
-        parts.append(np.array([-1], np.int64))
-    return np.concatenate(parts)

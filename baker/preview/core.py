@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from baker import readers
 from baker.data import SHADER_ROOT
 from baker.errors import BakerError
 from baker.geometry.asset import Asset
@@ -706,7 +707,7 @@ def preview(path_or_asset, size: int = 384, azimuth: float = 30.0, elevation: fl
             panels: list[str] | None = None) -> Preview:
     """Render every available panel of an asset into a contact sheet."""
     # a groom (lines only) has no triangle faces: the reference panel draws its strands
-    asset = path_or_asset if isinstance(path_or_asset, Asset) else Asset.load(path_or_asset, require_triangles=False)
+    asset = path_or_asset if isinstance(path_or_asset, Asset) else readers.read(path_or_asset, require_triangles=False)
     known = all_panels()
     scene = gather_scene(asset, known)
     if panels is not None:

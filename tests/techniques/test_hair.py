@@ -9,7 +9,7 @@ import pytest
 import trimesh
 
 import baker.techniques.hair.kernel as hair
-from baker.geometry.asset import Asset
+from baker import readers
 from baker.geometry.normals import vertex_normals
 from baker.techniques.hair.kernel import Emitter, generate_hair, segment_lengths
 from baker.techniques.hair.options import HairOptions
@@ -81,7 +81,7 @@ def test_push_out_is_what_keeps_strands_outside(sphere, monkeypatch):
 
 
 def test_spot_nothing_inside_by_winding_number():
-    asset = Asset.load(SPOT)
+    asset = readers.read(SPOT)
     opts = HairOptions(guides=60, children=3, length=0.5, gravity=1.0, stiffness=0.1, iterations=12)
     emitter = emitter_from_asset(asset, opts)
     result = generate_hair(emitter, opts, seed=0)
@@ -267,7 +267,7 @@ def test_gltf_round_trip_and_validators(spot_hair):
     # ribbons never join two strands: every triangle's line vertices belong to one strand
     assert (np.ptp((ribbon.reshape(-1, 3) // 2) // 16, axis=1) == 0).all()
     # nearest-first order: mean distance to the emitter is non-decreasing
-    emitter = emitter_from_asset(Asset.load(SPOT), opts)
+    emitter = emitter_from_asset(readers.read(SPOT), opts)
     surface = hair.SurfaceLookup(emitter.vertices, emitter.colliders)
     depth = surface.distance(children["positions"][:, ::5].reshape(-1, 3).astype(np.float64)).reshape(240, -1).mean(1)
     assert np.corrcoef(depth, np.arange(240))[0, 1] > 0.9

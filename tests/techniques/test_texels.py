@@ -12,7 +12,7 @@ import pytest
 import trimesh
 
 import baker
-from baker.geometry.asset import Asset
+from baker import readers
 from baker.geometry.texels import gather_texels
 from baker.geometry.texture_space import TEXELS_PER_EDGE, SurfaceStatistics, size_for_density
 from baker.gltf.document import GltfDocument
@@ -85,7 +85,7 @@ def test_size_for_density_follows_the_sphere_analytically():
 
 def test_seven_spheres_default_sizes_and_cost(spheres, tmp_path):
     """Default sizes total at most 7 x 512^2 texels; the default bake costs at most 4x the per-vertex-only one."""
-    texels = gather_texels(Asset.load(spheres))
+    texels = gather_texels(readers.read(spheres))
     assert len(texels.sets) == 7
     assert sum(s.size ** 2 for s in texels.sets) <= 7 * 512 ** 2
     assert {s.size for s in texels.sets} == {128}
@@ -138,7 +138,7 @@ def torus_texels(tmp_path, size: int = 128, sections: tuple = (48, 24)):
                                    minor_sections=sections[1])
     path = tmp_path / "torus.glb"
     torus.export(str(path))
-    asset = Asset.load(path)
+    asset = readers.read(path)
     texels = gather_texels(asset, size)
     vertices, faces = asset.mesh_triangles(0)
     diag = default_max_distance(vertices)
@@ -234,7 +234,7 @@ def test_shipped_texture_as_accurate_as_fixed_rays_on_a_box(tmp_path):
     extent = (2.0, 1.0, 0.5)
     path = tmp_path / "box.glb"
     box_islands(extent).export(str(path))
-    asset = Asset.load(path)
+    asset = readers.read(path)
     texels = gather_texels(asset, 128)
     vertices, faces = asset.mesh_triangles(0)
     diag = default_max_distance(vertices)
@@ -327,7 +327,7 @@ def test_curvature_texture_from_the_engine_matches_the_sphere(tmp_path):
     asset = baker.bake(path, bakes=["curvature"], options={"curvature": {"per_texel": True}})
     ext = asset.doc.json["materials"][0]["extensions"]["BAKER_curvature"]
     image = decode_image(asset.doc.image_bytes(asset.doc.json["textures"][ext["curvatureTexture"]["index"]]["source"]))
-    texels = gather_texels(Asset.load(path))
+    texels = gather_texels(readers.read(path))
     assert image.shape[:2] == (texels.sets[0].size,) * 2 and texels.sets[0].size >= 64
     lo, hi = ext["textureRange"]
     values = lo + image[..., 0].astype(np.float64) / 65535.0 * (hi - lo)
@@ -408,7 +408,7 @@ def test_every_material_without_usable_uvs_is_unwrapped(tmp_path):
                            transform=trimesh.transformations.translation_matrix([3.0 * k, 0.0, 0.0]))
     path = tmp_path / "two.glb"
     scene.export(str(path))
-    asset = Asset.load(path)
+    asset = readers.read(path)
     assert all("TEXCOORD_0" not in p["attributes"] for m in asset.doc.json["meshes"] for p in m["primitives"])
     texels = gather_texels(asset)
     assert sorted(s.material for s in texels.sets) == [0, 1]

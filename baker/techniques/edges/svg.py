@@ -159,11 +159,13 @@ def run(args) -> int:
                 raise BakerError(None, f"--widths: {item!r} is not TYPE=NUMBER") from None
     if args.step <= 0:
         raise BakerError(None, "--step must be > 0")
-    from baker.memory import load_asset, parse_limit
+    from baker import readers
+    from baker.memory import check_bake, parse_limit
 
     # the edge analysis and the ray scene cost what the edges bake does per triangle
-    asset = load_asset(args.input, parse_limit(args.max_memory), work=("edges",),
-                       what="drawing the lines of this asset")
+    limit = parse_limit(args.max_memory)
+    asset = readers.read(args.input, max_memory=limit)
+    check_bake(asset, ("edges",), None, limit, "drawing the lines of this asset")
     positions, faces, groups = scene_triangles(asset)
     camera = make_camera(args, asset, positions)
     options = E.EdgeSettings(crease_angle=args.crease_angle)

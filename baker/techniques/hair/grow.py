@@ -97,9 +97,11 @@ def emitter_from_asset(asset: Asset, options: HairOptions) -> Emitter:
 def make_hair(input_path, options: HairOptions, seed: int = 0, max_memory: int | None = None
               ) -> tuple[Asset, HairResult]:
     """Grow hair on the mesh of ``input_path``; ``max_memory``: bytes the loaded emitter may need (None: no limit)."""
-    from baker.memory import load_asset
+    from baker import readers
+    from baker.memory import check_bake
 
-    asset = load_asset(input_path, max_memory, what="growing hair on this emitter")
+    asset = readers.read(input_path, max_memory=max_memory)
+    check_bake(asset, (), None, max_memory, "growing hair on this emitter")
     emitter = emitter_from_asset(asset, options)
     try:
         result = generate_hair(emitter, options, seed=seed)

@@ -119,9 +119,11 @@ def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET,
     timings["read"] = time.perf_counter() - start
     asset, binding, inside, normals = None, None, 0, np.zeros((len(strands), 3))
     if options.scalp:
-        from baker.memory import load_asset
+        from baker import readers
+        from baker.memory import check_bake
 
-        asset = load_asset(options.scalp, max_memory, what="binding roots to this scalp")
+        asset = readers.read(options.scalp, max_memory=max_memory)
+        check_bake(asset, (), None, max_memory, "binding roots to this scalp")
         # the hair is written under the scalp's node (glTF) or with its transform (USD): work in its mesh space
         from baker.techniques.hair.usd import emitter_world_matrix
 

@@ -385,6 +385,30 @@ class MaterialWriter:
         return self.file_texture(texture)
 
 
+def assign_materials(doc, mtl_by_mesh: dict) -> None:
+    """Give every primitive of a converted document its material: ``mtl_by_mesh`` maps a mesh index to its
+    :class:`MtlMaterial` (absent or None: the explicit dielectric). A material's textures are
+    kept when every primitive using it has TEXCOORD_0."""
+    meshes = doc.json.get("meshes", [])
+    textured: dict = {}
+    for m, mesh in enumerate(meshes):
+        mtl = mtl_by_mesh.get(m)
+        key = None if mtl is None else mtl.name
+        textured[key] = textured.get(key, True) and all("TEXCOORD_0" in prim.get("attributes", {})
+                                                          for prim in mesh.get("primitives", []))
+    writer = MaterialWriter(doc)
+    materials = doc.json["materials"] = []
+    index_of: dict = {}
+    for m, mesh in enumerate(meshes):
+        mtl = mtl_by_mesh.get(m)
+        key = None if mtl is None else mtl.name
+        if key not in index_of:
+            materials.append(writer.material(mtl, textured[key]))
+            index_of[key] = len(materials) - 1
+        for prim in mesh.get("primitives", []):
+            prim["material"] = index_of[key]
+
+
 def _unit(pixels):
     """Pixels of any stored type as float32 in [0, 1]."""
     import numpy as np

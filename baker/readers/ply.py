@@ -1,30 +1,32 @@
-"""Checks on OBJ, PLY and STL files that run before (and after) trimesh reads them, and a direct reader for the
-common large case (a binary PLY of triangles: scans, sculpts, subdivided meshes).
+"""PLY files: the header checked once, a direct reader for the common large case (a binary PLY of triangles:
+scans, sculpts, subdivided meshes), trimesh for the rest, ``tristrips`` (Stanford scans) made triangles.
 
-Before: a count written in a header is not trusted. A PLY header's element counts and a binary STL's triangle count
-are compared with the size of the file; a count the file cannot hold (``element vertex 1000000000000`` in a 200-byte
-file, a binary STL whose count disagrees with its length, a binary PLY cut short) is refused before any array is
-allocated. Only the header is read (a few hundred bytes), so a 10^12-vertex claim is refused in microseconds.
+Before reading: a count written in a header is not trusted. The header's element counts are compared with the size
+of the file; a count the file cannot hold (``element vertex 1000000000000`` in a 200-byte file, a binary PLY cut
+short) is refused before any array is allocated. Only the header is read (a few hundred bytes), so a 10^12-vertex
+claim is refused in microseconds. The header read there is the one every later step uses.
 
-After: the numbers read are numbers. :func:`non_finite_location` names where a NaN, an infinity or a value beyond
-float32 (what glTF stores; it would become an infinity there) sits in the file: the OBJ line, the PLY element index,
-the STL triangle.
+After: the numbers read are numbers. :func:`non_finite_location` names the PLY element and property where a NaN,
+an infinity or a value beyond float32 (what glTF stores) sits.
 """
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
+from baker import memory
 from baker.errors import BakerError
+from baker.geometry.strips import triangles_from_strips
+from baker.gltf.document import GltfDocument
+from baker.readers.finite import FLOAT32_MAX, refuse_non_finite
+from baker.readers.mtl import assign_materials
 
 PLY_TYPES = {"char": 1, "int8": 1, "uchar": 1, "uint8": 1, "short": 2, "int16": 2, "ushort": 2, "uint16": 2,
              "int": 4, "int32": 4, "uint": 4, "uint32": 4, "float": 4, "float32": 4, "double": 8, "float64": 8}
 PLY_HEADER_LIMIT = 1 << 20  # a header longer than 1 MiB is not a PLY header
-STL_HEADER = 84  # 80 bytes of text + uint32 triangle count
-STL_RECORD = 50  # normal, 3 vertices (12 float32) + uint16 attribute
-FLOAT32_MAX = 3.4028234663852886e38
 
 
 @dataclass
@@ -54,18 +56,40 @@ class PlyHeader:
         return self.format != "ascii"
 
 
-def check_mesh_file(path) -> dict:
-    """Refuse an OBJ/PLY/STL whose header promises more than the file holds. Returns the counts the header gives
-    (``{"vertices": n, "faces": m}`` for PLY and binary STL, ``{}`` otherwise) for the memory estimate."""
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".ply":
-        header = check_ply(path)
-        counts = {e.name: e.count for e in header.elements}
-        return {"vertices": counts.get("vertex", 0), "faces": counts.get("face", 0) + counts.get("tristrips", 0)}
-    if suffix == ".stl":
-        return check_stl(path)
-    return {}
+def read(path: Path, allow_outside=None, max_memory: int | None = None) -> GltfDocument:
+    """A PLY as a glTF document: its header checked once (:func:`check_ply`) and against ``max_memory`` bytes
+    (:func:`baker.memory.check_file`; None: no limit), then read directly (:func:`read_direct`) or by trimesh."""
+    header = check_ply(path)
+    counts = {e.name: e.count for e in header.elements}
+    memory.check_file(path, max_memory, {"vertices": counts.get("vertex", 0),
+                                         "faces": counts.get("face", 0) + counts.get("tristrips", 0)})
+    doc = read_direct(path, header)
+    if doc is None:
+        import trimesh
+
+        from baker.readers.trimesh_scene import doc_from_trimesh_scene, load_trimesh
+
+        loaded = load_trimesh(path)
+        if isinstance(loaded, trimesh.PointCloud):
+            loaded = mesh_from_strips(path, loaded)
+        doc = doc_from_trimesh_scene(path, loaded, None, non_finite_location)
+    return doc
+
+
+def read_direct(path: Path, header: PlyHeader) -> GltfDocument | None:
+    """A binary PLY of triangles (:func:`read_ply_triangles`) straight into a document without trimesh; None for
+    every other PLY (trimesh reads it). The positions, normals and UVs the file has are kept as float32; no
+    normals are computed."""
+    arrays = read_ply_triangles(path, header)
+    if arrays is None:
+        return None
+    indices = arrays.pop("indices")
+    for name, values in arrays.items():
+        # float32 already: a double beyond float32 became an infinity
+        refuse_non_finite(path, values, name, non_finite_location)
+    doc = GltfDocument.from_triangles(path, path.name, arrays, indices, "baker (converted from ply)")
+    assign_materials(doc, {})
+    return doc
 
 
 def read_ply_header(path: Path) -> PlyHeader:
@@ -127,25 +151,6 @@ def check_ply(path: Path) -> PlyHeader:
     return header
 
 
-def check_stl(path: Path) -> dict:
-    """A binary STL's triangle count against its size; ASCII STL (starting with ``solid``) has no count."""
-    size = path.stat().st_size
-    with open(path, "rb") as f:
-        head = f.read(STL_HEADER)
-    if len(head) == STL_HEADER:
-        count = int.from_bytes(head[80:84], "little")
-        if STL_HEADER + STL_RECORD * count == size:
-            return {"vertices": 3 * count, "faces": count}
-    if head.lstrip().lower().startswith(b"solid"):
-        return {}  # ASCII (or a binary file with a 'solid' header and a wrong count: trimesh tries both)
-    if len(head) < STL_HEADER:
-        raise BakerError(path, f"binary STL shorter than its {STL_HEADER}-byte header ({size} bytes)")
-    needed = STL_HEADER + STL_RECORD * count
-    problem = "truncated file or a corrupt count" if needed > size else "trailing data or a corrupt count"
-    raise BakerError(path, f"binary STL header says {count} triangles ({needed} bytes) but the file has {size} "
-                           f"bytes: {problem}")
-
-
 # ---------------------------------------------------------------------------------------------------------- reading
 PLY_DTYPES = {"char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
               "ushort": "u2", "uint16": "u2", "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4",
@@ -161,8 +166,6 @@ def read_ply_triangles(path, header: PlyHeader | None = None) -> dict | None:
     "indices": (3m,) uint32}`` with only what the file has, or None when the file holds anything else (ASCII, other
     properties such as colors, polygons, strips, other elements): that file goes through trimesh, which keeps it.
     The header is checked (:func:`check_ply`) first; indices are checked against the vertex count here."""
-    import numpy as np
-
     path = Path(path)
     header = header or check_ply(path)
     if not header.binary or [e.name for e in header.elements] != ["vertex", "face"]:
@@ -211,51 +214,54 @@ def read_ply_triangles(path, header: PlyHeader | None = None) -> dict | None:
     return out
 
 
-# ---------------------------------------------------------------------------------------------------------- numbers
-def _bad(value: float) -> bool:
-    return not math.isfinite(value) or abs(value) > FLOAT32_MAX
+# ---------------------------------------------------------------------------------------------------------- strips
+def mesh_from_strips(path: Path, cloud):
+    """A PLY whose surface is a ``tristrips`` element (Stanford scans such as igea.ply): trimesh reads only its
+    vertices; build the triangles from the strips. Other point clouds are returned as they are."""
+    import trimesh
+
+    elements = cloud.metadata.get("_ply_raw") or {}
+    strips = strip_indices(elements)
+    if strips is None:
+        return cloud
+    vertices = np.asarray(cloud.vertices, dtype=np.float64)
+    valid = strips[strips >= 0]
+    if len(valid) and valid.max() >= len(vertices):
+        raise BakerError(path, f"tristrips: vertex index {int(valid.max())} out of range ({len(vertices)} vertices)")
+    if (strips < -1).any():
+        raise BakerError(path, "tristrips: negative vertex index other than the -1 restart")
+    faces = triangles_from_strips(strips)
+    kwargs = {}
+    data = elements["vertex"]["data"]
+    names = data.keys() if isinstance(data, dict) else (data.dtype.names or ())
+    if all(name in names for name in ("nx", "ny", "nz")):
+        kwargs["vertex_normals"] = np.column_stack([data[name] for name in ("nx", "ny", "nz")])
+    return trimesh.Trimesh(vertices=vertices, faces=faces, process=False, **kwargs)
 
 
-OBJ_KEYS = {b"v": "vertex position", b"vn": "normal", b"vt": "texture coordinate", b"vp": "parameter value"}
-# a token float() could read as non-finite or beyond float32: nan, inf(inity), or an exponent of 39 or more digits
-_SUSPECT = re.compile(rb"(?i)nan|inf|e\+?0*(?:39|[4-9]\d|\d{3,})")
-
-
-def non_finite_location(path) -> str | None:
-    """Where the first non-finite number of an OBJ/PLY/STL file is (``line 12: vertex position 'nan'``), or None."""
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".obj":
-        return _obj_location(path)
-    if suffix == ".ply":
-        return _ply_location(path)
-    if suffix == ".stl":
-        return _stl_location(path)
-    return None
-
-
-def _obj_location(path: Path) -> str | None:
-    data = path.read_bytes()
-    if not _SUSPECT.search(data):  # one C-speed pass; only a suspect file is walked line by line
+def strip_indices(elements: dict) -> np.ndarray | None:
+    """The concatenated ``vertex_indices`` of a PLY ``tristrips`` element as parsed by trimesh (its ``_ply_raw``
+    metadata), strips separated by -1; None when the file has no such element."""
+    strips = elements.get("tristrips")
+    if not strips or not strips.get("length"):
         return None
-    for number, line in enumerate(data.split(b"\n"), start=1):
-        words = line.split()
-        if not words or words[0] not in OBJ_KEYS or not _SUSPECT.search(line):
-            continue
-        for word in words[1:]:
-            try:
-                value = float(word)
-            except ValueError:
-                continue
-            if _bad(value):
-                return f"line {number}: {OBJ_KEYS[words[0]]} {word.decode(errors='replace')!r} is not a finite " \
-                       "float32 number"
-    return None
+    data = strips["data"]
+    # binary files parse to a structured array, ASCII ones to a dict of columns
+    names = data.keys() if isinstance(data, dict) else (data.dtype.names or ())
+    name = next((n for n in ("vertex_indices", "vertex_index") if n in names), None)
+    if name is None:
+        return None
+    parts = []
+    for row in data[name]:
+        # a binary list is stored as (count, values); an ASCII one as the values
+        values = row["f1"] if getattr(row, "dtype", None) is not None and row.dtype.names else row
+        parts.append(np.asarray(values, dtype=np.int64).reshape(-1))
+        parts.append(np.array([-1], np.int64))
+    return np.concatenate(parts)
 
 
-def _ply_location(path: Path) -> str | None:
-    import numpy as np
-
+# ---------------------------------------------------------------------------------------------------------- numbers
+def non_finite_location(path: Path) -> str | None:
     header = read_ply_header(path)
     # trimesh keeps the raw elements; read them again only to name the first bad one
     import trimesh
@@ -278,17 +284,4 @@ def _ply_location(path: Path) -> str | None:
                 index = int(np.argmax(bad))
                 value = column[index][~np.isfinite(column[index]) | (np.abs(column[index]) > FLOAT32_MAX)][0]
                 return f"{element.name} {index}: property '{name}' is {float(value)!r}, not a finite float32 number"
-    return None
-
-
-def _stl_location(path: Path) -> str | None:
-    import numpy as np
-    import trimesh
-
-    loaded = trimesh.load(str(path), process=False)
-    vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), np.float64)
-    with np.errstate(invalid="ignore"):
-        bad = ~np.isfinite(vertices).all(axis=1) | (np.abs(vertices) > FLOAT32_MAX).any(axis=1)
-    if bad.any():
-        return f"triangle {int(np.argmax(bad)) // 3}: a vertex coordinate is not a finite float32 number"
     return None

@@ -32,12 +32,19 @@ split vertices by their bytes; this reader keeps the numeric order, so such a me
 """
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from baker import memory
 from baker.errors import BakerError
+from baker.geometry.angle_normals import seamless_vertex_normals, unit_normals, unitize
+from baker.gltf.accessors import MODE_TRIANGLES
+from baker.gltf.document import GltfDocument
+from baker.readers.finite import is_bad, refuse_non_finite
+from baker.readers.mtl import MissingFileWarning, assign_materials, read_obj_materials
 
 # line kinds: v/vt/vn/f numbers are converted in bulk; usemtl and o names (few) are read one by one
 BLANK, COMMENT, V, VT, VN, F, USEMTL, MTLLIB, OBJECT, GROUP, SMOOTH = range(11)
@@ -45,7 +52,6 @@ KEYWORDS = ((b"v ", V), (b"vt ", VT), (b"vn ", VN), (b"f ", F), (b"usemtl ", USE
             (b"o ", OBJECT), (b"g ", GROUP), (b"s ", SMOOTH), (b"#", COMMENT))
 PREFIX = max(len(k) for k, _ in KEYWORDS)
 SPACE, TAB, NEWLINE, SLASH = 32, 9, 10, 47
-FLOAT32_MAX = 3.4028234663852886e38
 
 
 @dataclass
@@ -61,6 +67,35 @@ class ObjGroup:
     # (n,) int64 smoothing set of each vertex when the faces reference no normals and the file's ``s`` lines make
     # more than one set (faces under ``s off`` / ``s 0`` each make their own); None: one set, smooth everywhere
     smoothing: np.ndarray | None = None
+
+
+def read(path: Path, allow_outside=None, max_memory: int | None = None) -> GltfDocument:
+    """An OBJ and its MTL materials as a glTF document: read directly when the file is plain (:func:`read_direct`),
+    else by trimesh. ``max_memory``: bytes the reading may need (:func:`baker.memory.check_file`; None: no limit)."""
+    memory.check_file(path, max_memory)
+    # the MTL files are read once for both readers (a missing one is one warning)
+    materials, libraries = read_obj_materials(path, allow_outside)
+    doc = read_direct(path, materials)
+    if doc is None:
+        from baker.readers.trimesh_scene import LibraryResolver, doc_from_trimesh_scene, load_trimesh
+
+        loaded = load_trimesh(path, resolver=LibraryResolver(libraries))
+        doc = doc_from_trimesh_scene(path, loaded, materials, non_finite_location)
+    return doc
+
+
+def references(path: Path, allow_outside=None) -> list[Path]:
+    """The files the OBJ's result depends on: its .mtl files and the textures they name, as :func:`read` resolves
+    them. A missing file or an MTL error is the bake's to report, not this listing's."""
+    import warnings
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", MissingFileWarning)
+            materials, libraries = read_obj_materials(path, allow_outside)
+    except BakerError:
+        return []
+    return libraries + [t.path for m in materials.values() for t in m.textures.values()]
 
 
 def read_obj_groups(path, material_names) -> list[ObjGroup] | None:
@@ -355,80 +390,102 @@ def _unique_name(name: str, taken: set) -> str:
     return f"{name}_{i}"
 
 
-def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Unit vertex normals as trimesh computes them for a mesh without any: each face's unit normal weighted by the
-    corner angle (Thuermer & Wuethrich 1998), summed in face order; faces whose normal is degenerate and vertices
-    no usable face touches contribute zero. The operations follow trimesh's so the float32 result is the same."""
-    triangles = positions[faces]
-    cross = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 1])
-    face_normals, valid = unitize(cross, with_valid=True)
-    face_normals[~valid] = 0.0
-    angles = _corner_angles(triangles)
-    ok = (face_normals ** 2).sum(axis=1) > 0.5
-    weights = angles[ok].reshape(-1)
-    corner = faces[ok].reshape(-1)
-    summed = np.zeros((len(positions), 3))
-    normals_ok = face_normals[ok]
-    for axis in range(3):
-        summed[:, axis] = np.bincount(corner, weights * np.repeat(normals_ok[:, axis], 3), minlength=len(positions))
-    return unitize(summed)
+def read_direct(path: Path, materials: dict) -> GltfDocument | None:
+    """An OBJ the direct reader takes, as the document :func:`baker.readers.trimesh_scene.doc_from_trimesh_scene`
+    makes of trimesh's reading:
+    one mesh and node per usemtl group, accessors laid out as trimesh's glTF exporter lays them out (identical
+    arrays share a bufferView or an accessor), vertex normals made unit by :func:`unit_normals`, then as trimesh's
+    exporter does; None when the file needs trimesh. ``materials``: the file's MTL materials by name
+    (:func:`baker.readers.mtl.read_obj_materials`)."""
+    groups = read_obj_groups(path, materials)
+    if groups is None:
+        return None
+    doc = GltfDocument(json={"scene": 0, "scenes": [{"nodes": list(range(len(groups)))}],
+                             "asset": {"version": "2.0", "generator": "baker (converted from obj)"}}, path=path)
+    views: dict = {}
+    accessors: dict = {}
 
+    def add(array, role: str) -> int:
+        data = array.tobytes()
+        target = 34963 if role == "indices" else 34962
+        if (data, target) not in views:
+            views[data, target] = doc.add_buffer_view(data, target=target)
+        if (data, role) not in accessors:
+            blob = {"componentType": 5125 if role == "indices" else 5126}
+            if role == "normal":
+                blob["count"] = len(array)
+            blob["type"] = {"indices": "SCALAR", "uv": "VEC2"}.get(role, "VEC3")
+            if role != "indices":
+                blob["byteOffset"] = 0
+            blob["bufferView"] = views[data, target]
+            blob["count"] = len(array)
+            flat = array.reshape(len(array), -1)
+            blob["max"] = flat.max(axis=0).tolist()
+            blob["min"] = flat.min(axis=0).tolist()
+            doc.json.setdefault("accessors", []).append(blob)
+            accessors[data, role] = len(doc.json["accessors"]) - 1
+        return accessors[data, role]
 
-def seamless_vertex_normals(parts: list) -> list:
-    """Vertex normals of several meshes of one space (an OBJ's material groups, the vertices it splits at UV
-    seams) computed as one mesh: vertices are welded by position (:func:`baker.geometry.edge_codes.weld_positions`,
-    the grid of :mod:`baker.geometry.welding`) and each welded vertex gets the angle-weighted normal of every face
-    around it (:func:`vertex_normals`), so split copies of a vertex agree and UV or material seams do not shade.
-    Vertices stay apart only where their smoothing sets differ. ``parts``: (positions, faces, smoothing ids or
-    None) per mesh; returns the (n, 3) normals of each mesh's vertices, in order."""
-    from baker.geometry.edge_codes import weld_positions
-
-    counts = [len(p[0]) for p in parts]
-    offsets = np.cumsum([0] + counts)
-    positions = np.concatenate([p[0] for p in parts]) if len(parts) > 1 else np.asarray(parts[0][0])
-    faces = np.concatenate([np.asarray(p[1], np.int64) + offsets[i] for i, p in enumerate(parts)])
-    welded, vertex = weld_positions(positions)
-    if any(p[2] is not None for p in parts):
-        smoothing = np.concatenate([np.zeros(len(p[0]), np.int64) if p[2] is None else p[2] for p in parts])
-        sets = int(smoothing.max()) + 1
-        split, vertex = np.unique(vertex * sets + smoothing, return_inverse=True)
-        vertex = vertex.reshape(-1)
-        welded = welded[split // sets]
-    normals = vertex_normals(welded, vertex[faces])[vertex]
-    return [normals[offsets[i]:offsets[i + 1]] for i in range(len(parts))]
-
-
-def unitize(vectors: np.ndarray, with_valid: bool = False):
-    """Rows scaled to unit length by their reciprocal norm (trimesh's arithmetic, so the bits match); rows shorter
-    than 1e-13 stay as they are (``with_valid`` also returns which rows were scaled)."""
-    norm = np.sqrt(np.dot(vectors * vectors, [1.0] * vectors.shape[1]))
-    valid = norm > np.finfo(np.float64).resolution * 100
-    norm[valid] **= -1
-    unit = vectors * norm.reshape((-1, 1))
-    return (unit, valid) if with_valid else unit
-
-
-def _corner_angles(triangles: np.ndarray) -> np.ndarray:
-    u = unitize(triangles[:, 1] - triangles[:, 0])
-    v = unitize(triangles[:, 2] - triangles[:, 0])
-    w = unitize(triangles[:, 2] - triangles[:, 1])
-    angles = np.zeros((len(triangles), 3))
-    angles[:, 0] = np.arccos(np.clip(np.dot(u * v, [1.0] * 3), -1, 1))
-    angles[:, 1] = np.arccos(np.clip(np.dot(-u * w, [1.0] * 3), -1, 1))
-    angles[:, 2] = np.pi - angles[:, 0] - angles[:, 1]
-    angles[(angles < 1e-8).any(axis=1), :] = 0.0
-    return angles
+    for group in groups:
+        check_finite(path, group)
+    computed = {}
+    without_normals = [i for i, group in enumerate(groups) if group.normals is None]
+    if without_normals:  # the file has no normals: one smooth surface across its material groups and UV seams
+        with np.errstate(all="ignore"):
+            parts = [(groups[i].positions, groups[i].faces, groups[i].smoothing) for i in without_normals]
+            computed = dict(zip(without_normals, seamless_vertex_normals(parts)))
+    meshes, by_mesh = [], {}
+    for index, group in enumerate(groups):
+        normals = group.normals if group.normals is not None else computed[index]
+        primitive = {"attributes": {}, "indices": add(group.faces.astype(np.uint32).reshape(-1), "indices"),
+                     "mode": MODE_TRIANGLES}
+        primitive["attributes"]["POSITION"] = add(group.positions.astype(np.float32), "position")
+        mtl = materials.get(group.material)
+        if group.texcoords is not None:
+            uv = group.texcoords.copy()
+            uv[:, 1] = 1.0 - uv[:, 1]  # OBJ's v runs up, glTF's down
+            primitive["attributes"]["TEXCOORD_0"] = add(uv.astype(np.float32), "uv")
+        # trimesh's exporter unitizes the normals once more (a last-bit change on some)
+        primitive["attributes"]["NORMAL"] = add(unitize(unit_normals(normals)).astype(np.float32), "normal")
+        by_mesh[len(meshes)] = mtl
+        meshes.append({"name": group.name, "extras": {}, "primitives": [primitive]})
+    doc.json["meshes"] = meshes
+    doc.json["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(meshes)]
+    # the converted GLB's key order, so the output's bytes are the trimesh path's
+    layout = ("scene", "scenes", "asset", "accessors", "meshes", "nodes", "buffers", "bufferViews")
+    ordered = {key: doc.json.pop(key) for key in layout}
+    doc.json.update(ordered)
+    assign_materials(doc, by_mesh)
+    return doc
 
 
 def check_finite(path: Path, group: ObjGroup) -> None:
     """Refuse NaN, infinite or beyond-float32 positions, UVs or normals, naming the line."""
-    from baker.geometry.mesh_files import non_finite_location
-
     for name, values in (("POSITION", group.positions), ("TEXCOORD_0", group.texcoords), ("NORMAL", group.normals)):
-        if values is None:
+        if values is not None:
+            refuse_non_finite(path, values, name, non_finite_location)
+
+
+# ---------------------------------------------------------------------------------------------------------- numbers
+OBJ_KEYS = {b"v": "vertex position", b"vn": "normal", b"vt": "texture coordinate", b"vp": "parameter value"}
+# a token float() could read as non-finite or beyond float32: nan, inf(inity), or an exponent of 39 or more digits
+_SUSPECT = re.compile(rb"(?i)nan|inf|e\+?0*(?:39|[4-9]\d|\d{3,})")
+
+
+def non_finite_location(path: Path) -> str | None:
+    data = path.read_bytes()
+    if not _SUSPECT.search(data):  # one C-speed pass; only a suspect file is walked line by line
+        return None
+    for number, line in enumerate(data.split(b"\n"), start=1):
+        words = line.split()
+        if not words or words[0] not in OBJ_KEYS or not _SUSPECT.search(line):
             continue
-        with np.errstate(invalid="ignore"):
-            bad = not np.isfinite(values).all() or bool((np.abs(values) > FLOAT32_MAX).any())
-        if bad:
-            where = non_finite_location(path) or f"{name}: NaN, infinite or beyond float32"
-            raise BakerError(path, f"{where} (NaN and infinite coordinates, normals and UVs are refused)")
+        for word in words[1:]:
+            try:
+                value = float(word)
+            except ValueError:
+                continue
+            if is_bad(value):
+                return f"line {number}: {OBJ_KEYS[words[0]]} {word.decode(errors='replace')!r} is not a finite " \
+                       "float32 number"
+    return None
