@@ -99,12 +99,12 @@ def surface_points(positions: np.ndarray, faces: np.ndarray, count: int, seed: i
 
 
 def reference_thickness(mesh: Path, triangle: np.ndarray, bary: np.ndarray, rays: int) -> np.ndarray:
-    from baker.geometry.asset import Asset
+    from baker import readers
     from baker.geometry.raycast import RayScene
     from baker.geometry.texture_target import smooth_normals
     from baker.techniques.thickness.kernel import default_max_distance, local_thickness
 
-    geometry = Asset.load(mesh).primitive(0, 0)
+    geometry = readers.read(mesh).primitive(0, 0)
     corners = geometry.faces[triangle]
     points = np.einsum("ki,kij->kj", bary, geometry.positions[corners])
     normals = np.einsum("ki,kij->kj", bary, smooth_normals(geometry)[corners])
@@ -117,10 +117,10 @@ def reference_thickness(mesh: Path, triangle: np.ndarray, bary: np.ndarray, rays
 def baked_at_points(glb: Path, triangle: np.ndarray, bary: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """(texture values, per-vertex values interpolated, texture size) of a baked GLB at the points. The unwrap
     keeps the triangles' order (it splits vertices only), so triangle k of the source is triangle k here."""
-    from baker.geometry.asset import Asset
+    from baker import readers
     from texel import baker_thickness_images
 
-    asset = Asset.load(glb)
+    asset = readers.read(glb)
     geometry = asset.primitive(0, 0)
     primitive = asset.meshes()[0]["primitives"][0]
     material = asset.doc.json["materials"][primitive["material"]]
@@ -146,9 +146,9 @@ def relative_errors(values: np.ndarray, reference: np.ndarray) -> tuple[float, f
 
 
 def error_rows(mesh: Path, sizes: list[int], points: int, reference_rays: int) -> list:
-    from baker.geometry.asset import Asset
+    from baker import readers
 
-    geometry = Asset.load(mesh).primitive(0, 0)
+    geometry = readers.read(mesh).primitive(0, 0)
     triangle, bary = surface_points(geometry.positions, geometry.faces, points)
     reference = reference_thickness(mesh, triangle, bary, reference_rays)
     rows = []
