@@ -39,6 +39,9 @@ def site(tmp_path_factory):
     panel = next(p for p in pv.all_panels() if p.name == "translucency")
     (root / "panel.frag").write_text(pv.fragment_shader(panel))
     uniforms = {k: list(v) if isinstance(v, tuple) else v for k, v in panel.uniforms(items[0]).items()}
+    # the material inputs every surface panel reads (spot has no textures: its base colour factor alone)
+    uniforms.update({"u_baseColorFactor": list(pv.surface_material(items[0].material, 0).base_color),
+                     "u_hasBaseColorTexture": 0, "u_hasNormalTexture": 0, "u_normalScale": 1.0, "u_hasTangent": 0})
     setup = {
         "size": SIZE, "background": list(pv.BACKGROUND), "attribute": panel.attribute,
         "viewProjection": (camera.projection @ camera.view).T.reshape(-1).tolist(),  # column-major for three.js

@@ -121,11 +121,18 @@ in float a_scalar;
 out vec3 v_position;
 out vec3 v_normal;
 out float v_scalar;
+// the preview's material inputs (base colour and normal map texture coordinates, tangent): unused without textures
+out vec2 v_baseUV;
+out vec2 v_normalUV;
+out vec4 v_tangent;
 void main() {
 	vec4 world = modelMatrix * vec4(position, 1.0);
 	v_position = world.xyz;
 	v_normal = transpose(inverse(mat3(modelMatrix))) * normal;
 	v_scalar = a_scalar;
+	v_baseUV = vec2(0.0);
+	v_normalUV = vec2(0.0);
+	v_tangent = vec4(0.0);
 	gl_Position = u_viewProjection * world;
 }`;
 
@@ -159,6 +166,7 @@ async function panel() {
 		const [struct, field] = name.split('.');
 		const v = Array.isArray(value) ? new THREE.Vector3(...value) : value;
 		if (field) (uniforms[struct] ??= { value: {} }).value[field] = v;
+		else if (Array.isArray(value) && value.length === 4) uniforms[name] = { value: new THREE.Vector4(...value) };
 		else uniforms[name] = { value: Array.isArray(value) && value.length === 2 ? new THREE.Vector2(...value) : v };
 	}
 	const material = new THREE.RawShaderMaterial({
