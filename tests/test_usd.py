@@ -387,3 +387,29 @@ def test_every_bake_on_spot_gives_clean_usd(tmp_path):
     # the checker itself sees an index when there is one
     prim.CreateAttribute("baker:thickness:thicknessTexture:index", Sdf.ValueTypeNames.Int, custom=True).Set(3)
     assert gltf_index_attributes(stage)
+
+
+
+def test_usd_stage_outlives_a_collection_before_export(tmp_path):
+    """The authored in-memory stage must stay alive until it is exported: Python holds a USD layer by a weak handle,
+    and a collection between authoring and export once freed the stage, so the export dereferenced an expired layer
+    (a fatal USD error that aborted the whole test run). Runs in a subprocess: that failure aborts the process."""
+    import subprocess
+    import sys
+
+    script = (
+        "import gc, sys\n"
+        "import baker\n"
+        "from baker.gltf.usd import build_stage, write_stage_and_textures\n"
+        "asset = baker.bake(sys.argv[1], bakes=[])\n"
+        "stage, images = build_stage(asset.doc, 'textures')\n"
+        "gc.collect()\n"
+        "write_stage_and_textures(stage, __import__('pathlib').Path(sys.argv[2]), [])\n"
+    )
+    spot = Path(__file__).resolve().parents[1] / "examples" / "spot" / "spot.obj"
+    out = tmp_path / "spot.usda"
+    result = subprocess.run([sys.executable, "-c", script, str(spot), str(out)], capture_output=True, text=True,
+                            timeout=600)
+    assert result.returncode == 0, result.stderr[-2000:]
+    stage = Usd.Stage.Open(str(out))
+    assert any(p.IsA(UsdGeom.Mesh) for p in stage.Traverse())

@@ -92,33 +92,33 @@ def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_co
         _write_usdz(doc, path, primitive_hooks, attribute_widths, texture_color_spaces)
         return [path]
     folder = f"{path.stem}_textures"
-    layer, images = build_layer(doc, folder, primitive_hooks, attribute_widths, texture_color_spaces)
+    stage, images = build_stage(doc, folder, primitive_hooks, attribute_widths, texture_color_spaces)
     # one atomic group, textures renamed first and the stage last: a reader never sees a stage whose textures are
     # missing, and a failed or killed run keeps every earlier file
-    return write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])
+    return write_stage_and_textures(stage, path, [(path.parent / folder / name, data) for name, data in images])
 
 
-def write_stage_and_textures(layer, path: Path, textures) -> list[Path]:
-    """Export ``layer`` to ``path`` and write ``textures`` ((path, bytes) pairs) as one atomic group."""
+def write_stage_and_textures(stage, path: Path, textures) -> list[Path]:
+    """Export ``stage``'s root layer to ``path`` and write ``textures`` ((path, bytes) pairs) as one atomic group."""
     targets = [p for p, _ in textures] + [path]
     with atomic_files(targets) as temps:
         for tmp, (_, data) in zip(temps, textures):
             tmp.write_bytes(data)
-        export_layer(layer, temps[-1], path)
+        export_stage(stage, temps[-1], path)
     return targets
 
 
 def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> None:
     from pxr import Sdf, UsdUtils
 
-    layer, images = build_layer(doc, "textures", primitive_hooks, attribute_widths, texture_color_spaces)
+    stage, images = build_stage(doc, "textures", primitive_hooks, attribute_widths, texture_color_spaces)
     with tempfile.TemporaryDirectory(prefix=".baker-usdz-") as work:
         work = Path(work)
         root = work / f"{path.stem}.usdc"
         for name, data in images:
             (work / "textures").mkdir(exist_ok=True)
             (work / "textures" / name).write_bytes(data)
-        export_layer(layer, root, path)
+        export_stage(stage, root, path)
         package = work / "package.usdz"
         if not UsdUtils.CreateNewUsdzPackage(Sdf.AssetPath(str(root)), str(package)):
             raise BakerError(path, "cannot write the USDZ package")
@@ -150,8 +150,10 @@ def _copy_zip_without_timestamps(source: Path, target: Path) -> None:
                 raise RuntimeError("USDZ entry moved while removing timestamps; alignment would break")
 
 
-def export_layer(layer, target: Path, path: Path) -> None:
-    if not layer.Export(str(target)):
+def export_stage(stage, target: Path, path: Path) -> None:
+    # the caller holds the stage: a layer handle from Python is a weak pointer, and an in-memory stage's root layer
+    # dies with the stage (an expired handle is a fatal error in USD, which aborts the process)
+    if not stage.GetRootLayer().Export(str(target)):
         raise BakerError(path, "cannot write the USD layer")
 
 
@@ -174,8 +176,9 @@ class _Names:
         return candidate
 
 
-def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None):
-    """Author the stage in memory; returns (root layer, [(texture file name, bytes)]) in a fixed order."""
+def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None):
+    """Author the stage in memory; returns (stage, [(texture file name, bytes)]) in a fixed order. The stage, not its
+    root layer, is returned: Python holds a layer by a weak handle, which expires once the stage is collected."""
     from pxr import Gf, Kind, Usd, UsdGeom
 
     stage = Usd.Stage.CreateInMemory("baker.usda")
@@ -214,7 +217,7 @@ def build_layer(doc, texture_folder: str, primitive_hooks=None, attribute_widths
 
     for index in roots:
         visit(index, "/Root", 0)
-    return stage.GetRootLayer(), writer.image_files
+    return stage, writer.image_files
 
 
 class _Writer:

@@ -78,9 +78,9 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
                    primitive_hooks=None, hair_hook=None) -> None:
     """Write the emitter asset (as :func:`baker.gltf.usd.write_usd` does, with the same ``primitive_hooks``) plus the
     hair curves, atomically; ``hair_hook(stage)``, when given, adds to the hair prims before the file is written."""
-    from pxr import Gf, Usd, UsdGeom
+    from pxr import Gf, UsdGeom
 
-    from baker.gltf.usd import build_layer, custom_attributes, write_stage_and_textures
+    from baker.gltf.usd import build_stage, custom_attributes, write_stage_and_textures
 
     path = Path(path)
     if path.suffix.lower() not in (".usda", ".usdc", ".usd"):
@@ -88,9 +88,8 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     folder = f"{path.stem}_textures"
     from baker.registry import usd_texture_color_spaces, vertex_attribute_widths
 
-    layer, images = build_layer(doc, folder, primitive_hooks, vertex_attribute_widths(),
+    stage, images = build_stage(doc, folder, primitive_hooks, vertex_attribute_widths(),
                                  usd_texture_color_spaces())
-    stage = Usd.Stage.Open(layer)
     hair = UsdGeom.Xform.Define(stage, "/Root/Hair")
     matrix = emitter_world_matrix(doc.json, emitter_mesh)
     if not np.array_equal(matrix, np.eye(4)):
@@ -104,4 +103,4 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
         _curves(stage, "/Root/Hair/children", result.children, result, curve_type)
     if hair_hook is not None:
         hair_hook(stage)
-    write_stage_and_textures(layer, path, [(path.parent / folder / name, data) for name, data in images])
+    write_stage_and_textures(stage, path, [(path.parent / folder / name, data) for name, data in images])
