@@ -319,7 +319,9 @@ def test_addon_shows_the_baked_data(baked, round_trips):
     crease, hard = 1 << 2, 1 << 7
     for name, bits in (("freestyle_edge", crease | hard), ("sharp_edge", hard)):
         wanted = {tuple(sorted((bytes(positions[a]), bytes(positions[b])))) for a, b in pairs[(flags & bits) != 0]}
-        assert wanted, name
+        # spot's computed normals are welded across its UV seams, so it has no hard (normal-seam) edges: Blender
+        # must then mark no sharp edge either; its creases are still Freestyle edges
+        assert wanted or name == "sharp_edge", name
         marked = {tuple(sorted(bytes(np.asarray(p, np.float32)) for p in pair)) for pair in spot[name + "_positions"]}
         assert marked == wanted, f"{name}: {len(marked ^ wanted)} edges differ from BAKER_edges' flagged edges"
     material = next(m for m in report["materials"].values() if m["payload"])
