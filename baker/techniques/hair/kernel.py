@@ -335,26 +335,16 @@ def winding_numbers(points, vertices, faces):
     """Generalized winding number (Jacobson et al. 2013) of each point: the signed solid angle of all triangles
     over 4 pi (van Oosterom & Strackee 1983). Brute force, O(points x triangles): the reference that
     :class:`WindingTree` is tested against."""
+    triangles = np.empty((faces.shape[0], 9))
+    for f in range(faces.shape[0]):
+        for k in range(3):
+            for c in range(3):
+                triangles[f, 3 * k + c] = vertices[faces[f, k], c]
     out = np.zeros(points.shape[0])
     for p in numba.prange(points.shape[0]):
         total = 0.0
         for f in range(faces.shape[0]):
-            ax = vertices[faces[f, 0], 0] - points[p, 0]
-            ay = vertices[faces[f, 0], 1] - points[p, 1]
-            az = vertices[faces[f, 0], 2] - points[p, 2]
-            bx = vertices[faces[f, 1], 0] - points[p, 0]
-            by = vertices[faces[f, 1], 1] - points[p, 1]
-            bz = vertices[faces[f, 1], 2] - points[p, 2]
-            cx = vertices[faces[f, 2], 0] - points[p, 0]
-            cy = vertices[faces[f, 2], 1] - points[p, 1]
-            cz = vertices[faces[f, 2], 2] - points[p, 2]
-            la = math.sqrt(ax * ax + ay * ay + az * az)
-            lb = math.sqrt(bx * bx + by * by + bz * bz)
-            lc = math.sqrt(cx * cx + cy * cy + cz * cz)
-            det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
-            div = la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (bx * cx + by * cy + bz * cz) * la \
-                + (cx * ax + cy * ay + cz * az) * lb
-            total += 2.0 * math.atan2(det, div)
+            total += _solid_angle(points[p, 0], points[p, 1], points[p, 2], triangles[f])
         out[p] = total / (4.0 * math.pi)
     return out
 
