@@ -170,6 +170,10 @@ def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding
         # at most ~MAX_CHART_FACES triangles' area keep it linear; their layout measures as well (benchmarks/unwrap.py)
         area = sum(float(triangle_areas(np.asarray(v, np.float64), np.asarray(f, np.int64)).sum()) for v, f in meshes)
         chart.max_chart_area = area * MAX_CHART_FACES / faces_total
+        # no chart-boundary refinement: bounded charts are cut by area, not along features, so refining their
+        # borders buys nothing measurable (bunny at 2048^2: utilisation 0.281 vs 0.277, L2 stretch 1.002 vs 1.001)
+        # while it is ~40% of xatlas's time (3.3 s -> 2.0 s; benchmarks/unwrap.py --section layout)
+        chart.max_iterations = 0
     pack = xatlas.PackOptions()
     pack.resolution = int(resolution)
     pack.padding = int(padding)
