@@ -20,13 +20,13 @@ Strategies:
   share only one channel; a notch of a texel or more is drawn as an edge of its own, and treating it as minor only
   moves the clash elsewhere (measured: Liberation Serif and Noto Sans CJK lose with ``inktrap``'s unbounded rule and
   gain with the texel bound). With it the mean coverage error is at or below msdfgen's ``edgeColoringSimple`` on
-  every font measured, serif, sans and CJK (benchmarks/RESULTS.md, issue 19 edge colouring); ``simple`` left Noto
-  Serif above it (its ``b``, ``d`` and ``u``).
+  every font measured, serif, sans and CJK (benchmarks/RESULTS.md, "glyphs", the fidelity table); ``simple``
+  left Noto Serif above it (its ``b``, ``d`` and ``u``).
 - ``distance``: msdfgen's ``edgeColoringByDistance`` (experimental there): splines are the vertices of a graph,
   touching splines must differ, then closest pairs first, splines nearer than a cutoff (``range / 2`` in an atlas:
   the half-width of the encoded band) are made to differ where a 3-coloring allows, so the two sides of a
   hairline or parallel strokes take different channel pairs. About as good as ``inktrap`` on Latin fonts, worse
-  on CJK (benchmarks/RESULTS.md), so not the default.
+  on CJK (benchmarks/RESULTS.md, "glyphs": its `distance` column), so not the default.
 
 Deterministic: the color sequence depends only on the contour order (``seed`` 0 unless asked).
 """

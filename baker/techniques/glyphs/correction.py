@@ -15,7 +15,7 @@ texels (1 px of distance per px, with 1/0.9 slack) is an artifact, and for prote
 inverts the sign of both ends counts. Flagged texels take their median (single-channel there, texel-centre value
 unchanged). msdfgen's optional second stage (``distance_check``: with every texel protected, flag also texels whose
 flattening brings the interpolated median closer to the exact field) is available but off: it cost wrong pixels on
-every font measured (benchmarks/RESULTS.md, issue 19 error correction).
+every font measured (benchmarks/RESULTS.md, "glyphs": the note on `distance_check`).
 
 :func:`correct_errors` is the former check (a 5 x 5 grid per cell against the interpolated exact distance), kept for
 comparison in the tests.
