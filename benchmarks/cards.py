@@ -40,7 +40,8 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from baker.techniques.cards.kernel import make_cards  # noqa: E402
 from baker.techniques.cards.options import CardsOptions  # noqa: E402
-from baker.techniques.hair.groom import clean_groom, read_groom  # noqa: E402
+from baker.readers import read_groom  # noqa: E402
+from baker.readers.groom import clean_groom  # noqa: E402
 from baker.techniques.hair.guide_solver import resample_strands, select_guides  # noqa: E402
 from techniques.cards_groom import make_groom, write_groom_usd  # noqa: E402
 from techniques.curly_groom import make_curly_groom  # noqa: E402

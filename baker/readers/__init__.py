@@ -5,7 +5,8 @@ data is read, and returning a glTF document, so every bake and writer deals with
 Formats are registered by suffix as ``"module:function"`` references and imported only when a file of that kind
 is read (as :class:`baker.technique.Technique` imports a technique's parts), so reading a GLB imports neither
 trimesh nor usd-core. Adding a format: a module with ``read(path, allow_outside, max_memory) -> GltfDocument``
-(and ``references(path, allow_outside)`` when its result depends on other files) and a line in each table below.
+(and ``references(path, allow_outside)`` when its result depends on other files) and a line in each table below;
+a groom format: ``read_groom(path) -> Groom`` and a line in ``GROOM_READERS``.
 """
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from pathlib import Path
 
 from baker.errors import BakerError
 from baker.geometry.asset import Asset
+from baker.readers.groom import Groom
 from baker.technique import load
 
 READERS = {
@@ -32,6 +34,17 @@ REFERENCES = {
     ".obj": "baker.readers.obj:references",
 }
 INPUT_SUFFIXES = set(READERS)
+# grooms (dense hair curves for ``baker guides`` and ``baker cards``): ``read_groom(path) -> Groom``
+GROOM_READERS = {
+    ".usd": "baker.readers.usd:read_groom",
+    ".usda": "baker.readers.usd:read_groom",
+    ".usdc": "baker.readers.usd:read_groom",
+    ".usdz": "baker.readers.usd:read_groom",
+    ".gltf": "baker.readers.gltf:read_groom",
+    ".glb": "baker.readers.gltf:read_groom",
+    ".tfx": "baker.readers.tfx:read_groom",
+}
+GROOM_SUFFIXES = tuple(GROOM_READERS)
 
 
 def read(path, allow_outside=None, max_memory: int | None = None, require_triangles: bool = True) -> Asset:
@@ -49,6 +62,18 @@ def read(path, allow_outside=None, max_memory: int | None = None, require_triang
     if require_triangles:
         asset.check_has_triangles()
     return asset
+
+
+def read_groom(path) -> Groom:
+    """Any groom file's curves as a :class:`baker.readers.groom.Groom` in world space (unchecked curves:
+    :func:`baker.readers.groom.clean_groom` drops or refuses the bad ones)."""
+    path = Path(path)
+    if not path.is_file():
+        raise BakerError(path, "file not found")
+    reader = GROOM_READERS.get(path.suffix.lower())
+    if reader is None:
+        raise BakerError(path, f"unsupported groom type (use one of {' '.join(GROOM_SUFFIXES)})")
+    return load(reader)(path)
 
 
 def references(path, allow_outside=None) -> list[Path]:

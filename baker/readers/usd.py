@@ -1,5 +1,6 @@
 """USD stages in: ``read_usd`` (any ``UsdGeom.Mesh`` -> a trimesh scene), converted to a glTF document by
-:mod:`baker.readers.trimesh_scene`; :mod:`baker.gltf.usd` writes them.
+:mod:`baker.readers.trimesh_scene`; ``read_groom`` (every ``UsdGeom.BasisCurves`` -> a groom); :mod:`baker.gltf.usd`
+writes stages.
 
 Every ``UsdGeom.Mesh`` that would be drawn in a final render is read: instance proxies are included, meshes that
 are invisible or whose purpose is ``guide`` or ``proxy`` are skipped (``render`` and ``default`` are kept, so a
@@ -26,6 +27,7 @@ import numpy as np
 
 from baker.errors import BakerError
 from baker.gltf.document import GltfDocument
+from baker.readers.groom import Groom, concat_curves
 
 UV_NAMES = ("st", "uv", "st0", "UVMap")
 
@@ -47,13 +49,7 @@ def read_usd(path) -> "trimesh.Scene":
     from pxr import Usd, UsdGeom
 
     path = Path(path)
-    try:
-        stage = Usd.Stage.Open(str(path))
-    except Exception as exc:  # pxr raises Tf.ErrorException with a multi-line message
-        raise BakerError(path, f"cannot open USD stage: {_one_line(exc)}") from None
-    if stage is None:
-        raise BakerError(path, "cannot open USD stage")
-
+    stage = open_stage(path)
     time = Usd.TimeCode.EarliestTime()
     xform_cache = UsdGeom.XformCache(time)
     scene = trimesh.Scene()
@@ -74,11 +70,20 @@ def read_usd(path) -> "trimesh.Scene":
     return scene
 
 
-def _one_line(exc: Exception) -> str:
-    """The commentary of the first Tf error (where parsing failed), without pxr's C++ source locations."""
-    messages = [str(getattr(a, "commentary", "")).strip() for a in exc.args]
-    text = next((m for m in messages if m), str(exc))
-    return " ".join(text.split())[:300]
+def open_stage(path: Path) -> "Usd.Stage":
+    """The stage, or :class:`BakerError` with the commentary of pxr's first Tf error (where parsing failed), without
+    its C++ source locations."""
+    from pxr import Usd
+
+    try:
+        stage = Usd.Stage.Open(str(path))
+    except Exception as exc:  # pxr raises Tf.ErrorException with a multi-line message
+        messages = [str(getattr(a, "commentary", "")).strip() for a in exc.args]
+        text = next((m for m in messages if m), str(exc))
+        raise BakerError(path, f"cannot open USD stage: {' '.join(text.split())[:300]}") from None
+    if stage is None:
+        raise BakerError(path, "cannot open USD stage")
+    return stage
 
 
 def _read_mesh(mesh, matrix: np.ndarray, time, path: Path):
@@ -243,3 +248,50 @@ def _interpolate(values, interpolation, indices, face_of_corner, n_points):
 
 
 # ====================================================================== writing
+
+
+def read_groom(path) -> Groom:
+    """Every visible ``UsdGeom.BasisCurves`` of the stage as a groom (instance proxies included), points moved by
+    the prim's local-to-world transform, widths (constant, uniform, vertex or varying when it has one value per
+    point) scaled by the transform's mean scale; every layer the stage uses must lie inside the groom's folder."""
+    from pxr import Usd, UsdGeom
+
+    stage = open_stage(path)
+    folder = Path(path).resolve().parent
+    for layer in stage.GetUsedLayers():  # sublayers and references must stay inside the groom's folder
+        real = layer.realPath.split("[", 1)[0]  # a layer inside a .usdz: "file.usdz[inner.usdc]"
+        if real and not Path(real).resolve().is_relative_to(folder):
+            raise BakerError(path, f"layer {layer.identifier} lies outside the groom's folder")
+    parts = []
+    for prim in stage.Traverse(Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)):
+        if not prim.IsA(UsdGeom.BasisCurves):
+            continue
+        if UsdGeom.Imageable(prim).ComputeVisibility(Usd.TimeCode.Default()) == UsdGeom.Tokens.invisible:
+            continue
+        curves = UsdGeom.BasisCurves(prim)
+        where = f"{prim.GetPath()}"
+        points = curves.GetPointsAttr().Get()
+        counts = curves.GetCurveVertexCountsAttr().Get()
+        if points is None or counts is None or len(counts) == 0:
+            continue
+        points = np.asarray(points, np.float64).reshape(-1, 3)
+        counts = np.asarray(counts, np.int64).reshape(-1)
+        if (counts < 0).any() or int(counts.sum()) != len(points):
+            raise BakerError(path, f"{where}: curveVertexCounts sum to {int(counts.sum())} but there are "
+                                   f"{len(points)} points")
+        matrix = np.asarray(curves.ComputeLocalToWorldTransform(Usd.TimeCode.Default()), np.float64)
+        # USD matrices act on row vectors: p' = p M
+        points = points @ matrix[:3, :3] + matrix[3, :3]
+        scale = abs(float(np.linalg.det(matrix[:3, :3]))) ** (1.0 / 3.0)
+        widths = None
+        raw = curves.GetWidthsAttr().Get()
+        if raw is not None and len(raw):
+            raw = np.asarray(raw, np.float64).reshape(-1) * scale
+            if len(raw) == len(points):
+                widths = raw
+            elif len(raw) == len(counts):
+                widths = np.repeat(raw, counts)
+            elif len(raw) == 1:
+                widths = np.full(len(points), raw[0])
+        parts.append((points, counts, widths))
+    return concat_curves(parts, path)

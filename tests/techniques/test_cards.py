@@ -483,7 +483,8 @@ def test_fitted_cards_beat_one_clustering_of_the_same_count(curly):
     same card count; and an explicit --cards is used exactly as given."""
     from baker.techniques.cards.kernel import make_cards
     from baker.techniques.cards.options import CardsOptions
-    from baker.techniques.hair.groom import clean_groom, read_groom
+    from baker.readers import read_groom
+    from baker.readers.groom import clean_groom
     from baker.techniques.hair.guide_solver import resample_strands
 
     groom = clean_groom(read_groom(curly["path"]), curly["path"])

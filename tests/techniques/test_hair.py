@@ -15,7 +15,8 @@ from baker.techniques.hair.kernel import Emitter, generate_hair, segment_lengths
 from baker.techniques.hair.options import HairOptions
 from baker.cli import main as cli_main
 from baker.techniques.hair.extension import read_strands
-from baker.techniques.hair.tfx import decode_tfx, encode_tfx, read_tfx, resample_strands, tfx_vertex_count
+from baker.readers.tfx import decode_tfx, read_tfx
+from baker.techniques.hair.tfx import encode_tfx, resample_strands, tfx_vertex_count
 from baker.techniques.hair.grow import emitter_from_asset, make_hair, write_output
 from baker.gltf.document import GltfDocument
 from baker.validate import validate_file

@@ -35,7 +35,8 @@ def checked_options(args) -> CardsOptions:
 def make_cards_from_file(groom_path, options: CardsOptions):
     """(CardsResult, groom counts for BAKER_hair_cards, seconds per step) of a groom file."""
     from baker.techniques.cards.kernel import make_cards
-    from baker.techniques.hair.groom import clean_groom, read_groom
+    from baker.readers import read_groom
+    from baker.readers.groom import clean_groom
     from baker.techniques.hair.guide_solver import resample_strands
 
     seconds = {}

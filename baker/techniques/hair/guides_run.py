@@ -24,7 +24,8 @@ import numpy as np
 
 from baker.errors import BakerError
 from baker.progress import QUIET, Progress
-from baker.techniques.hair.groom import clean_groom, read_groom
+from baker.readers import read_groom
+from baker.readers.groom import clean_groom
 from baker.techniques.hair.guide_solver import (GuideSolution, lod_counts, progressive_order, resample_strands,
                                                  solve_guides)
 from baker.techniques.hair.command import checked_options

@@ -1,41 +1,13 @@
-"""AMD TressFX 4 ``.tfx`` strands: writer and reader.
-
-Layout (``TressFXTFXFileHeader`` of TressFX 4, little-endian, 160 bytes)::
-
-    float version;                 4.0
-    uint  numHairStrands;          strands in the file (guide strands: TressFX makes its follow hairs itself)
-    uint  numVerticesPerStrand;    a power of two in 4..64, the same for every strand
-    uint  offsetVertexPosition;    float4[numHairStrands * numVerticesPerStrand], strand-major, root first;
-                                   w = inverse mass: 0 pins the vertex (the root), 1 lets it move
-    uint  offsetStrandUV;          float2[numHairStrands] (0 = absent)
-    uint  offsetVertexUV;          float2[numHairStrands * numVerticesPerStrand] (0 = absent; baker writes none)
-    uint  offsetStrandThickness;   float[numHairStrands], a scale of the engine's fiber radius
-    uint  offsetVertexColor;       float4[...] (0 = absent; baker writes none)
-    uint  reserved[32];
-
-Offsets are bytes from the start of the file, 8-byte aligned. TressFX wants a power-of-two vertex count, so strands
-whose count is not one are resampled at equal arc-length steps to the nearest power of two in 4..64.
+"""AMD TressFX 4 ``.tfx`` strands out; :mod:`baker.readers.tfx` reads them and describes the layout (TressFX 4's
+``TressFXTFXFileHeader`` and its blocks). TressFX wants a power-of-two vertex count, so strands whose count is not
+one are resampled at equal arc-length steps to the nearest power of two in 4..64.
 """
 from __future__ import annotations
-
-import struct
-from dataclasses import dataclass
 
 import numpy as np
 
 from baker.gltf.atomic import write_bytes_atomic
-
-HEADER = struct.Struct("<f7I32I")
-VERSION = 4.0
-
-
-@dataclass
-class TfxFile:
-    version: float
-    positions: np.ndarray  # (s, v, 4) float32, w = inverse mass
-    strand_uv: np.ndarray | None  # (s, 2) float32
-    thickness: np.ndarray | None  # (s,) float32
-    offsets: tuple  # (position, strandUV, vertexUV, thickness, color) as stored
+from baker.readers.tfx import HEADER, VERSION
 
 
 def tfx_vertex_count(vertices: int) -> int:
@@ -101,36 +73,3 @@ def encode_tfx(positions: np.ndarray, thickness: np.ndarray | None = None, stran
 
 def write_tfx(path, positions, thickness=None, strand_uv=None) -> None:
     write_bytes_atomic(path, encode_tfx(positions, thickness, strand_uv))
-
-
-def decode_tfx(data: bytes) -> TfxFile:
-    """Parse .tfx bytes (header + positions + optional strand UVs and thickness)."""
-    if len(data) < HEADER.size:
-        raise ValueError(f"a .tfx file has a {HEADER.size}-byte header; got {len(data)} bytes")
-    fields = HEADER.unpack_from(data)
-    version, s, v, pos_off, uv_off, _vuv_off, th_off, _col_off = fields[:8]
-    if not np.isfinite(version):
-        raise ValueError("header: version is not a number")
-    if s < 1 or v < 1:
-        raise ValueError(f"header: {s} strands of {v} vertices")
-    n = s * v
-
-    def block(name, offset, size):  # every block must lie after the header and inside the file
-        if offset < HEADER.size or offset + size > len(data):
-            raise ValueError(f"header: {name} ({size} bytes at offset {offset}) runs outside the {len(data)}-byte "
-                             "file")
-
-    block("vertex positions", pos_off, 16 * n)
-    if uv_off:
-        block("strand UVs", uv_off, 8 * s)
-    if th_off:
-        block("strand thickness", th_off, 4 * s)
-    positions = np.frombuffer(data, "<f4", count=4 * n, offset=pos_off).reshape(s, v, 4).copy()
-    uv = np.frombuffer(data, "<f4", count=2 * s, offset=uv_off).reshape(s, 2).copy() if uv_off else None
-    thickness = np.frombuffer(data, "<f4", count=s, offset=th_off).copy() if th_off else None
-    return TfxFile(version, positions, uv, thickness, tuple(fields[3:8]))
-
-
-def read_tfx(path) -> TfxFile:
-    with open(path, "rb") as fh:
-        return decode_tfx(fh.read())
