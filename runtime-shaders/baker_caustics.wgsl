@@ -4,8 +4,8 @@
 // distance from that depth fades the caustic out.
 //
 // WGSL conventions (runtime-shaders/README.md): a GLSL sampler2D argument is a texture_2d<f32> and its sampler
-// (REPEAT, LINEAR for the frames; the same sampler may be passed twice); GLSL texture() is textureSample (fragment stage,
-// implicit derivatives, so a mip chain is used as GLSL would). No entry point, no bindings: paste it once (names are
+// (REPEAT, LINEAR for the frames; the same sampler may be passed twice); GLSL texture() is textureSample
+// (fragment stage, implicit derivatives, so a mip chain is used as GLSL would). No entry point, no bindings: paste it once (names are
 // unique across the runtime modules). tests/gl/test_wgsl.py compiles it in Chromium's WebGPU and checks it against
 // tests/gl/twins_caustics.py.
 

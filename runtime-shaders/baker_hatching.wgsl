@@ -10,9 +10,10 @@
 //
 // WGSL conventions (runtime-shaders/README.md): a GLSL sampler2D / sampler2DArray argument is a texture_2d<f32> /
 // texture_2d_array<f32> and its sampler (LINEAR, mipmapFilter LINEAR, REPEAT; upload level i of the TAM as mip
-// level i); textureLod is textureSampleLevel (any stage), an array layer an i32 (the GLSL layers are whole numbers); GLSL's `out`
-// parameters are pointers. No entry point, no bindings: paste it once (names are unique across the runtime
-// modules). tests/gl/test_wgsl.py compiles it in Chromium's WebGPU and checks it against tests/gl/twins_hatching.py.
+// level i); textureLod is textureSampleLevel (any stage), an array layer an i32 (the GLSL layers are whole
+// numbers); GLSL's `out` parameters are pointers. No entry point, no bindings: paste it once (names are unique
+// across the runtime modules). tests/gl/test_wgsl.py compiles it in Chromium's WebGPU and checks it against
+// tests/gl/twins_hatching.py.
 
 // TAM tile coordinates from a mesh UV: `scale` finest-level texels per UV unit, `finestSize` = levels[0].size.
 fn baker_tam_coord(uv: vec2f, scale: f32, finestSize: f32) -> vec2f {

@@ -70,7 +70,8 @@ fn baker_skin_lut_uv(NdotL: f32, curvature: f32, curvatureRange: vec2f, lutSize:
 }
 
 // Pre-integrated diffuse (replaces saturate(N.L)) for one N.L, all three channels.
-fn baker_skin_lut(lut: texture_2d<f32>, lutSampler: sampler, NdotL: f32, curvature: f32, curvatureRange: vec2f) -> vec3f {
+fn baker_skin_lut(lut: texture_2d<f32>, lutSampler: sampler, NdotL: f32, curvature: f32,
+                  curvatureRange: vec2f) -> vec3f {
     let size = vec2f(textureDimensions(lut, 0));
     return textureSample(lut, lutSampler, baker_skin_lut_uv(NdotL, curvature, curvatureRange, size)).rgb;
 }
@@ -106,7 +107,8 @@ fn baker_skin_penumbra(penumbraLut: texture_2d<f32>, penumbraSampler: sampler, s
 fn baker_skin_wrap(NdotL: f32, wrap: f32, scatterWidth: f32, scatterColor: vec3f) -> vec3f {
     let diffuse = max((NdotL + wrap) / (1.0 + wrap), 0.0);
     // the original's smoothstep(2w, w, d) has reversed edges: 1 - smoothstep(w, 2w, d) is it
-    let scatter = smoothstep(0.0, scatterWidth, diffuse) * (1.0 - smoothstep(scatterWidth, 2.0 * scatterWidth, diffuse));
+    let scatter = smoothstep(0.0, scatterWidth, diffuse)
+                * (1.0 - smoothstep(scatterWidth, 2.0 * scatterWidth, diffuse));
     return vec3f(diffuse) + scatter * scatterColor;
 }
 

@@ -91,7 +91,8 @@ def test_wgsl_agrees_with_the_twins(results, name):
         error = np.abs(got - want)
         bad = ~(error <= absolute + relative * np.abs(want))
         scale = np.maximum(np.abs(want), 1e-30)
-        print(f"{case.name}: max abs {error.max():.3g}, max rel {(error / scale)[np.abs(want) > absolute].max(initial=0):.3g}"
+        worst_relative = (error / scale)[np.abs(want) > absolute].max(initial=0)
+        print(f"{case.name}: max abs {error.max():.3g}, max rel {worst_relative:.3g}"
               f" (tolerance {absolute:g} + {relative:g} |x|{', ' + case.why if case.why else ''})")
         if bad.any():
             row = int(np.argwhere(bad)[0][0])

@@ -518,7 +518,8 @@ def caustics_cases():
              call="baker_caustics_uv(world, direction, params.x, params.y, params.z)"),
         Case("caustics", "baker_caustics_fade", [("pointDepth", "f32"), ("depth", "f32"), ("fade", "f32")], "f32",
              {"pointDepth": r.uniform(-1, 4), "depth": constant(1.5), "fade": constant(1.0)},
-             lambda i: tw.baker_caustics_fade(i["pointDepth"], 1.5, 1.0), call="baker_caustics_fade(pointDepth, depth, fade)"),
+             lambda i: tw.baker_caustics_fade(i["pointDepth"], 1.5, 1.0),
+             call="baker_caustics_fade(pointDepth, depth, fade)"),
         Case("caustics", "baker_caustics_apply",
              [("lit", "vec3f"), ("sun", "vec3f"), ("irradiance", "vec3f"), ("strength", "f32"), ("fade", "f32")],
              "vec3f", {"lit": r.uniform(0, 1, 3), "sun": r.uniform(0, 1, 3), "irradiance": r.uniform(0, 4, 3),
@@ -528,9 +529,11 @@ def caustics_cases():
     ]
     for rgb in (0.0, 1.0):
         cases.append(Case(
-            "caustics", "baker_caustics_irradiance", [("uv", "vec2f"), ("blend", "f32"), ("scale", "f32"), ("rgb", "f32")],
-            "vec3f", {"uv": r.uniform(-3, 3, 2), "blend": r.uniform(0, 1), "scale": constant(2.5), "rgb": constant(rgb)},
-            lambda i, c=rgb: tw.baker_caustics_irradiance(first.levels[0], following.levels[0], i["uv"], i["blend"], 2.5, c),
+            "caustics", "baker_caustics_irradiance",
+            [("uv", "vec2f"), ("blend", "f32"), ("scale", "f32"), ("rgb", "f32")], "vec3f",
+            {"uv": r.uniform(-3, 3, 2), "blend": r.uniform(0, 1), "scale": constant(2.5), "rgb": constant(rgb)},
+            lambda i, c=rgb: tw.baker_caustics_irradiance(first.levels[0], following.levels[0], i["uv"], i["blend"],
+                                                          2.5, c),
             call="baker_caustics_irradiance(first, firstSampler, next, nextSampler, uv, blend, scale, rgb)",
             textures=[first, following], stage="fragment", label=f"rgb={rgb:g}"))
     return cases
@@ -596,7 +599,8 @@ def normal_blur_cases():
         cases += [
             Case("normal_blur", "baker_normal_blur_decode", [("texel", "vec3f"), ("flipY", "f32")], "vec3f",
                  {"texel": texels[0], "flipY": constant(flip)},
-                 lambda i, f=flip: tw.baker_normal_blur_decode(i["texel"], f), call="baker_normal_blur_decode(texel, flipY)",
+                 lambda i, f=flip: tw.baker_normal_blur_decode(i["texel"], f),
+                 call="baker_normal_blur_decode(texel, flipY)",
                  label=f"flipY={flip:g}"),
             Case("normal_blur", "baker_normal_blur_lambert",
                  [("tbn", "mat3x3f"), ("red", "vec3f"), ("green", "vec3f"), ("blue", "vec3f"), ("L", "vec3f"),
