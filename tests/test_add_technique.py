@@ -138,7 +138,6 @@ STEP_4_STEP = '''
 """Wire the height kernel to an Asset."""
 from __future__ import annotations
 
-from baker.geometry.texture_target import material_groups
 from baker.progress import QUIET
 
 from baker_height import extension
@@ -149,7 +148,7 @@ def run(asset, options, seed: int = 0, progress=QUIET) -> None:
     doc = asset.doc
     lowest = {m: asset.mesh_triangles(m)[0][:, AXES[options.axis]].min() for m in range(len(asset.meshes()))}
     tallest = {}
-    for material, members in material_groups(asset).items():
+    for material, members in asset.material_groups().items():
         for m, p in members:
             heights = height_above_lowest(asset.primitive(m, p).positions, lowest[m], options.axis, options.scale)
             extension.write_vertex_heights(doc, m, p, heights.values)

@@ -55,7 +55,6 @@ def test_welded_mesh_of_an_unmerged_mesh_keeps_its_faces(tmp_path):
 def test_assigning_the_default_material_keeps_the_decoded_primitive(tmp_path):
     import trimesh
 
-    from baker.geometry.texture_target import material_groups
 
     from baker.gltf.document import GltfDocument
 
@@ -68,7 +67,7 @@ def test_assigning_the_default_material_keeps_the_decoded_primitive(tmp_path):
     before = asset.primitive(0, 0)
     asset.welded(0, [0])
     assert before.material is None
-    groups = material_groups(asset)  # the primitive has no material: a default one is added
+    groups = asset.material_groups()  # the primitive has no material: a default one is added
     (material,) = groups
     after = asset.primitive(0, 0)
     assert after.material == material and after.positions is before.positions  # moved, not decoded again

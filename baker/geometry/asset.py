@@ -7,9 +7,11 @@ from pathlib import Path
 
 import numpy as np
 
-from baker.errors import BakerError
+from baker.errors import BakerError, NothingToBake
 from baker.gltf.document import GltfDocument
 from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, faces_from_indices, is_derived_fins, to_float
+
+UNLIT = "KHR_materials_unlit"
 
 
 @dataclass
@@ -171,11 +173,47 @@ class Asset:
             return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
         return np.concatenate(verts), np.concatenate(faces)
 
+    # ------------------------------------------------------------------ materials
+    def is_unlit(self, material: int) -> bool:
+        """Whether material ``material`` is ``KHR_materials_unlit`` (no lighting model to bake data for)."""
+        materials = self.doc.json.get("materials") or []
+        return 0 <= material < len(materials) and UNLIT in (materials[material].get("extensions") or {})
 
+    def material_label(self, material: int) -> str:
+        """How a note or error names a material: its index and, when it has one, its name."""
+        name = self.doc.json["materials"][material].get("name")
+        return f"{material} {name!r}" if name else str(material)
 
+    def material_groups(self) -> dict[int, list[tuple[int, int]]]:
+        """Triangle primitives ``(mesh, primitive)`` by material index; primitives without one get a new default
+        material (same look).
 
-
-
+        ``KHR_materials_unlit`` materials are left out: the material bakes are lighting models (translucency, skin,
+        toon, hatching, fur shading) that an unlit material does not evaluate, and the Khronos validator warns
+        (MULTIPLE_EXTENSIONS) about any other extension beside KHR_materials_unlit. The asset notes which; when
+        every material is unlit the bake has nothing to cover (:class:`baker.errors.NothingToBake`)."""
+        groups: dict[int, list] = {}
+        default = None
+        unlit = set()
+        for m in range(len(self.meshes())):
+            for p in self.triangle_primitives(m):
+                prim = self.meshes()[m]["primitives"][p]
+                if "material" in prim and self.is_unlit(prim["material"]):
+                    unlit.add(prim["material"])
+                    continue
+                if "material" not in prim:
+                    if default is None:
+                        mats = self.doc.json.setdefault("materials", [])
+                        mats.append({"name": "baker_default"})  # all-default material == glTF's implicit default
+                        default = len(mats) - 1
+                    self.assign_material(m, p, default)
+                groups.setdefault(prim["material"], []).append((m, p))
+        if unlit:
+            names = ", ".join(self.material_label(i) for i in sorted(unlit))
+            if not groups:
+                raise NothingToBake(f"every material is unlit (KHR_materials_unlit): {names}")
+            self.note(f"unlit (KHR_materials_unlit) materials get no baked material data: {names}")
+        return dict(sorted(groups.items()))
 
 
 def _read_only(array: np.ndarray) -> np.ndarray:

@@ -11,7 +11,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from baker.errors import NothingToBake
 from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.geometry.normals import vertex_normals
 from baker.geometry.welding import weld
@@ -46,51 +45,6 @@ class MaterialTarget:
         return m
 
 
-UNLIT = "KHR_materials_unlit"
-
-
-def is_unlit(doc, material: int) -> bool:
-    materials = doc.json.get("materials") or []
-    return 0 <= material < len(materials) and UNLIT in (materials[material].get("extensions") or {})
-
-
-def material_groups(asset: Asset) -> dict[int, list[tuple[int, int]]]:
-    """Triangle primitives by material index; primitives without one get a new default material (same look).
-
-    ``KHR_materials_unlit`` materials are left out: the material bakes are lighting models (translucency, skin,
-    toon, hatching, fur shading) that an unlit material does not evaluate, and the Khronos validator warns
-    (MULTIPLE_EXTENSIONS) about any other extension beside KHR_materials_unlit. The asset notes which; when every
-    material is unlit the bake has nothing to cover (:class:`baker.errors.NothingToBake`)."""
-    doc = asset.doc
-    groups: dict[int, list] = {}
-    default = None
-    unlit = set()
-    for m in range(len(asset.meshes())):
-        for p in asset.triangle_primitives(m):
-            prim = asset.meshes()[m]["primitives"][p]
-            if "material" in prim and is_unlit(doc, prim["material"]):
-                unlit.add(prim["material"])
-                continue
-            if "material" not in prim:
-                if default is None:
-                    mats = doc.json.setdefault("materials", [])
-                    mats.append({"name": "baker_default"})  # all-default material == glTF's implicit default
-                    default = len(mats) - 1
-                asset.assign_material(m, p, default)
-            groups.setdefault(prim["material"], []).append((m, p))
-    if unlit:
-        names = ", ".join(material_label(doc, i) for i in sorted(unlit))
-        if not groups:
-            raise NothingToBake(f"every material is unlit (KHR_materials_unlit): {names}")
-        asset.note(f"unlit (KHR_materials_unlit) materials get no baked material data: {names}")
-    return dict(sorted(groups.items()))
-
-
-def material_label(doc, material: int) -> str:
-    name = doc.json["materials"][material].get("name")
-    return f"{material} {name!r}" if name else str(material)
-
-
 def smooth_normals(geometry: PrimitiveGeometry) -> np.ndarray:
     """The primitive's own normals, or area-weighted normals over position-welded vertices (no seams)."""
     if geometry.normals is not None:
@@ -110,7 +64,7 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
     given, as it is (no overlap test, no unwrap): a bake whose output pairs texel for texel with an existing
     texture (a normal map) must use that texture's layout."""
     targets = []
-    for material, members in material_groups(asset).items():
+    for material, members in asset.material_groups().items():
         if layouts is not None and material not in layouts:
             continue
         geoms = [asset.primitive(m, p) for m, p in members]

@@ -5,7 +5,6 @@ import numpy as np
 
 from baker.geometry.asset import Asset
 from baker.gltf.document import world_nodes
-from baker.geometry.texture_target import material_groups
 from baker.progress import QUIET, Progress
 from baker.techniques.caustics import extension as ext
 from baker.techniques.caustics.options import CausticsOptions, at_scale
@@ -21,7 +20,7 @@ def run(asset: Asset, options: CausticsOptions, seed: int = 0, progress: Progres
 
         raise BakerError(None, str(exc)) from None
     options, water_scale = at_scale(options, world_diagonal(asset))
-    materials = list(material_groups(asset))
+    materials = list(asset.material_groups())
     frames = caustic_frames(options, seed=seed)
     textures, scale = ext.write_frame_textures(asset.doc, frames)
     for material in materials:

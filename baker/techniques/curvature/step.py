@@ -8,12 +8,11 @@ from baker.techniques.curvature.options import CurvatureOptions
 from baker.techniques.curvature.kernel import principal_curvatures
 from baker.techniques.curvature import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_target import material_groups
 
 
 def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     doc = asset.doc
-    groups = material_groups(asset)
+    groups = asset.material_groups()
     material_of = {mp: mat for mat, members in groups.items() for mp in members}
     stats = {mat: [np.inf, -np.inf, 0.0, 0] for mat in groups}  # min, max, sum, count of H
     welded_results = {}  # mesh -> (its WeldedMesh, H per welded vertex)

@@ -14,7 +14,7 @@ from baker.techniques.fur.kernel import bake_fur_textures
 from baker.techniques.fur import extension as ext
 from baker.progress import QUIET, Progress
 from baker.geometry.texture_space import unwrap
-from baker.geometry.texture_target import material_groups, reindex_primitive, unwrap_material
+from baker.geometry.texture_target import reindex_primitive, unwrap_material
 
 
 def _fins(asset: Asset, m: int, prims: list, tile_size: float):
@@ -46,7 +46,7 @@ def _fins(asset: Asset, m: int, prims: list, tile_size: float):
 
 def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     doc = asset.doc
-    groups = material_groups(asset)
+    groups = asset.material_groups()
     furred = {}
     for material, members in groups.items():
         members = [(m, p) for m, p in members if len(asset.primitive(m, p).faces)]

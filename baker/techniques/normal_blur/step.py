@@ -26,11 +26,9 @@ def profile_in_mesh_units(options: NormalBlurOptions):
 def normal_mapped_materials(asset: Asset) -> dict:
     """{material: (normalTexture info, primitives [(mesh, primitive)])} of the materials with a normal map whose
     UV set their primitives have."""
-    from baker.geometry.texture_target import material_groups
-
     doc = asset.doc
     found = {}
-    for material, members in material_groups(asset).items():
+    for material, members in asset.material_groups().items():
         info = doc.json["materials"][material].get("normalTexture")
         if not isinstance(info, dict):
             continue
@@ -96,8 +94,6 @@ def _note_layout(asset: Asset, texel_set, shape) -> None:
     """Say so when the normal map's layout cannot pair one surface point with each texel: overlapping (mirrored or
     stacked) charts share texels, which are then blurred at one of their surface points; a non-square map is
     resampled to a square of its larger side."""
-    from baker.geometry.texture_target import material_label
-
     # the triangles' UV area against the texels they cover: equal for a layout without overlaps (up to the texels
     # along chart borders), twice as large where every chart is mirrored onto another
     target = texel_set.target
@@ -107,7 +103,7 @@ def _note_layout(asset: Asset, texel_set, shape) -> None:
         uv_area += 0.5 * float(np.abs((t[:, 1, 0] - t[:, 0, 0]) * (t[:, 2, 1] - t[:, 0, 1])
                                       - (t[:, 2, 0] - t[:, 0, 0]) * (t[:, 1, 1] - t[:, 0, 1])).sum())
     covered = int(target.mask.sum())
-    label = material_label(asset.doc, texel_set.material)
+    label = asset.material_label(texel_set.material)
     shared = uv_area * target.size ** 2 / covered - 1.0 if covered else 0.0
     if shared > OVERLAP_TOLERANCE:
         asset.note(f"normal-blur: material {label}: the normal map's UV layout overlaps itself (its triangles cover "

@@ -12,7 +12,6 @@ from baker.techniques.skin.kernel import skin_tables
 from baker.techniques.curvature import extension as curvature_ext
 from baker.techniques.skin import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_target import material_groups
 
 
 def baked_curvature(doc, groups: dict) -> np.ndarray:
@@ -29,7 +28,7 @@ def baked_curvature(doc, groups: dict) -> np.ndarray:
 
 def run(asset: Asset, options: SkinOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     doc = asset.doc
-    groups = material_groups(asset)
+    groups = asset.material_groups()
     with progress.task("skin LUTs", 1) as advance:
         tables = skin_tables(options, baked_curvature(doc, groups) / options.unit_scale)
         advance(1)

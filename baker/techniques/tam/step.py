@@ -17,7 +17,7 @@ from baker.techniques.tam.kernel import check_options, generate_tam
 from baker.errors import BakerError
 from baker.techniques.tam import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_target import material_groups, unwrap_material
+from baker.geometry.texture_target import unwrap_material
 
 TILES_PER_DIAGONAL = 6.0
 
@@ -53,7 +53,7 @@ def run(asset: Asset, options: TamOptions, seed: int = 0, progress: Progress = Q
         tam = generate_tam(options, seed=seed)
         advance(1)
     textures = None
-    for material, members in material_groups(asset).items():
+    for material, members in asset.material_groups().items():
         geoms = [asset.primitive(m, p) for m, p in members]
         keep = [i for i, g in enumerate(geoms) if len(g.faces)]
         if not keep:

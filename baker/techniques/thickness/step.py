@@ -36,7 +36,6 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
 
     from baker.geometry.normals import vertex_normals
     from baker.geometry.texels import gather_texels
-    from baker.geometry.texture_target import material_groups, material_label
     from baker.techniques.thickness.kernel import FIRST_RAYS, local_thickness
 
     def cast(meshes, points, normals, label, scene_of=None, prior=None, tolerance=0.0, rays=options.rays,
@@ -49,7 +48,7 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
                                    prior=prior, tolerance=tolerance, first_means=first_means,
                                    rays_used=rays_used)
 
-    groups = material_groups(asset)  # also gives material-less primitives a default material
+    groups = asset.material_groups()  # also gives material-less primitives a default material
     sums = {mat: [0.0, 0] for mat in groups}
     material_of = {mp: mat for mat, members in groups.items() for mp in members}
 
@@ -57,7 +56,7 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
     for m in scenes:
         prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
         if not prims:
-            continue  # every primitive of the mesh is unlit (material_groups leaves them out)
+            continue  # every primitive of the mesh is unlit (Asset.material_groups leaves them out)
         mesh = asset.welded(m, prims)
         welded[m] = (prims, mesh, vertex_normals(mesh.positions, mesh.faces))
 
@@ -109,7 +108,7 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
             png, factor = ext.encode_thickness_texture(image, options.texture_bits)
             textured[texel_set.material] = ext.write_thickness_texture(doc, texel_set.material, png, factor,
                                                                        texel_set.texcoord)
-        double_sided = [material_label(doc, m) for m in textured if not ext.volume_allowed(doc, m)]
+        double_sided = [asset.material_label(m) for m in textured if not ext.volume_allowed(doc, m)]
         if double_sided:
             asset.note("KHR_materials_volume is not valid on double-sided materials: their thickness texture is in "
                        f"BAKER_thickness only: {', '.join(double_sided)}")

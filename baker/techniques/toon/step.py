@@ -5,11 +5,10 @@ from baker.geometry.asset import Asset
 from baker.techniques.toon.options import ToonOptions
 from baker.techniques.toon import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_target import material_groups
 
 
 def run(asset: Asset, options: ToonOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     texture = None
-    for material in material_groups(asset):
+    for material in asset.material_groups():
         written = ext.write_toon_ramp(asset.doc, material, options, texture)
         texture = written["rampTexture"]["index"]
