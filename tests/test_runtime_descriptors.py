@@ -115,3 +115,10 @@ def test_descriptor_places_are_the_schemas(runtimes):
         schemas = sorted((ROOT / "schemas" / r["extension"] / "schema").glob(f"*.{r['extension']}.schema.json"))
         kinds = {path.name[: -len(f".{r['extension']}.schema.json")] for path in schemas}
         assert kinds == set(r["on"]), f"{r['extension']}: schemas for {kinds}, the descriptor says {r['on']}"
+
+
+def test_stages_module_is_up_to_date(runtimes):
+    # shared/src/stages.js carries runtime-shaders/hosts/web/*.glsl to the web hosts: regenerated, it must not change
+    result = subprocess.run(["node", str(SHADERS / "shared" / "tools" / "stages.mjs"), "--check"], capture_output=True,
+                            text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
