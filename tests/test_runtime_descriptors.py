@@ -122,3 +122,15 @@ def test_stages_module_is_up_to_date(runtimes):
     result = subprocess.run(["node", str(SHADERS / "shared" / "tools" / "stages.mjs"), "--check"], capture_output=True,
                             text=True, timeout=60)
     assert result.returncode == 0, result.stderr
+
+
+def test_descriptor_reads_only_properties_the_schemas_define(runtimes):
+    # a misspelt or renamed property would silently give the default in every host
+    for r in runtimes["RUNTIMES"]:
+        properties = set()
+        for path in (ROOT / "schemas" / r["extension"] / "schema").glob("*.schema.json"):
+            properties |= set(json.loads(path.read_text()).get("properties", {}))
+        for entry in r["attributes"] + r["textures"] + r["uniforms"]:
+            sources = entry.get("from", [])
+            for source in [sources] if isinstance(sources, str) else sources:
+                assert source.split(".")[0] in properties, f"{r['extension']}: {entry['name']} reads {source}"

@@ -6,7 +6,7 @@ import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
 import { Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 
-import { STAGES, parseKtx2Rgba8, shaderText } from '@baker/shared';
+import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES (the same switch names as @baker/three's) and the switch registry are
 // engine-neutral: @baker/shared, re-exported here
@@ -29,6 +29,16 @@ export function requireShader(shaders, key) {
 // The header of every ShaderMaterial stage: Babylon writes the #version line (WebGL2: GLSL ES 3.00) and converts
 // attribute/varying/gl_FragColor; the modules need highp samplers for 16-bit data.
 export const HEADER = 'precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n';
+
+/**
+ * The uniforms of technique `name`'s descriptor for the extension object `ext` as BakerSurfacePlugin part uniforms
+ * ({ name: { type, value } }), and the expression of the module's parameter struct.
+ */
+export function descriptorUniforms(name, ext) {
+	const descriptor = runtime(name);
+	const uniforms = Object.fromEntries(descriptor.uniforms.map((spec) => [spec.name, { type: spec.type, value: uniformValue(spec, ext) }]));
+	return { uniforms, struct: structExpression(descriptor) };
+}
 
 // ------------------------------------------------------------------------------------------------ glTF lookups
 /**

@@ -6,7 +6,7 @@
 import { RUNTIMES } from './techniques.js';
 
 export { RUNTIMES, runtime, runtimeOfSwitch } from './techniques.js';
-export { structFunction, uniformValue, uniformValues } from './values.js';
+export { structExpression, uniformValue, uniformValues } from './values.js';
 export { STAGES } from './stages.js';
 
 const extensionOf = (name) => RUNTIMES.find((r) => r.name === name).extension;

@@ -14,11 +14,12 @@
 // - attributes: custom vertex attributes (`from`: the extension property naming it, else `name` itself);
 // - textures: samplers bound from the extension's texture infos (`from`: its property; `sampling`: 'data' is linear,
 //   clamped, no mips, no sRGB decode; 'file' keeps the file's sampler, repeating and mipmapped);
-// - uniforms: per uniform its GLSL type and where its value comes from: `from` (an extension property, or a list of
+// - uniforms: the uniforms a surface part binds from the extension (geometry techniques set theirs in their host
+//   file), per uniform its GLSL type and where its value comes from: `from` (an extension property, or a list of
 //   them, the first present wins; 'a.0.b' walks into arrays), `default`, `enum` (a string property to a number),
 //   `slice` ([begin, end] of an array), `count` (the length of an array property), `compute` (a formula of
 //   values.js COMPUTED, by name);
-// - struct: the module's parameter struct built from uniforms in GLSL (`function`: the GLSL function that returns it);
+// - struct: the module's parameter struct, built in GLSL from these uniforms in this order;
 // - options: the defaults of options.<name> (a host's user overrides).
 
 export const RUNTIMES = [
@@ -29,7 +30,7 @@ export const RUNTIMES = [
 		attributes: [{ name: 'thickness', from: 'attribute', type: 'float' }],
 		textures: [],
 		struct: {
-			type: 'BakerThickness', function: 'baker_thickness_parameters',
+			type: 'BakerThickness',
 			fields: ['u_bakerThAttenuation', 'u_bakerThDistortion', 'u_bakerThPower', 'u_bakerThScale', 'u_bakerThAmbient', 'u_bakerThColor'],
 		},
 		uniforms: [
@@ -53,7 +54,7 @@ export const RUNTIMES = [
 		],
 		textures: [{ name: 'u_bakerSkinLut', from: 'lutTexture', sampling: 'data' }],
 		struct: {
-			type: 'BakerSkin', function: 'baker_skin_parameters',
+			type: 'BakerSkin',
 			fields: ['u_bakerSkinCurvatureRange', 'u_bakerSkinCurvatureScale', 'u_bakerSkinPenumbraRange', 'u_bakerSkinNormalBlend',
 				'u_bakerSkinWrap', 'u_bakerSkinScatterWidth', 'u_bakerSkinScatterColor'],
 		},
@@ -109,7 +110,7 @@ export const RUNTIMES = [
 			{ name: 'outlineNormal', from: 'outlineNormal', default: '_OUTLINE_NORMAL', type: 'vec3' },
 		],
 		textures: [],
-		uniforms: [{ name: 'u_creaseCos', type: 'float', from: 'creaseAngle', default: Math.PI / 3 }],
+		uniforms: [],
 		// line style: colours linear RGB, widths in pixels; classes: the fin classes drawn (1 contour, 2 ridge,
 		// 4 valley, 8 boundary)
 		options: { color: [0.02, 0.02, 0.03], finWidth: 2.5, outlineWidth: 3, wireframeWidth: 1.25,
@@ -124,12 +125,9 @@ export const RUNTIMES = [
 			{ name: '_FIN_V3', type: 'vec3' }, { name: '_FIN_CORNER', type: 'float' }, { name: '_FUR_FIN_NORMAL', type: 'vec3' },
 			{ name: '_FUR_FIN_UV', type: 'vec2' },
 		],
+		// one shell mesh per shell texture, the fin texture on the fin primitive (each as its coverageMips chain if any)
 		textures: [{ name: 'u_texture', from: 'shellTextures', sampling: 'file' }, { name: 'u_texture', from: 'finTexture', sampling: 'data' }],
-		uniforms: [
-			{ name: 'u_length', type: 'float', from: 'length' },
-			{ name: 'u_shellCount', type: 'float', from: ['shellCount', 'shellTextures'], count: true },
-			{ name: 'u_tiling', type: 'float', from: 'tiling', default: 1 },
-		],
+		uniforms: [],
 		// finThreshold: |N.V| where the fins fade out
 		options: { finThreshold: 0.4 },
 	},
@@ -142,10 +140,7 @@ export const RUNTIMES = [
 			{ name: 'param', from: 'paramAttribute', default: '_STRAND_PARAM', type: 'float' },
 		],
 		textures: [],
-		uniforms: [
-			{ name: 'u_rootWidth', type: 'float', from: 'rootWidth' },
-			{ name: 'u_tipWidth', type: 'float', from: 'tipWidth' },
-		],
+		uniforms: [],
 		// Kajiya-Kay's specular colour (linear RGB) and exponent; lod: the level of `lods` drawn at load
 		options: { specular: [0.3, 0.28, 0.25], exponent: 60, lod: 0 },
 	},
@@ -154,7 +149,8 @@ export const RUNTIMES = [
 		modules: { glsl: 'baker_text.glsl', key: 'text', wgsl: null },
 		switches: [{ name: 'text', label: 'MSDF text' }],
 		attributes: [],
-		textures: [{ name: 'u_atlas', from: 'BAKER_glyph_atlas.fonts.*.texture', sampling: 'data' }],
+		// the atlas of BAKER_glyph_atlas.fonts[font]
+		textures: [{ name: 'u_atlas', from: 'font', sampling: 'data' }],
 		uniforms: [],
 	},
 	{
@@ -175,8 +171,6 @@ export const RUNTIMES = [
 			{ name: 'u_bakerCausticsStrength', type: 'float', from: 'strength', default: 1 },
 			{ name: 'u_bakerCausticsFadeDistance', type: 'float', from: 'fadeDistance', default: 1 },
 		],
-		// time: seconds (or a function returning seconds) holding the animation; default the page's clock
-		options: { time: null },
 	},
 	{
 		name: 'hair_cards', extension: 'BAKER_hair_cards', on: ['material', 'mesh.primitive'], kind: 'surface',

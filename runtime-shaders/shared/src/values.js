@@ -12,8 +12,6 @@ function at(ext, path) {
 const COMPUTED = {
 	// BAKER_curvature's false-colour scale: 4 x |mean curvature|, at least half the range's top
 	curvatureScale: (ext) => Math.max(Math.abs(ext.meanCurvature ?? 0) * 4, Math.abs((ext.range ?? [-1, 1])[1]) * 0.5, 1e-6),
-	// BAKER_fur's shell spacing: the fur length over the shells, unless given
-	furShellSpacing: (ext) => ext.shellSpacing ?? ext.length / (ext.shellTextures || []).length,
 };
 
 /** The value of descriptor uniform `spec` for the extension object `ext` (the extension's default when absent). */
@@ -35,8 +33,8 @@ export function uniformValues(descriptor, ext) {
 	return Object.fromEntries(descriptor.uniforms.map((spec) => [spec.name, uniformValue(spec, ext)]));
 }
 
-/** The GLSL that builds a descriptor's parameter struct from its uniforms (`BakerSkin baker_skin_parameters()`). */
-export function structFunction(descriptor) {
+/** The GLSL expression that builds a descriptor's parameter struct from its uniforms (`BakerSkin(u_..., ...)`). */
+export function structExpression(descriptor) {
 	const s = descriptor.struct;
-	return s ? `${s.type} ${s.function}() { return ${s.type}(${s.fields.join(', ')}); }` : '';
+	return s ? `${s.type}(${s.fields.join(', ')})` : '';
 }

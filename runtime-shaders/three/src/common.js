@@ -3,7 +3,7 @@
 // viewport uniform). Not an entry point: import from index.js.
 import * as THREE from 'three';
 
-import { STAGES, parseKtx2Rgba8, shaderText } from '@baker/shared';
+import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: @baker/shared, re-exported here
 export {
@@ -87,6 +87,24 @@ export async function coverageMipsTexture(parser, entry) {
 		console.warn(`@baker/three: coverage mips of texture ${entry.texture} unreadable, using its PNG: ${e.message || e}`);
 		return null;
 	}
+}
+
+const VALUES = { vec2: (v) => new THREE.Vector2(...v), vec3: (v) => new THREE.Vector3(...v), vec4: (v) => new THREE.Vector4(...v) };
+
+/**
+ * The uniforms of technique `name`'s descriptor for the extension object `ext` as three.js uniforms, their GLSL types
+ * (for the declarations BakerSurface writes) and the expression of the module's parameter struct.
+ */
+export function descriptorUniforms(name, ext) {
+	const descriptor = runtime(name);
+	const uniforms = {};
+	const types = {};
+	for (const spec of descriptor.uniforms) {
+		const value = uniformValue(spec, ext);
+		uniforms[spec.name] = { value: VALUES[spec.type]?.(value) ?? value };
+		types[spec.name] = spec.type;
+	}
+	return { uniforms, types, struct: structExpression(descriptor) };
 }
 
 /** A ShaderMaterial lit by the scene's lights (view-space directionalLights[] etc. through lights_pars_begin). */
