@@ -1,7 +1,7 @@
 // BAKER_caustics: the baked, looping caustic frames projected in world space along the refracted sun direction and
 // added to the directional (sun) light of the material (RTR4 14.5.3; runtime-shaders/baker_caustics.glsl).
 import { causticsClock, causticsFrame, causticsParameters } from '@baker/shared';
-import { BAKER_CAUSTICS, dataTexture, requireShader } from './common.js';
+import { BAKER_CAUSTICS, dataTexture, descriptorUniforms, requireShader } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 /**
@@ -15,16 +15,7 @@ export const BakerCausticsExtension = surfaceExtension('caustics', BAKER_CAUSTIC
 	if (frames.some((t) => !t)) return null;
 	const clock = causticsClock(this.options.caustics);
 	const samplers = { u_bakerCausticsFirst: frames[0], u_bakerCausticsNext: frames[Math.min(1, frames.length - 1)] };
-	const uniforms = {
-		u_bakerCausticsBlend: { type: 'float', value: 0 },
-		u_bakerCausticsProjection: { type: 'vec3', value: params.projectionDirection },
-		u_bakerCausticsWaterLevel: { type: 'float', value: params.waterLevel },
-		u_bakerCausticsDepth: { type: 'float', value: params.depth },
-		u_bakerCausticsTileSize: { type: 'float', value: params.tileSize },
-		u_bakerCausticsScale: { type: 'float', value: params.intensityScale },
-		u_bakerCausticsStrength: { type: 'float', value: params.strength },
-		u_bakerCausticsFadeDistance: { type: 'float', value: params.fadeDistance },
-	};
+	const { uniforms } = descriptorUniforms('caustics', ext);
 	return {
 		glsl: requireShader(this.shaders, 'caustics'),
 		samplers,

@@ -6,7 +6,7 @@ import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
 import { Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 
-import { parseKtx2Rgba8, shaderText } from '@baker/shared';
+import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES (the same switch names as @baker/three's) and the switch registry are
 // engine-neutral: @baker/shared, re-exported here
@@ -29,6 +29,16 @@ export function requireShader(shaders, key) {
 // The header of every ShaderMaterial stage: Babylon writes the #version line (WebGL2: GLSL ES 3.00) and converts
 // attribute/varying/gl_FragColor; the modules need highp samplers for 16-bit data.
 export const HEADER = 'precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n';
+
+/**
+ * The uniforms of technique `name`'s descriptor for the extension object `ext` as BakerSurfacePlugin part uniforms
+ * ({ name: { type, value } }), and the expression of the module's parameter struct.
+ */
+export function descriptorUniforms(name, ext) {
+	const descriptor = runtime(name);
+	const uniforms = Object.fromEntries(descriptor.uniforms.map((spec) => [spec.name, { type: spec.type, value: uniformValue(spec, ext) }]));
+	return { uniforms, struct: structExpression(descriptor) };
+}
 
 // ------------------------------------------------------------------------------------------------ glTF lookups
 /**
@@ -216,19 +226,45 @@ export function sceneLights(scene) {
 	return { count, directions, colors };
 }
 
-/** GLSL declarations of the light uniforms and the diffuse sum of the directional lights, for ShaderMaterials. */
-export const LIGHTS_GLSL = `
+// What the shared stages (runtime-shaders/hosts/web) ask of a host, in Babylon's terms: object space in, the lights'
+// space is world space (the u_light* uniforms bakerShaderMaterial binds).
+const VERTEX_PRELUDE = `
+attribute vec3 position;
+attribute vec3 normal;
+attribute vec2 uv;
+uniform mat4 world;
+uniform mat4 viewProjection;
+uniform mat4 projection;
+uniform vec3 u_eye;
+vec4 baker_clip(vec3 p) { return viewProjection * world * vec4(p, 1.0); }
+vec3 baker_object_eye() { return (inverse(world) * vec4(u_eye, 1.0)).xyz; }
+vec3 baker_light_normal(vec3 n) { return normalize(mat3(world) * n); }
+vec3 baker_light_vector(vec3 d) { return mat3(world) * d; }
+vec3 baker_to_eye(vec3 p) { return u_eye - (world * vec4(p, 1.0)).xyz; }
+float baker_projection_y() { return projection[1][1]; }
+`;
+const LIGHTS_PRELUDE = `
 uniform int u_lightCount;
 uniform vec3 u_lightDirection[${MAX_LIGHTS}];
 uniform vec3 u_lightColor[${MAX_LIGHTS}];
 uniform vec3 u_ambientLight;
-vec3 baker_directional_diffuse(vec3 N) {
-	vec3 sum = vec3(0.0);
-	for (int i = 0; i < ${MAX_LIGHTS}; i++) {
-		if (i >= u_lightCount) break;
-		sum += u_lightColor[i] * max(dot(N, u_lightDirection[i]), 0.0);
-	}
-	return sum;
-}`;
+const int BAKER_MAX_LIGHTS = ${MAX_LIGHTS};
+int baker_light_count() { return u_lightCount; }
+vec3 baker_light_direction(int i) { return u_lightDirection[i]; }
+vec3 baker_light_color(int i) { return u_lightColor[i]; }
+vec3 baker_ambient_light() { return u_ambientLight; }
+`;
+
+/**
+ * A bakerShaderMaterial drawing the shared stages `vertex` and `fragment` (names of runtime-shaders/hosts/web files)
+ * with the runtime module `glsl`; `lit`: the fragment reads the scene's directional lights.
+ */
+export function stageMaterial(name, scene, { glsl, vertex, fragment, lit = false, ...rest }) {
+	return bakerShaderMaterial(name, scene, {
+		...rest,
+		vertex: VERTEX_PRELUDE + glsl + STAGES[vertex],
+		fragment: lit ? LIGHTS_PRELUDE + glsl + STAGES.lights + STAGES[fragment] : glsl + STAGES[fragment],
+	});
+}
 
 export { Vector2, Vector3 };

@@ -1,74 +1,10 @@
 // BAKER_edges: fins (McGuire & Hughes 2004), shell outline (RTR4 15.2.2) and wireframe (Baerentzen et al. 2006);
-// EXT_mesh_primitive_edge_visibility: the wireframe's mask when BAKER_edges has none.
+// EXT_mesh_primitive_edge_visibility: the wireframe's mask when BAKER_edges has none. The stages are
+// runtime-shaders/hosts/web/edges_*.glsl and solid.frag.glsl.
 import { Constants } from '@babylonjs/core/Engines/constants.js';
-import { wireframeCorners } from '@baker/shared';
-import { BAKER_EDGES, EXT_EDGE_VISIBILITY, GLTF_FRONT, bakerShaderMaterial, controls, loadedPrimitives, readAccessor, requireShader } from './common.js';
-import { asComponents, bakerMesh, premultiplied, primitiveAttributes, primitiveIndices } from './geometry.js';
-
-const FIN_VERTEX = (decl, a) => `
-${decl}
-uniform mat4 world;
-uniform mat4 viewProjection;
-uniform vec3 u_eye;
-uniform vec2 u_viewport;
-uniform float u_width;
-uniform float u_creaseCos;
-uniform int u_classes;
-void main() {
-	vec3 v0 = ${a('bakerFinV0', 3)}, v1 = ${a('bakerFinV1', 3)}, v2 = ${a('bakerFinV2', 3)}, v3 = ${a('bakerFinV3', 3)};
-	vec3 eye = (inverse(world) * vec4(u_eye, 1.0)).xyz;  // object space
-	int c = baker_fin_classify(v0, v1, v2, v3, ${a('bakerFinFlags', 1)}, eye, u_creaseCos);
-	vec4 clip0 = viewProjection * world * vec4(v0, 1.0);
-	vec4 clip1 = viewProjection * world * vec4(v1, 1.0);
-	if ((c & u_classes) == 0 || clip0.w <= 0.0 || clip1.w <= 0.0) {
-		gl_Position = baker_fin_culled();
-		return;
-	}
-	gl_Position = baker_fin_position(clip0, clip1, ${a('bakerFinCorner', 1)}, u_width, u_viewport);
-	gl_Position.z -= 1e-4 * gl_Position.w;  // over the surface it outlines
-}`;
-
-const SOLID_FRAGMENT = `
-uniform vec3 u_color;
-void main() { gl_FragColor = vec4(u_color, 1.0); }`;
-
-const OUTLINE_VERTEX = (decl, a) => `
-attribute vec3 position;
-${decl}
-uniform mat4 world;
-uniform mat4 viewProjection;
-uniform mat4 projection;
-uniform vec2 u_viewport;
-uniform float u_width;
-void main() {
-	vec4 clip = viewProjection * world * vec4(position, 1.0);
-	vec3 p = baker_shell_position(position, ${a('bakerOutlineNormal', 3)}, clip.w, u_width, u_viewport.y, projection[1][1]);
-	gl_Position = viewProjection * world * vec4(p, 1.0);
-}`;
-
-const WIREFRAME_VERTEX = `
-attribute vec3 position;
-attribute vec3 bakerBary;
-attribute float bakerMask;
-uniform mat4 worldViewProjection;
-varying vec3 vBary;
-flat varying int vMask;
-void main() {
-	vBary = bakerBary;
-	vMask = int(bakerMask + 0.5);
-	gl_Position = worldViewProjection * vec4(position, 1.0);
-}`;
-
-const WIREFRAME_FRAGMENT = `
-uniform vec3 u_color;
-uniform float u_width;
-varying vec3 vBary;
-flat varying int vMask;
-void main() {
-	vec2 cov = baker_wireframe(vBary, fwidth(vBary), vMask, u_width, 0.0);
-	if (cov.x <= 0.0) discard;
-	gl_FragColor = vec4(u_color * cov.x, cov.x);  // premultiplied
-}`;
+import { runtime, wireframeCorners } from '@baker/shared';
+import { BAKER_EDGES, EXT_EDGE_VISIBILITY, GLTF_FRONT, controls, loadedPrimitives, readAccessor, requireShader, stageMaterial } from './common.js';
+import { bakerMesh, premultiplied, primitiveAttributes, primitiveIndices } from './geometry.js';
 
 /**
  * The triangles as a non-indexed list with per-corner barycentrics and the triangle's wireframe mask (Baerentzen
@@ -101,8 +37,7 @@ export class BakerEdgesExtension {
 		this.order = 210;
 		this.loader = loader;
 		this.shaders = options.shaders || {};
-		this.style = { color: [0.02, 0.02, 0.03], finWidth: 2.5, outlineWidth: 3, wireframeWidth: 1.25,
-			wireframeColor: [0.95, 0.75, 0.2], classes: 1 | 2 | 4 | 8, ...(options.edges || {}) };
+		this.style = { ...runtime('edges').options, ...(options.edges || {}) };
 	}
 	dispose() { this.loader = null; }
 
@@ -117,13 +52,11 @@ export class BakerEdgesExtension {
 			if (ext.finsOf !== undefined) {
 				const source = loader.gltf.meshes[meshIndex].primitives[ext.finsOf];
 				const crease = source?.extensions?.[BAKER_EDGES]?.creaseAngle ?? Math.PI / 3;
-				const { attributes, declarations } = await primitiveAttributes(loader, primitive, {
-					_FIN_V0: 'bakerFinV0', _FIN_V1: 'bakerFinV1', _FIN_V2: 'bakerFinV2', _FIN_V3: 'bakerFinV3',
-					_FIN_CORNER: 'bakerFinCorner', _FIN_FLAGS: 'bakerFinFlags' });
-				const a = (kind, want) => asComponents(kind, attributes[kind].size, want);
+				const attributes = await primitiveAttributes(loader, primitive,
+					['_FIN_V0', '_FIN_V1', '_FIN_V2', '_FIN_V3', '_FIN_CORNER', '_FIN_FLAGS']);
 				for (const [kind, { data, size }] of Object.entries(attributes)) mesh.setVerticesData(kind, data, false, size);
-				const material = bakerShaderMaterial('baker fins', scene, {
-					vertex: glsl + FIN_VERTEX(declarations, a), fragment: SOLID_FRAGMENT,
+				const material = stageMaterial('baker fins', scene, {
+					glsl, vertex: 'edges_fin.vert', fragment: 'solid.frag',
 					attributes: ['position', ...Object.keys(attributes)], uniforms: ['u_width', 'u_creaseCos', 'u_classes', 'u_color'],
 				});
 				material.backFaceCulling = false;
@@ -140,12 +73,12 @@ export class BakerEdgesExtension {
 			const indices = await primitiveIndices(loader, primitive, positions.length / 3);
 			const outline = ext.outlineNormal ?? '_OUTLINE_NORMAL';
 			if (primitive.attributes[outline] !== undefined) {
-				const { attributes, declarations } = await primitiveAttributes(loader, primitive, { [outline]: 'bakerOutlineNormal' });
-				const a = (kind, want) => asComponents(kind, attributes[kind].size, want);
-				const shell = bakerMesh('baker outline', scene, mesh, positions, indices, attributes);
-				const material = bakerShaderMaterial('baker shell outline', scene, {
-					vertex: glsl + OUTLINE_VERTEX(declarations, a), fragment: SOLID_FRAGMENT,
-					attributes: ['position', 'bakerOutlineNormal'], uniforms: ['u_width', 'u_color'],
+				// under the stage's name whatever the extension calls it
+				const { [outline.toLowerCase()]: normals } = await primitiveAttributes(loader, primitive, [outline]);
+				const shell = bakerMesh('baker outline', scene, mesh, positions, indices, { _outline_normal: normals });
+				const material = stageMaterial('baker shell outline', scene, {
+					glsl, vertex: 'edges_outline.vert', fragment: 'solid.frag',
+					attributes: ['position', '_outline_normal'], uniforms: ['u_width', 'u_color'],
 				});
 				material.setFloat('u_width', this.style.outlineWidth);
 				material.setVector3('u_color', { x: this.style.color[0], y: this.style.color[1], z: this.style.color[2] });
@@ -164,10 +97,10 @@ export class BakerEdgesExtension {
 			if (mask || ext.wireframeHides) {
 				const w = wireframeArrays(positions, indices, mask);
 				const wire = bakerMesh('baker wireframe', scene, mesh, w.positions, Uint32Array.from({ length: w.masks.length }, (_, i) => i),
-					{ bakerBary: { data: w.bary, size: 3 }, bakerMask: { data: w.masks, size: 1 } });
-				const material = premultiplied(bakerShaderMaterial('baker wireframe', scene, {
-					vertex: WIREFRAME_VERTEX, fragment: glsl + WIREFRAME_FRAGMENT,
-					attributes: ['position', 'bakerBary', 'bakerMask'], uniforms: ['u_width', 'u_color'], alpha: true,
+					{ baker_bary: { data: w.bary, size: 3 }, baker_mask: { data: w.masks, size: 1 } });
+				const material = premultiplied(stageMaterial('baker wireframe', scene, {
+					glsl, vertex: 'edges_wireframe.vert', fragment: 'edges_wireframe.frag',
+					attributes: ['position', 'baker_bary', 'baker_mask'], uniforms: ['u_width', 'u_color'], alpha: true,
 				}));
 				material.setFloat('u_width', this.style.wireframeWidth);
 				material.setVector3('u_color', { x: this.style.wireframeColor[0], y: this.style.wireframeColor[1], z: this.style.wireframeColor[2] });

@@ -1,82 +1,8 @@
-// BAKER_fur: Lengyel et al. 2001 shells (one blended pass per shell texture) and fins.
-import { coverageMipsOf } from '@baker/shared';
-import { BAKER_EDGES, BAKER_FUR, GLTF_FRONT, LIGHTS_GLSL, bakerShaderMaterial, controls, coverageMipsTexture, dataTexture, loadedPrimitives, readAccessor, requireShader } from './common.js';
-import { asComponents, bakerMesh, primitiveAttributes, primitiveIndices } from './geometry.js';
-
-const SHELL_VERTEX = `
-attribute vec3 position;
-attribute vec3 normal;
-attribute vec2 uv;
-uniform mat4 world;
-uniform mat4 viewProjection;
-uniform float u_shell;
-uniform float u_shellCount;
-uniform float u_shellSpacing;
-uniform float u_tiling;
-varying vec2 vUvFur;
-varying vec3 vNormalW;
-void main() {
-	vec3 p = baker_fur_shell_position(position, normal, u_shell, u_shellSpacing, u_shellCount, vec3(0.0));
-	vUvFur = baker_fur_shell_uv(uv, u_tiling);
-	vNormalW = normalize(mat3(world) * normal);
-	gl_Position = viewProjection * world * vec4(p, 1.0);
-}`;
-
-const SHELL_FRAGMENT = `
-uniform sampler2D u_texture;
-uniform float u_shell;
-uniform float u_shellCount;
-uniform float u_alphaCutoff;
-uniform float u_alphaTest;
-varying vec2 vUvFur;
-varying vec3 vNormalW;
-void main() {
-	vec4 texel = texture(u_texture, vUvFur);
-	if (texel.a < u_alphaCutoff) discard;
-	vec4 shaded = baker_fur_shell_shade(texel, baker_fur_shell_height(u_shell, u_shellCount), 0.35);
-	vec3 light = u_ambientLight + baker_directional_diffuse(normalize(vNormalW)) * 0.5;
-	gl_FragColor = vec4(shaded.rgb * light, mix(shaded.a, 1.0, u_alphaTest));
-}`;
-
-const FIN_VERTEX = (decl, a) => `
-${decl}
-uniform mat4 world;
-uniform mat4 viewProjection;
-uniform vec3 u_eye;
-uniform float u_length;
-uniform float u_threshold;
-varying vec2 vUvFin;
-varying float vWeight;
-varying vec3 vNormalW;
-void main() {
-	vec3 v0 = ${a('bakerFinV0', 3)}, v1 = ${a('bakerFinV1', 3)}, v2 = ${a('bakerFinV2', 3)}, v3 = ${a('bakerFinV3', 3)};
-	vec3 finNormal = ${a('bakerFurFinNormal', 3)};
-	vec3 p = baker_fur_fin_position(v0, v1, finNormal, ${a('bakerFinCorner', 1)}, u_length);
-	vec3 n0;
-	vec3 n1;
-	baker_fur_fin_face_normals(v0, v1, v2, v3, n0, n1);
-	vec3 eye = (inverse(world) * vec4(u_eye, 1.0)).xyz;
-	vWeight = baker_fur_fin_weight(n0, n1, normalize(eye - p), u_threshold);
-	vUvFin = ${a('bakerFurFinUv', 2)};
-	vNormalW = normalize(mat3(world) * finNormal);
-	gl_Position = viewProjection * world * vec4(p, 1.0);
-}`;
-
-const FIN_FRAGMENT = `
-uniform sampler2D u_texture;
-uniform float u_alphaCutoff;
-uniform float u_alphaTest;
-varying vec2 vUvFin;
-varying float vWeight;
-varying vec3 vNormalW;
-void main() {
-	vec4 texel = texture(u_texture, vUvFin);
-	if (texel.a < u_alphaCutoff) discard;
-	float a = mix(texel.a, 1.0, u_alphaTest) * vWeight;
-	if (a < 0.01) discard;
-	vec3 light = u_ambientLight + baker_directional_diffuse(normalize(vNormalW)) * 0.5;
-	gl_FragColor = vec4(texel.rgb * light, a);
-}`;
+// BAKER_fur: Lengyel et al. 2001 shells (one blended pass per shell texture) and fins; the stages are
+// runtime-shaders/hosts/web/fur_*.glsl.
+import { coverageMipsOf, runtime } from '@baker/shared';
+import { BAKER_EDGES, BAKER_FUR, GLTF_FRONT, controls, coverageMipsTexture, dataTexture, loadedPrimitives, readAccessor, requireShader, stageMaterial } from './common.js';
+import { bakerMesh, primitiveAttributes, primitiveIndices } from './geometry.js';
 
 /**
  * Loader extension for BAKER_fur: shells and fins (Lengyel et al. 2001). options.fur.finThreshold: |N.V| where fins
@@ -91,7 +17,7 @@ export class BakerFurExtension {
 		this.order = 220;
 		this.loader = loader;
 		this.shaders = options.shaders || {};
-		this.finThreshold = options.fur?.finThreshold ?? 0.4;
+		this.finThreshold = options.fur?.finThreshold ?? runtime('fur').options.finThreshold;
 	}
 	dispose() { this.loader = null; }
 
@@ -112,13 +38,11 @@ export class BakerFurExtension {
 				const mipped = chain && await coverageMipsTexture(loader, chain);
 				const texture = mipped || await dataTexture(loader, ext.finTexture);
 				if (!texture) continue;
-				const { attributes, declarations } = await primitiveAttributes(loader, primitive, {
-					_FIN_V0: 'bakerFinV0', _FIN_V1: 'bakerFinV1', _FIN_V2: 'bakerFinV2', _FIN_V3: 'bakerFinV3',
-					_FIN_CORNER: 'bakerFinCorner', _FUR_FIN_NORMAL: 'bakerFurFinNormal', _FUR_FIN_UV: 'bakerFurFinUv' });
-				const a = (kind, want) => asComponents(kind, attributes[kind].size, want);
+				const attributes = await primitiveAttributes(loader, primitive,
+					['_FIN_V0', '_FIN_V1', '_FIN_V2', '_FIN_V3', '_FIN_CORNER', '_FUR_FIN_NORMAL', '_FUR_FIN_UV']);
 				for (const [kind, { data, size }] of Object.entries(attributes)) mesh.setVerticesData(kind, data, false, size);
-				const material = bakerShaderMaterial('baker fur fins', scene, {
-					vertex: glsl + FIN_VERTEX(declarations, a), fragment: `${glsl}${LIGHTS_GLSL}${FIN_FRAGMENT}`,
+				const material = stageMaterial('baker fur fins', scene, {
+					glsl, vertex: 'fur_fin.vert', fragment: 'fur_fin.frag', lit: true,
 					attributes: ['position', ...Object.keys(attributes)], uniforms: ['u_length', 'u_threshold', 'u_alphaCutoff', 'u_alphaTest'],
 					samplers: ['u_texture'], alpha: true,
 				});
@@ -148,8 +72,8 @@ export class BakerFurExtension {
 			textures.forEach((texture, i) => {
 				const alphaTested = Boolean(mipped[i]); // the chain keeps the coverage the alpha test draws
 				const shell = bakerMesh(`baker fur shell ${i}`, scene, mesh, positions, indices, { normal: normals, uv: uvs });
-				const material = bakerShaderMaterial(`baker fur shell ${i}`, scene, {
-					vertex: glsl + SHELL_VERTEX, fragment: `${glsl}${LIGHTS_GLSL}${SHELL_FRAGMENT}`,
+				const material = stageMaterial(`baker fur shell ${i}`, scene, {
+					glsl, vertex: 'fur_shell.vert', fragment: 'fur_shell.frag', lit: true,
 					attributes: ['position', 'normal', 'uv'],
 					uniforms: ['u_shell', 'u_shellCount', 'u_shellSpacing', 'u_tiling', 'u_alphaCutoff', 'u_alphaTest'],
 					samplers: ['u_texture'], alpha: !alphaTested,

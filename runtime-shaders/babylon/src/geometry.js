@@ -26,18 +26,20 @@ export function bakerMesh(name, scene, parent, positions, indices, attributes = 
 	return mesh;
 }
 
-/** The named primitive attributes as vertex data { kind: { data, size } } and GLSL declarations. */
+/**
+ * The primitive attributes `names` (glTF semantics) as vertex data { kind: { data, size } }, each under its lowercased
+ * name (`_FIN_V0` -> `_fin_v0`), the attribute name the shared stages (runtime-shaders/hosts/web) declare. A buffer
+ * of another size than the declaration binds as GL does: extra components unread, missing ones 0.
+ */
 export async function primitiveAttributes(loader, primitive, names) {
 	const attributes = {};
-	const declarations = [];
-	for (const [name, kind] of Object.entries(names)) {
+	for (const name of names) {
 		const index = primitive.attributes?.[name];
 		if (index === undefined) throw new Error(`@baker/babylon: primitive attribute ${name} is missing`);
 		const { data, size } = await readAccessor(loader, index);
-		attributes[kind] = { data, size };
-		declarations.push(`attribute ${glslType(size)} ${kind};`);
+		attributes[name.toLowerCase()] = { data, size };
 	}
-	return { attributes, declarations: declarations.join('\n') };
+	return attributes;
 }
 
 /** `expression` of `size` components as a `want`-component value (custom attributes may carry padding). */

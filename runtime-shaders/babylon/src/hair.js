@@ -1,54 +1,8 @@
-// BAKER_hair: view-facing ribbons extruded in the vertex shader, Kajiya-Kay shading (RTR4 14.7).
-import { BAKER_HAIR, LIGHTS_GLSL, bakerShaderMaterial, controls, loadedPrimitives, readAccessor, requireShader } from './common.js';
-import { asComponents, bakerMesh } from './geometry.js';
-
-const HAIR_VERTEX = (a) => `
-attribute vec3 position;
-attribute ${a.tangentType} bakerTangent;
-attribute ${a.paramType} bakerParam;
-attribute float bakerSide;
-attribute float bakerWidthScale;
-uniform mat4 world;
-uniform mat4 view;
-uniform mat4 projection;
-uniform vec3 u_eye;
-uniform vec2 u_viewport;
-uniform float u_rootWidth;
-uniform float u_tipWidth;
-varying float vOpacity;
-varying vec3 vTangentW;
-varying vec3 vViewW;
-void main() {
-	vec3 tangent = ${a.tangent};
-	vec3 eye = (inverse(world) * vec4(u_eye, 1.0)).xyz;  // object space
-	float w = baker_hair_width(u_rootWidth, u_tipWidth, ${a.param}, bakerWidthScale);
-	float tanHalfFovY = 1.0 / projection[1][1];
-	vec2 cov = baker_hair_coverage(w, baker_hair_pixel_size(distance(eye, position), tanHalfFovY, u_viewport.y));
-	vec3 p = baker_hair_ribbon_position(position, tangent, eye, cov.x, bakerSide);
-	vOpacity = cov.y;
-	vec4 worldPosition = world * vec4(p, 1.0);
-	vTangentW = normalize(mat3(world) * tangent);
-	vViewW = u_eye - worldPosition.xyz;
-	gl_Position = projection * view * worldPosition;
-}`;
-
-const HAIR_FRAGMENT = `
-uniform vec3 u_color;
-uniform vec3 u_specular;
-uniform float u_exponent;
-varying float vOpacity;
-varying vec3 vTangentW;
-varying vec3 vViewW;
-void main() {
-	vec3 T = normalize(vTangentW);
-	vec3 V = normalize(vViewW);
-	vec3 color = u_ambientLight * u_color;
-	for (int i = 0; i < 4; i++) {
-		if (i >= u_lightCount) break;
-		color += u_lightColor[i] * baker_hair_kajiya_kay(T, u_lightDirection[i], V, u_color, u_specular, u_exponent);
-	}
-	gl_FragColor = vec4(color, vOpacity);
-}`;
+// BAKER_hair: view-facing ribbons extruded in the vertex shader, Kajiya-Kay shading (RTR4 14.7); the stages are
+// runtime-shaders/hosts/web/hair_ribbon.*.glsl.
+import { runtime } from '@baker/shared';
+import { BAKER_HAIR, controls, loadedPrimitives, readAccessor, requireShader, stageMaterial } from './common.js';
+import { bakerMesh } from './geometry.js';
 
 /**
  * Ribbon arrays of a BAKER_hair primitive: ribbon vertex r is line vertex r / 2 on side r % 2 (the extension's
@@ -85,7 +39,7 @@ export class BakerHairExtension {
 		this.order = 230;
 		this.loader = loader;
 		this.shaders = options.shaders || {};
-		this.style = { specular: [0.3, 0.28, 0.25], exponent: 60, ...(options.hair || {}) };
+		this.style = { ...runtime('hair').options, ...(options.hair || {}) };
 	}
 	dispose() { this.loader = null; }
 
@@ -104,22 +58,22 @@ export class BakerHairExtension {
 				ext.widthScale !== undefined ? readAccessor(loader, ext.widthScale) : null,
 			]);
 			const ribbon = ribbonArrays({ position, tangent, param }, widths && widths.data, ext.verticesPerStrand);
-			const ribbons = bakerMesh('baker hair ribbons', scene, mesh.parent, ribbon.positions, indices.data, ribbon.attributes);
+			// under the shared stage's attribute names
+			const { bakerTangent, bakerParam, bakerSide, bakerWidthScale } = ribbon.attributes;
+			const attributes = { baker_tangent: bakerTangent, baker_param: bakerParam, baker_side: bakerSide, baker_widthScale: bakerWidthScale };
+			const ribbons = bakerMesh('baker hair ribbons', scene, mesh.parent, ribbon.positions, indices.data, attributes);
 			ribbons.position.copyFrom(mesh.position);
 			if (mesh.rotationQuaternion) ribbons.rotationQuaternion = mesh.rotationQuaternion.clone();
 			ribbons.scaling.copyFrom(mesh.scaling);
 			const json = primitive.material !== undefined ? loader.gltf.materials?.[primitive.material] : null;
 			const base = json?.pbrMetallicRoughness?.baseColorFactor ?? [0.18, 0.11, 0.06, 1];
-			const material = bakerShaderMaterial('baker hair ribbons', scene, {
-				vertex: glsl + HAIR_VERTEX({
-					tangentType: tangent.size === 1 ? 'float' : `vec${tangent.size}`, paramType: param.size === 1 ? 'float' : `vec${param.size}`,
-					tangent: asComponents('bakerTangent', tangent.size, 3), param: asComponents('bakerParam', param.size, 1),
-				}),
-				fragment: `${glsl}${LIGHTS_GLSL}${HAIR_FRAGMENT}`,
-				attributes: ['position', ...Object.keys(ribbon.attributes)],
-				uniforms: ['u_rootWidth', 'u_tipWidth', 'u_color', 'u_specular', 'u_exponent'], alpha: true,
+			const material = stageMaterial('baker hair ribbons', scene, {
+				glsl, vertex: 'hair_ribbon.vert', fragment: 'hair_ribbon.frag', lit: true,
+				attributes: ['position', ...Object.keys(attributes)],
+				uniforms: ['u_rootWidth', 'u_tipWidth', 'u_lodWidthScale', 'u_color', 'u_specular', 'u_exponent'], alpha: true,
 			});
 			material.setFloat('u_rootWidth', ext.rootWidth);
+			material.setFloat('u_lodWidthScale', 1); // every strand (the lods are @baker/three's setHairLod)
 			material.setFloat('u_tipWidth', ext.tipWidth);
 			material.setVector3('u_color', { x: base[0], y: base[1], z: base[2] });
 			const s = this.style.specular;

@@ -1,6 +1,6 @@
 // BAKER_thickness: back-lit translucency from the baked per-vertex thickness (GDC 2011 form of RTR4 eq. 14.30).
 import { thicknessParameters } from '@baker/shared';
-import { firstComponent, requireShader, setAttribute, BAKER_THICKNESS } from './common.js';
+import { descriptorUniforms, firstComponent, requireShader, setAttribute, BAKER_THICKNESS } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 // the extension's parameters with defaults are engine-neutral (@baker/shared)
@@ -16,14 +16,7 @@ export const BakerThicknessExtension = surfaceExtension('translucency', BAKER_TH
 		glsl: requireShader(this.shaders, 'translucency'),
 		attributes: [['bakerThickness', size]],
 		thickness: firstComponent('v_bakerThickness', size),
-		struct: 'BakerThickness(u_bakerThAttenuation, u_bakerThDistortion, u_bakerThPower, u_bakerThScale, u_bakerThAmbient, u_bakerThColor)',
-		uniforms: {
-			u_bakerThAttenuation: { type: 'float', value: params.attenuationDistance },
-			u_bakerThDistortion: { type: 'float', value: params.distortion },
-			u_bakerThPower: { type: 'float', value: params.power },
-			u_bakerThScale: { type: 'float', value: params.scale },
-			u_bakerThAmbient: { type: 'float', value: params.ambient },
-			u_bakerThColor: { type: 'vec3', value: params.subsurfaceColor },
-		},
+		// options.thickness overrides the extension's properties of the same names
+		...descriptorUniforms('thickness', { ...ext, ...(this.options.thickness || {}) }),
 	};
 });

@@ -1,7 +1,7 @@
 // BAKER_tonal_art_map: hatching with the baked tonal art map, packed layout (Praun et al. 2001; RTR4 15.3).
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { BaseTexture } from '@babylonjs/core/Materials/Textures/baseTexture.js';
-import { BAKER_TONAL_ART_MAP, requireShader } from './common.js';
+import { BAKER_TONAL_ART_MAP, descriptorUniforms, requireShader } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 async function decodeImage(loader, textureIndex) {
@@ -49,16 +49,9 @@ export const BakerTonalArtMapExtension = surfaceExtension('tam', BAKER_TONAL_ART
 		return null;
 	}
 	const [t012, t345] = await tamTextures(this.loader, ext);
-	const tones = ext.tones;
 	return {
 		glsl: requireShader(this.shaders, 'hatching'),
 		samplers: { u_bakerTam012: t012, u_bakerTam345: t345 },
-		uniforms: {
-			u_bakerTamScale: { type: 'float', value: ext.scale ?? ext.levels[0].size },
-			u_bakerTamFinestSize: { type: 'float', value: ext.levels[0].size },
-			u_bakerTamLevels: { type: 'float', value: ext.levels.length },
-			u_bakerTamTonesA: { type: 'vec3', value: tones.slice(0, 3) },
-			u_bakerTamTonesB: { type: 'vec3', value: tones.slice(3, 6) },
-		},
+		...descriptorUniforms('tonal_art_map', ext),
 	};
 });

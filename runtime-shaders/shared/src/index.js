@@ -1,45 +1,38 @@
-// Engine-neutral parts of baker's web runtimes (@baker/three, @baker/babylon): the extension names, the techniques
-// (switch names) and the per-load registry of their on/off handlers, and the lookup of a runtime-shaders module in
-// the options. No engine import here: each runtime adds what its engine needs in its own common.js.
+// Engine-neutral parts of baker's web runtimes (@baker/three, @baker/babylon): the runtime descriptors
+// (techniques.js) and what is derived from them (extension names, the techniques' switches), the per-load registry
+// of the switches' on/off handlers, and the lookup of a runtime-shaders module in the options. No engine import
+// here: each runtime adds what its engine needs in its own common.js.
 
-export const BAKER_THICKNESS = 'BAKER_thickness';
-export const BAKER_CURVATURE = 'BAKER_curvature';
-export const BAKER_SKIN_LUT = 'BAKER_skin_lut';
-export const BAKER_EDGES = 'BAKER_edges';
-export const BAKER_TONAL_ART_MAP = 'BAKER_tonal_art_map';
-export const BAKER_TOON_RAMP = 'BAKER_toon_ramp';
+import { RUNTIMES } from './techniques.js';
+
+export { RUNTIMES, runtime, runtimeOfSwitch } from './techniques.js';
+export { structExpression, uniformValue, uniformValues } from './values.js';
+export { STAGES } from './stages.js';
+
+const extensionOf = (name) => RUNTIMES.find((r) => r.name === name).extension;
+export const BAKER_THICKNESS = extensionOf('thickness');
+export const BAKER_CURVATURE = extensionOf('curvature');
+export const BAKER_SKIN_LUT = extensionOf('skin_lut');
+export const BAKER_EDGES = extensionOf('edges');
+export const BAKER_TONAL_ART_MAP = extensionOf('tonal_art_map');
+export const BAKER_TOON_RAMP = extensionOf('toon_ramp');
 export const BAKER_GLYPH_ATLAS = 'BAKER_glyph_atlas';
-export const BAKER_TEXT = 'BAKER_text';
-export const BAKER_HAIR = 'BAKER_hair';
-export const BAKER_FUR = 'BAKER_fur';
-export const BAKER_CAUSTICS = 'BAKER_caustics';
-export const BAKER_HAIR_CARDS = 'BAKER_hair_cards';
-export const BAKER_NORMAL_BLUR = 'BAKER_normal_blur';
+export const BAKER_TEXT = extensionOf('text');
+export const BAKER_HAIR = extensionOf('hair');
+export const BAKER_FUR = extensionOf('fur');
+export const BAKER_CAUSTICS = extensionOf('caustics');
+export const BAKER_HAIR_CARDS = extensionOf('hair_cards');
+export const BAKER_NORMAL_BLUR = extensionOf('normal_blur');
 
-/** Techniques (switch names) and the extension each comes from. Techniques off by default are debug views. */
-export const TECHNIQUES = {
-	translucency: { extension: BAKER_THICKNESS, label: 'translucency' },
-	skin: { extension: BAKER_SKIN_LUT, label: 'pre-integrated skin' },
-	toon: { extension: BAKER_TOON_RAMP, label: 'toon ramp' },
-	tam: { extension: BAKER_TONAL_ART_MAP, label: 'hatching (TAM)' },
-	fins: { extension: BAKER_EDGES, label: 'edge fins' },
-	outline: { extension: BAKER_EDGES, label: 'shell outline' },
-	wireframe: { extension: BAKER_EDGES, label: 'wireframe', defaultOff: true },
-	fur: { extension: BAKER_FUR, label: 'fur shells + fins' },
-	hair: { extension: BAKER_HAIR, label: 'hair ribbons' },
-	text: { extension: BAKER_TEXT, label: 'MSDF text' },
-	caustics: { extension: BAKER_CAUSTICS, label: 'caustics' },
-	cards: { extension: BAKER_HAIR_CARDS, label: 'hair cards (Kajiya-Kay)' },
-	normalBlur: { extension: BAKER_NORMAL_BLUR, label: 'blurred diffuse normals' },
-	curvature: { extension: BAKER_CURVATURE, label: 'curvature view', defaultOff: true },
-};
+/**
+ * Techniques (switch names) and the extension each comes from, in display order (RUNTIMES' order). Techniques off
+ * by default are debug views.
+ */
+export const TECHNIQUES = Object.fromEntries(RUNTIMES.flatMap((r) => r.switches.map((s) => [s.name,
+	{ extension: r.extension, label: s.label, ...(s.defaultOff ? { defaultOff: true } : {}) }])));
 
-const GLSL_NAMES = {
-	translucency: 'baker_translucency.glsl', skin: 'baker_skin.glsl', toon: 'baker_toon.glsl',
-	hatching: 'baker_hatching.glsl', edges: 'baker_edges.glsl', fur: 'baker_fur.glsl', hair: 'baker_hair.glsl',
-	text: 'baker_text.glsl', caustics: 'baker_caustics.glsl', cards: 'baker_hair_cards.glsl',
-	normalBlur: 'baker_normal_blur.glsl',
-};
+// options.shaders key -> runtime-shaders/ file, for the message naming a missing module
+const GLSL_NAMES = Object.fromEntries(RUNTIMES.filter((r) => r.modules.key).map((r) => [r.modules.key, r.modules.glsl]));
 
 /** The runtime-shaders module `key` of options.shaders, as given; throws a message naming the file when missing. */
 export function shaderText(shaders, key, packageName) {

@@ -1,8 +1,7 @@
 // BAKER_caustics: the baked, looping caustic frames projected in world space along the refracted sun direction and
 // added to the directional (sun) light of the material (RTR4 14.5.3; runtime-shaders/baker_caustics.glsl).
-import * as THREE from 'three';
 import { causticsClock, causticsFrame, causticsParameters } from '@baker/shared';
-import { requireShader, textureOf } from './common.js';
+import { descriptorUniforms, requireShader, textureOf } from './common.js';
 import { surfacePlugin } from './surface.js';
 
 /**
@@ -19,17 +18,11 @@ export const BakerCausticsPlugin = surfacePlugin('caustics', async function (ext
 	// the floor is mostly seen at a grazing angle: filtered anisotropically, as Babylon.js does by default (4)
 	for (const frame of frames) frame.anisotropy = Math.max(frame.anisotropy, 4);
 	const clock = causticsClock(this.options.caustics);
+	const part = descriptorUniforms('caustics', ext);
 	const uniforms = {
+		...part.uniforms,
 		u_bakerCausticsFirst: { value: frames[0] },
 		u_bakerCausticsNext: { value: frames[Math.min(1, frames.length - 1)] },
-		u_bakerCausticsBlend: { value: 0 },
-		u_bakerCausticsProjection: { value: new THREE.Vector3(...params.projectionDirection) },
-		u_bakerCausticsWaterLevel: { value: params.waterLevel },
-		u_bakerCausticsDepth: { value: params.depth },
-		u_bakerCausticsTileSize: { value: params.tileSize },
-		u_bakerCausticsScale: { value: params.intensityScale },
-		u_bakerCausticsStrength: { value: params.strength },
-		u_bakerCausticsFadeDistance: { value: params.fadeDistance },
 	};
 	const previous = material.onBeforeRender;
 	material.onBeforeRender = function (...args) {
@@ -43,6 +36,6 @@ export const BakerCausticsPlugin = surfacePlugin('caustics', async function (ext
 		glsl: requireShader(this.shaders, 'caustics'),
 		worldPosition: true,
 		uniforms,
-		types: { u_bakerCausticsFirst: 'sampler2D', u_bakerCausticsNext: 'sampler2D', u_bakerCausticsProjection: 'vec3' },
+		types: { ...part.types, u_bakerCausticsFirst: 'sampler2D', u_bakerCausticsNext: 'sampler2D' },
 	};
 });

@@ -3,7 +3,7 @@
 // viewport uniform). Not an entry point: import from index.js.
 import * as THREE from 'three';
 
-import { parseKtx2Rgba8, shaderText } from '@baker/shared';
+import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: @baker/shared, re-exported here
 export {
@@ -89,11 +89,64 @@ export async function coverageMipsTexture(parser, entry) {
 	}
 }
 
+const VALUES = { vec2: (v) => new THREE.Vector2(...v), vec3: (v) => new THREE.Vector3(...v), vec4: (v) => new THREE.Vector4(...v) };
+
+/**
+ * The uniforms of technique `name`'s descriptor for the extension object `ext` as three.js uniforms, their GLSL types
+ * (for the declarations BakerSurface writes) and the expression of the module's parameter struct.
+ */
+export function descriptorUniforms(name, ext) {
+	const descriptor = runtime(name);
+	const uniforms = {};
+	const types = {};
+	for (const spec of descriptor.uniforms) {
+		const value = uniformValue(spec, ext);
+		uniforms[spec.name] = { value: VALUES[spec.type]?.(value) ?? value };
+		types[spec.name] = spec.type;
+	}
+	return { uniforms, types, struct: structExpression(descriptor) };
+}
+
 /** A ShaderMaterial lit by the scene's lights (view-space directionalLights[] etc. through lights_pars_begin). */
 export function litShaderMaterial(parameters) {
 	const uniforms = THREE.UniformsUtils.merge([THREE.UniformsLib.lights]);
 	Object.assign(uniforms, parameters.uniforms); // not cloned: textures stay shared
 	return new THREE.ShaderMaterial({ ...parameters, uniforms, lights: true });
+}
+
+// What the shared stages (runtime-shaders/hosts/web) ask of a host, in three.js's terms: object space in, the lights'
+// space is view space (directionalLights[] of lights_pars_begin).
+const VERTEX_PRELUDE = `
+vec4 baker_clip(vec3 p) { return projectionMatrix * modelViewMatrix * vec4(p, 1.0); }
+vec3 baker_object_eye() { return (inverse(modelMatrix) * vec4(cameraPosition, 1.0)).xyz; }
+vec3 baker_light_normal(vec3 n) { return normalize(normalMatrix * n); }
+vec3 baker_light_vector(vec3 d) { return (modelViewMatrix * vec4(d, 0.0)).xyz; }
+vec3 baker_to_eye(vec3 p) { return -(modelViewMatrix * vec4(p, 1.0)).xyz; }
+float baker_projection_y() { return projectionMatrix[1][1]; }
+`;
+const LIGHTS_PRELUDE = `#include <common>
+#include <lights_pars_begin>
+#if NUM_DIR_LIGHTS > 0
+const int BAKER_MAX_LIGHTS = NUM_DIR_LIGHTS;
+vec3 baker_light_direction(int i) { return directionalLights[i].direction; }
+vec3 baker_light_color(int i) { return directionalLights[i].color; }
+#else
+const int BAKER_MAX_LIGHTS = 0;
+vec3 baker_light_direction(int i) { return vec3(0.0); }
+vec3 baker_light_color(int i) { return vec3(0.0); }
+#endif
+int baker_light_count() { return BAKER_MAX_LIGHTS; }
+vec3 baker_ambient_light() { return ambientLightColor; }
+`;
+
+/**
+ * A ShaderMaterial drawing the shared stages `vertex` and `fragment` (names of runtime-shaders/hosts/web files) with
+ * the runtime module `glsl`; `lit`: the fragment reads the scene's lights (a litShaderMaterial).
+ */
+export function stageMaterial({ glsl, vertex, fragment, lit = false, ...parameters }) {
+	const vertexShader = VERTEX_PRELUDE + glsl + STAGES[vertex];
+	const fragmentShader = lit ? LIGHTS_PRELUDE + glsl + STAGES.lights + STAGES[fragment] : glsl + STAGES[fragment];
+	return (lit ? litShaderMaterial : (p) => new THREE.ShaderMaterial(p))({ ...parameters, vertexShader, fragmentShader });
 }
 
 // Diffuse light from the directional lights of the scene, view space: sum of color * max(N.L, 0).

@@ -1,50 +1,8 @@
-// BAKER_hair: view-facing ribbons extruded in the vertex shader, Kajiya-Kay shading.
+// BAKER_hair: view-facing ribbons extruded in the vertex shader, Kajiya-Kay shading; the stages are
+// runtime-shaders/hosts/web/hair_ribbon.*.glsl.
 import * as THREE from 'three';
-import { BAKER_HAIR, controls, litShaderMaterial, primitiveOf, requireShader, trackViewport } from './common.js';
-
-const HAIR_VERTEX = `
-attribute vec3 baker_tangent;
-attribute float baker_param;
-attribute float baker_side;
-attribute float baker_widthScale;
-uniform float u_rootWidth;
-uniform float u_tipWidth;
-uniform float u_lodWidthScale;
-uniform vec2 u_viewport;
-varying float vOpacity;
-varying vec3 vTangent;
-varying vec3 vView;
-void main() {
-	vec3 eye = (inverse(modelMatrix) * vec4(cameraPosition, 1.0)).xyz;  // object space
-	float w = baker_hair_lod_width(baker_hair_width(u_rootWidth, u_tipWidth, baker_param, baker_widthScale), u_lodWidthScale);
-	float tanHalfFovY = 1.0 / projectionMatrix[1][1];
-	vec2 cov = baker_hair_coverage(w, baker_hair_pixel_size(distance(eye, position), tanHalfFovY, u_viewport.y));
-	vec3 p = baker_hair_ribbon_position(position, baker_tangent, eye, cov.x, baker_side);
-	vOpacity = cov.y;
-	vec4 view = modelViewMatrix * vec4(p, 1.0);
-	vTangent = normalize((modelViewMatrix * vec4(baker_tangent, 0.0)).xyz);
-	vView = -view.xyz;
-	gl_Position = projectionMatrix * view;
-}`;
-
-const HAIR_FRAGMENT = `
-uniform vec3 u_color;
-uniform vec3 u_specular;
-uniform float u_exponent;
-varying float vOpacity;
-varying vec3 vTangent;
-varying vec3 vView;
-void main() {
-	vec3 T = normalize(vTangent);
-	vec3 V = normalize(vView);
-	vec3 color = ambientLightColor * u_color;
-#if NUM_DIR_LIGHTS > 0
-	for (int i = 0; i < NUM_DIR_LIGHTS; i++) {
-		color += directionalLights[i].color * baker_hair_kajiya_kay(T, directionalLights[i].direction, V, u_color, u_specular, u_exponent);
-	}
-#endif
-	gl_FragColor = vec4(color, vOpacity);
-}`;
+import { runtime } from '@baker/shared';
+import { BAKER_HAIR, controls, primitiveOf, requireShader, stageMaterial, trackViewport } from './common.js';
 
 /**
  * Ribbon geometry of a BAKER_hair primitive: ribbon vertex r is line vertex r / 2 on side r % 2 (the extension's
@@ -100,7 +58,8 @@ export class BakerHairPlugin {
 		this.parser = parser;
 		this.name = BAKER_HAIR;
 		this.shaders = options.shaders || {};
-		this.lod = options.hairLod ?? 0; // level of `lods` drawn at load (setHairLod changes it later)
+		this.lod = options.hairLod ?? runtime('hair').options.lod; // level of `lods` drawn at load (setHairLod changes it later)
+		this.style = { ...runtime('hair').options, ...(options.hair || {}) };
 	}
 
 	async afterRoot(result) {
@@ -121,12 +80,11 @@ export class BakerHairPlugin {
 				u_rootWidth: { value: ext.rootWidth }, u_tipWidth: { value: ext.tipWidth }, u_lodWidthScale: { value: 1 },
 				u_viewport: { value: new THREE.Vector2(1, 1) },
 				u_color: { value: new THREE.Vector3(base.r, base.g, base.b) },
-				u_specular: { value: new THREE.Vector3(0.3, 0.28, 0.25) }, u_exponent: { value: 60 },
+				u_specular: { value: new THREE.Vector3(...this.style.specular) }, u_exponent: { value: this.style.exponent },
 			};
 			const glsl = requireShader(this.shaders, 'hair');
-			const ribbons = new THREE.Mesh(geometry, litShaderMaterial({
-				name: 'baker hair ribbons', uniforms, vertexShader: glsl + HAIR_VERTEX,
-				fragmentShader: `#include <common>\n#include <lights_pars_begin>\n${glsl}${HAIR_FRAGMENT}`,
+			const ribbons = new THREE.Mesh(geometry, stageMaterial({
+				name: 'baker hair ribbons', uniforms, glsl, vertex: 'hair_ribbon.vert', fragment: 'hair_ribbon.frag', lit: true,
 				transparent: true, side: THREE.DoubleSide,
 			}));
 			ribbons.name = 'baker hair ribbons';

@@ -78,15 +78,15 @@ vBakerUv = uv;`)
 		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
 			float bakerSkinK = ${p.skin.curvature('nonPerturbedNormal', 'L')};
 			${p.normalBlur ? `f = u_baker_normalBlur_on > 0.5
-				? baker_skin_diffuse_normals(u_bakerSkin, u_bakerSkinLut, bakerNdotL, bakerSkinK)
-				: baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, bakerSkinK);`
-		: 'f = baker_skin_diffuse(u_bakerSkin, u_bakerSkinLut, normal, normal, L, bakerSkinK);'}
+				? baker_skin_diffuse_normals(${p.skin.struct}, u_bakerSkinLut, bakerNdotL, bakerSkinK)
+				: baker_skin_diffuse(${p.skin.struct}, u_bakerSkinLut, normal, normal, L, bakerSkinK);`
+		: `f = baker_skin_diffuse(${p.skin.struct}, u_bakerSkinLut, normal, normal, L, bakerSkinK);`}
 		}`);
 		if (p.toon) diffuse.push(`if (u_baker_toon_on > 0.5) {
 			// the ramp indexed by the lit shade so far (N.L, or the skin LUT's luminance mapped back to -1..1)
 			float nl = ${p.skin ? 'u_baker_skin_on > 0.5 ? 2.0 * dot(f, vec3(0.2126, 0.7152, 0.0722)) - 1.0 : dotNL' : 'dotNL'};
-			f = vec3(u_bakerToonXtoon == 0 ? baker_toon_ramp(u_bakerToonRamp, nl)
-				: baker_xtoon(u_bakerToonRamp, nl, u_bakerToonXtoon == 1
+			f = vec3(u_bakerToonXtoon < 0.5 ? baker_toon_ramp(u_bakerToonRamp, nl)
+				: baker_xtoon(u_bakerToonRamp, nl, u_bakerToonXtoon < 1.5
 					? baker_xtoon_detail_depth(-vViewPosition.z, u_bakerToonDepthRange.x, u_bakerToonDepthRange.y)
 					: baker_xtoon_detail_orientation(normal, normalize(vViewPosition) * -1.0, u_bakerToonOrientationPower)));
 		}`);
@@ -107,7 +107,7 @@ ${p.cards ? CARDS_FRAME : ''}
 		${diffuse.join('\n\t\t')}
 		reflectedLight.directDiffuse += directionalLights[i].color * BRDF_Lambert(${albedo}) * (f - vec3(saturate(dotNL)));
 		${p.translucency ? `reflectedLight.directDiffuse += u_baker_translucency_on * diffuseColor.rgb * directionalLights[i].color *
-			baker_translucency(u_bakerThickness, normal, normalize(vViewPosition), L, vBaker${p.translucency.attribute});` : ''}
+			baker_translucency(${p.translucency.struct}, normal, normalize(vViewPosition), L, vBaker${p.translucency.attribute});` : ''}
 		${p.cards ? CARDS_LIGHT : ''}
 		bakerSun += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * saturate(dotNL);
 	}

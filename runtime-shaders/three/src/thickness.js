@@ -1,7 +1,6 @@
 // BAKER_thickness: back-lit translucency from the baked per-vertex thickness.
-import * as THREE from 'three';
 import { thicknessParameters } from '@baker/shared';
-import { geometryHas, requireShader } from './common.js';
+import { descriptorUniforms, geometryHas, requireShader } from './common.js';
 import { surfacePlugin } from './surface.js';
 
 // the extension's parameters with defaults are engine-neutral (@baker/shared)
@@ -12,19 +11,10 @@ export const BakerThicknessPlugin = surfacePlugin('translucency', function (ext,
 	const params = thicknessParameters(ext);
 	if (!geometryHas(object, params.attribute)) return null; // texture-only thickness: not drawn by this plugin
 	material.userData.bakerThickness = params;
-	const c = params.subsurfaceColor;
 	return {
 		glsl: requireShader(this.shaders, 'translucency'),
 		attributes: [[params.attribute.toLowerCase(), 'float']],
 		attribute: params.attribute.toLowerCase(),
-		uniforms: {
-			u_bakerThickness: {
-				value: {
-					attenuationDistance: params.attenuationDistance, distortion: params.distortion, power: params.power,
-					scale: params.scale, ambient: params.ambient, subsurfaceColor: new THREE.Vector3(c[0], c[1], c[2]),
-				},
-			},
-		},
-		types: { u_bakerThickness: 'BakerThickness' },
+		...descriptorUniforms('thickness', ext),
 	};
 });

@@ -1,6 +1,6 @@
 // BAKER_tonal_art_map: hatching with the baked tonal art map (packed layout).
 import * as THREE from 'three';
-import { requireShader, textureOf } from './common.js';
+import { descriptorUniforms, requireShader, textureOf } from './common.js';
 import { surfacePlugin } from './surface.js';
 
 /**
@@ -32,17 +32,10 @@ export const BakerTonalArtMapPlugin = surfacePlugin('tam', async function (ext) 
 		return null;
 	}
 	const [t012, t345] = await tamTextures(this.parser, ext);
-	const tones = ext.tones;
+	const { uniforms, types } = descriptorUniforms('tonal_art_map', ext);
 	return {
 		glsl: requireShader(this.shaders, 'hatching'),
-		uniforms: {
-			u_bakerTam012: { value: t012 }, u_bakerTam345: { value: t345 },
-			u_bakerTamScale: { value: ext.scale ?? ext.levels[0].size },
-			u_bakerTamFinestSize: { value: ext.levels[0].size },
-			u_bakerTamLevels: { value: ext.levels.length },
-			u_bakerTamTonesA: { value: new THREE.Vector3(tones[0], tones[1], tones[2]) },
-			u_bakerTamTonesB: { value: new THREE.Vector3(tones[3], tones[4], tones[5]) },
-		},
-		types: { u_bakerTam012: 'sampler2D', u_bakerTam345: 'sampler2D', u_bakerTamTonesA: 'vec3', u_bakerTamTonesB: 'vec3' },
+		uniforms: { ...uniforms, u_bakerTam012: { value: t012 }, u_bakerTam345: { value: t345 } },
+		types: { ...types, u_bakerTam012: 'sampler2D', u_bakerTam345: 'sampler2D' },
 	};
 });
