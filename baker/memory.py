@@ -42,7 +42,7 @@ FIXED = {"thickness": 110 * MIB, "curvature": 16 * MIB, "edges": 8 * MIB, "skin"
 PER_TEXEL = {"thickness": 100, "curvature": 100, "normal-blur": 1200}
 DEFAULT_TEXELS = {"thickness": 1024 * 1024, "curvature": 0,  # curvature measured without its texture (off by default)
                   "normal-blur": 0}
-# automatic texture sizes (texel density, baker/geometry/texture_space.py): 8 texels along the mean edge puts about
+# automatic texture sizes (texel density, baker/texels/texture_space.py): 8 texels along the mean edge puts about
 # 28 texels on a triangle's area, over the UV coverage (about half) and rounded to a power of two per side (up to 2x
 # the texels): 128 per triangle bounds it; each material's texture stays within [64^2, 2048^2]
 AUTO_TEXELS_PER_TRIANGLE = 128

@@ -18,9 +18,9 @@ runs them:
 - `coverage_per_mip`: for baker's fur shells (the defaults: 16 shells of 128^2; the innermost, a middle and an outer
   shell), the fur fin texture and a synthetic hair-card texture (60 antialiased strands 0.6-1.2 texels wide on 256^2),
   the fraction of texels whose alpha passes the cutoff (0.5) at every level, for the chain baker ships
-  (baker.gltf.alpha_mips.alpha_mip_chain) and for the plain box chain (the same area filter, alpha not scaled: what
+  (baker.texels.alpha_mips.alpha_mip_chain) and for the plain box chain (the same area filter, alpha not scaled: what
   mipmapping the PNG gives), plus the same levels' coverage under bilinear sampling (4 x 4 samples per texel,
-  baker.gltf.alpha_mips.bilinear_coverage: what a GPU's LINEAR filter sees). Time: building the chain against
+  baker.texels.alpha_mips.bilinear_coverage: what a GPU's LINEAR filter sees). Time: building the chain against
   building the box chain (the same filter without the binary search), best of --repeat.
 """
 from __future__ import annotations
@@ -46,7 +46,7 @@ from baker.techniques.hair.guide_solver import resample_strands, select_guides  
 from techniques.cards_groom import make_groom, write_groom_usd  # noqa: E402
 from techniques.curly_groom import make_curly_groom  # noqa: E402
 from techniques.cards_views import card_silhouette, coverage_image, strand_silhouette, view_basis  # noqa: E402
-from baker.gltf.alpha_mips import (alpha_mip_chain, bilinear_coverage, level_sizes,  # noqa: E402
+from baker.texels.alpha_mips import (alpha_mip_chain, bilinear_coverage, level_sizes,  # noqa: E402
                                    levels_off_coverage)
 from baker.techniques.fur.kernel import bake_fur_textures  # noqa: E402
 from baker.techniques.fur.options import FurOptions  # noqa: E402

@@ -31,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from baker.techniques.normal_blur.kernel import TangentFrames, blur_normals  # noqa: E402
-from baker.techniques.skin.profile import DEON_SKIN  # noqa: E402
+from baker.diffusion_profile import DEON_SKIN  # noqa: E402
 from common import best_of  # noqa: E402
 
 

@@ -42,7 +42,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from baker import readers  # noqa: E402
-from baker.geometry.texture_space import rasterize_uv  # noqa: E402
+from baker.texels.texture_space import rasterize_uv  # noqa: E402
 from baker.gltf.document import GltfDocument  # noqa: E402
 from common import baker_cli, run_command  # noqa: E402
 

@@ -6,7 +6,7 @@
 - time: whole processes, interleaved, best of ``--repeat``: ``baker bake MESH --bakes thickness --thickness-per-texel
   false`` (per-vertex work only, no unwrap) against ``--bakes tam`` and ``--bakes thickness`` (each unwraps), and
   thickness at 2048^2 (the bunny's automatic size before thickness's stopped at 1024^2).
-- layout: :func:`baker.geometry.texture_space.unwrap` as the bakes call it (padding for the automatic texture size S):
+- layout: :func:`baker.texels.texture_space.unwrap` as the bakes call it (padding for the automatic texture size S):
   its time, the charts, texel utilisation (texel centres covered at S x S / all texels), the L2 stretch of Sander et
   al., "Texture Mapping Progressive Meshes" (SIGGRAPH 2001), normalised so that 1 is no stretch, and the spread of
   the 3D-area / UV-area ratio (5th and 95th percentiles, 1 = the mean density). ``--unbounded`` also measures
@@ -65,9 +65,9 @@ def stretch(positions: np.ndarray, uv: np.ndarray, faces: np.ndarray) -> tuple[f
 
 
 def layout_row(mesh: Path, unbounded: bool) -> list:
-    from baker.geometry import texture_space
+    from baker.texels import texture_space
     from baker import readers
-    from baker.geometry.texture_target import UNWRAP_COVERAGE, _statistics
+    from baker.texels.targets import UNWRAP_COVERAGE, _statistics
 
     geometry = readers.read(mesh).primitive(0, 0)
     size = texture_space.size_for_density(_statistics([geometry], None, UNWRAP_COVERAGE))
@@ -88,7 +88,7 @@ def layout_row(mesh: Path, unbounded: bool) -> list:
 
 def surface_points(positions: np.ndarray, faces: np.ndarray, count: int, seed: int = 0):
     """(triangle, barycentrics) of ``count`` points uniform on the surface."""
-    from baker.geometry.texture_space import triangle_areas
+    from baker.texels.texture_space import triangle_areas
 
     rng = np.random.default_rng(seed)
     areas = triangle_areas(positions, faces)
@@ -101,7 +101,7 @@ def surface_points(positions: np.ndarray, faces: np.ndarray, count: int, seed: i
 def reference_thickness(mesh: Path, triangle: np.ndarray, bary: np.ndarray, rays: int) -> np.ndarray:
     from baker import readers
     from baker.geometry.raycast import RayScene
-    from baker.geometry.texture_target import smooth_normals
+    from baker.texels.targets import smooth_normals
     from baker.techniques.thickness.kernel import default_max_distance, local_thickness
 
     geometry = readers.read(mesh).primitive(0, 0)

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import baker
-from baker.gltf.alpha_mips import (alpha_coverage, alpha_mip_chain, box_resample, check_coverage_mips, level_sizes,
+from baker.texels.alpha_mips import (alpha_coverage, alpha_mip_chain, box_resample, check_coverage_mips, level_sizes,
                                    levels_off_coverage, read_coverage_mips)
 from baker.gltf.document import GltfDocument
 from baker.gltf.ktx2 import encode_ktx2

@@ -26,7 +26,7 @@ import numpy as np
 import pytest
 
 import baker
-from baker.gltf.alpha_mips import alpha_mip_chain, read_coverage_mips
+from baker.texels.alpha_mips import alpha_mip_chain, read_coverage_mips
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import read_image, write_image
 from baker.gltf.ktx2 import encode_ktx2

@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 
 PACKAGE = Path(__file__).parents[1] / "baker"
-SHARED = ("baker.readers", "baker.geometry", "baker.gltf", "baker.checks")
+SHARED = ("baker.readers", "baker.geometry", "baker.texels", "baker.gltf", "baker.checks", "baker.diffusion_profile")
 ABOVE = ("baker.techniques", "baker.cli", "baker.commands", "baker.pipeline", "baker.registry", "baker.api",
          "baker.preview", "baker.validate")
 

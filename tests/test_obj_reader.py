@@ -167,5 +167,5 @@ def test_bake_of_an_obj_imports_no_trimesh(tmp_path):
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
     code, modules = result.stdout.split("\n")[0].split(" ", 1)
     assert code == "0", result.stdout + result.stderr
-    # scipy.ndimage (texture dilation, geometry/texture_space.py) is the thickness texture's own; nothing else
+    # scipy.ndimage (texture dilation, texels/texture_space.py) is the thickness texture's own; nothing else
     assert not [m for m in ast.literal_eval(modules) if m.startswith(("trimesh", "scipy.spatial", "scipy.sparse"))], modules

@@ -248,7 +248,7 @@ def test_hair_cards_panel_keeps_coverage_when_small(tmp_path):
     (the cards 3x and 6x as far; a 1024² atlas minified to about levels 2, 4 and 5) the share of the card quads'
     pixels that pass the test stays near the 384 px frame's, while with the file's chain replaced by the plain box
     chain of the same atlas (what mipmapping the PNG gives) it falls away."""
-    from baker.gltf.alpha_mips import alpha_mip_chain, read_coverage_mips
+    from baker.texels.alpha_mips import alpha_mip_chain, read_coverage_mips
     from baker.gltf.document import GltfDocument
     from baker.gltf.ktx2 import encode_ktx2
     from techniques.cards_groom import make_groom, write_groom_usd

@@ -101,9 +101,9 @@ def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
 
 
 def coverage_mips(doc) -> list[dict]:
-    """Every coverage-preserving mip chain an extension lists (``coverageMips``, :mod:`baker.gltf.alpha_mips`):
+    """Every coverage-preserving mip chain an extension lists (``coverageMips``, :mod:`baker.texels.alpha_mips`):
     where, its texture, size, level count, cutoff and the alpha-test coverage of each level as stored."""
-    from baker.gltf.alpha_mips import alpha_coverage, read_coverage_mips
+    from baker.texels.alpha_mips import alpha_coverage, read_coverage_mips
 
     out = []
     places = [("", doc.json)] + [(f"/{kind}/{i}", item) for kind in ("materials", "nodes")

@@ -162,3 +162,17 @@ def decode_ktx2(blob: bytes) -> dict:
         levels.append(a if layers else a[0])
     return {"vkFormat": vk, "width": width, "height": height, "layers": layers, "levels": levels, "kvd": kvd,
             "dfd": dfd}
+
+
+def coverage_mips_bytes(doc, entry: dict) -> bytes:
+    """The KTX2 file of one ``coverageMips`` entry (its accessor's bytes; :mod:`baker.texels.alpha_mips` makes the
+    chain and the entry); ValueError when it is not one. Here, beside the container, so that writers (USD) read the
+    file without the mip kernel."""
+    accessors = doc.json.get("accessors") or []
+    index = entry.get("accessor") if isinstance(entry, dict) else None
+    if not isinstance(index, int) or isinstance(index, bool) or not 0 <= index < len(accessors):
+        raise ValueError(f"accessor {index!r} does not exist")
+    acc = accessors[index]
+    if acc.get("componentType") != 5121 or acc.get("type") != "SCALAR" or acc.get("normalized"):
+        raise ValueError(f"accessor {index} is not UNSIGNED_BYTE SCALAR (one element per byte of the KTX2)")
+    return doc.accessor(index).tobytes()

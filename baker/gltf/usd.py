@@ -476,13 +476,13 @@ class _Writer:
         return self.image_alpha[index]
 
     def _coverage_mips(self, prim, namespace: str, entries: list) -> None:
-        """Each coverage-preserving mip chain (:mod:`baker.gltf.alpha_mips`) as its KTX2 file beside the textures:
+        """Each coverage-preserving mip chain (:mod:`baker.texels.alpha_mips`) as its KTX2 file beside the textures:
         ``<namespace>:_<i>:file`` (the KTX2), ``:image`` (level 0, the PNG), ``:alphaCutoff``, ``:levelCount``.
         UsdUVTexture reads no KTX2 and its PNG gets mips from the renderer; the chain is there for a runtime
         that loads it, as the glTF plugins do."""
         from pxr import Sdf
 
-        from baker.gltf.alpha_mips import coverage_mips_bytes
+        from baker.gltf.ktx2 import coverage_mips_bytes
 
         textures = self.doc.json.get("textures") or []
         for i, entry in enumerate(entries):

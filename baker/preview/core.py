@@ -23,6 +23,7 @@ from baker.errors import BakerError
 from baker.geometry.asset import Asset
 from baker.geometry.normals import vertex_normals
 from baker.gltf.document import world_nodes
+from baker.texels.color import srgb_to_linear
 
 BACKGROUND = (0.16, 0.17, 0.19)
 INK = (0.03, 0.03, 0.035)
@@ -46,7 +47,9 @@ class DrawItem:
     mesh: int | None = None
     primitive_index: int | None = None
     material_index: int | None = None
-    data: dict = field(default_factory=dict)  # what panels read for this item (``Panel.read_item``), by key
+    # what panels read for this item (``Panel.read_item``), by key; every panel reads every item before any panel
+    # draws, so a panel may use what another stored (skin uses "normal_blur")
+    data: dict = field(default_factory=dict)
     tangents: np.ndarray | None = None  # (n, 4) float32, world space xyz + handedness w (the TANGENT attribute)
 
 
@@ -100,7 +103,7 @@ class Scene:
         if key not in self.cache:
             pixels = self.image(texture_index)
             if srgb:
-                pixels = srgb_to_linear(pixels)
+                pixels = srgb_to_linear(pixels).astype(np.float32)
             h, w, c = pixels.shape
             tex = ctx.texture((w, h), c, pixels.tobytes(), dtype="f4")
             tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
@@ -118,9 +121,9 @@ class Scene:
 
     def coverage_mips(self, ctx, entry: dict, repeat: bool = True, srgb: bool = False):
         """A texture whose levels are a coverage-preserving mip chain (``coverageMips`` entry,
-        :mod:`baker.gltf.alpha_mips`), uploaded as given, sampled trilinear; None when the chain cannot be read.
+        :mod:`baker.texels.alpha_mips`), uploaded as given, sampled trilinear; None when the chain cannot be read.
         ``srgb``: colour decoded to linear like :meth:`texture` (float levels; alpha as stored)."""
-        from baker.gltf.alpha_mips import read_coverage_mips
+        from baker.texels.alpha_mips import read_coverage_mips
 
         key = ("coverage", id(ctx), entry.get("accessor"), repeat, srgb)
         if key not in self.cache:
@@ -140,10 +143,6 @@ class Scene:
             if key[0] != "image":
                 value.release()
                 del self.cache[key]
-
-
-def srgb_to_linear(c: np.ndarray) -> np.ndarray:
-    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4).astype(np.float32)
 
 
 def placements(asset: Asset) -> list:

@@ -356,7 +356,7 @@ def test_atlas_chain_keeps_alpha_test_coverage_down_to_8x8(baked):
 def test_coverage_mips_read_back_and_checked(baked, tmp_path):
     """read_material() returns the chain entry; the semantic check catches a chain whose level 0 is not the atlas,
     a box chain that loses coverage (warning), and a chain made for another cutoff (warning)."""
-    from baker.gltf.alpha_mips import read_coverage_mips
+    from baker.texels.alpha_mips import read_coverage_mips
     from baker.gltf.document import GltfDocument
     from baker.gltf.ktx2 import encode_ktx2
     from baker.techniques.cards.extension import read_material

@@ -303,7 +303,7 @@ def test_cli_bake_inspect_and_bad_normal_map(tmp_path, capsys):
 def test_vertex_tangents_follow_du_and_the_layouts_handedness():
     """A square in the xy plane facing +z: u along +x and v down the image (glTF) along -y gives T = +x, w = +1
     (cross(N, T) = +y = -dP/dv); the mirrored layout (u along -x) gives T = -x and w = -1."""
-    from baker.geometry.tangents import uv_jacobians, vertex_tangents
+    from baker.texels.tangents import uv_jacobians, vertex_tangents
 
     positions = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
     faces = np.array([[0, 1, 2], [0, 2, 3]])

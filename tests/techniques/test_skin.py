@@ -13,6 +13,7 @@ import trimesh
 
 import baker
 from baker import validate
+from baker import diffusion_profile as P
 from baker.techniques.skin import kernel as S
 from baker.errors import BakerError
 from baker.gltf.document import GltfDocument
@@ -73,11 +74,11 @@ def test_red_scatters_farthest(lut):
 
 def test_matches_brute_force_at_8x_samples(lut):
     values, axes = lut
-    samples = 8 * len(S.DEON_SKIN.variances) * 256  # 8x the nodes the kernel spends per texel
-    reference = brute_force(axes.ndotl, axes.curvature, S.DEON_SKIN, samples)
+    samples = 8 * len(P.DEON_SKIN.variances) * 256  # 8x the nodes the kernel spends per texel
+    reference = brute_force(axes.ndotl, axes.curvature, P.DEON_SKIN, samples)
     assert np.abs(values - reference).max() < 0.5 * Q
     radial = S.penner_integral(axes.ndotl[::8], axes.curvature[::8], ring="radial")
-    reference = brute_force(axes.ndotl[::8], axes.curvature[::8], S.DEON_SKIN, samples, ring="radial")
+    reference = brute_force(axes.ndotl[::8], axes.curvature[::8], P.DEON_SKIN, samples, ring="radial")
     assert np.abs(radial - reference).max() < 0.5 * Q
 
 
@@ -90,7 +91,7 @@ def test_line_profile_is_the_cylinder_integral():
     x = np.linspace(-math.pi, math.pi, 4001)
     z = np.linspace(-25.0, 25.0, 2001)
     d2 = (2 * r * np.sin(x / 2))[:, None] ** 2 + z[None, :] ** 2
-    v, w = S.DEON_SKIN.arrays()
+    v, w = P.DEON_SKIN.arrays()
     profile = np.einsum("cg,gxz->cxz", w, np.exp(-d2[None] / (2 * v[:, None, None])) / (2 * math.pi * v[:, None, None]))
     lit = np.maximum(np.cos(math.pi / 2 + x), 0.0)[None, :, None]
     surface = (profile * lit).sum(axis=(1, 2)) / profile.sum(axis=(1, 2))
@@ -108,7 +109,7 @@ def test_flat_and_single_gaussian_limits():
     d = S.penner_integral(np.linspace(-1, 1, 9), [0.0])
     np.testing.assert_allclose(d[0], np.clip(np.linspace(-1, 1, 9), 0, 1)[:, None].repeat(3, 1), atol=1e-12)
     # one wide Gaussian on a small ring ~ the ring-averaged light: N.L = 1 gets much less than 1
-    wide = S.Profile("wide", (100.0,), ((1.0,), (1.0,), (1.0,)))
+    wide = P.Profile("wide", (100.0,), ((1.0,), (1.0,), (1.0,)))
     d = S.penner_integral([1.0, -1.0], [10.0], wide)
     assert d[0, 0, 0] == pytest.approx(1.0 / math.pi, abs=0.01)  # uniform kernel: mean of saturate(cos) = 1/pi
     assert d[0, 1, 0] == pytest.approx(1.0 / math.pi, abs=0.01)
@@ -119,7 +120,7 @@ def test_penumbra_lut_matches_direct_integration():
     assert rng == (pytest.approx(0.01), pytest.approx(1.0))
     assert np.all(np.diff(lut, axis=1) >= -1e-12)
     # direct numerical integration at a few texels
-    v, w = S.DEON_SKIN.arrays()
+    v, w = P.DEON_SKIN.arrays()
     y = np.linspace(-40.0, 40.0, 400001)
     for row, col in ((0, 5), (31, 10), (31, 16), (15, 25)):
         width = 1.0 / np.linspace(rng[0], rng[1], 32)[row]
@@ -152,7 +153,7 @@ def test_jimenez_kernel():
 
 def test_deon_gaussians():
     g = S.deon_gaussians()
-    assert [x["variance"] for x in g] == list(S.DEON_SKIN.variances)
+    assert [x["variance"] for x in g] == list(P.DEON_SKIN.variances)
     np.testing.assert_allclose(sum(x["incrementalVariance"] for x in g), 7.41)
     np.testing.assert_allclose(np.sum([x["weights"] for x in g], axis=0), 1.0)
     # GPU Gems 3's 7-tap weights
@@ -163,16 +164,16 @@ def test_profile_json(tmp_path):
     path = tmp_path / "p.json"
     path.write_text(json.dumps({"name": "cm skin", "unit": "cm", "variances": [0.01, 0.04],
                                 "red": [0.5, 0.5], "green": [1, 0], "blue": [1, 0]}))
-    p = S.load_profile(path)
+    p = P.load_profile(path)
     assert p.variances == (pytest.approx(1.0), pytest.approx(4.0))
     for bad in ({"variances": [1], "red": [1], "green": [1]}, {"variances": [-1], "red": [1], "green": [1], "blue": [1]},
                 {"variances": [1, 2], "red": [1], "green": [1], "blue": [1]}, [1, 2]):
         path.write_text(json.dumps(bad))
         with pytest.raises(BakerError):
-            S.load_profile(path)
+            P.load_profile(path)
     path.write_text("{not json")
     with pytest.raises(BakerError):
-        S.load_profile(path)
+        P.load_profile(path)
 
 
 # ------------------------------------------------------------------------------------------------------- command
@@ -203,7 +204,7 @@ def test_skin_lut_command(tmp_path, lut, name, bits, dtype):
     meta = json.loads(out.with_suffix(".json").read_text())
     assert meta["lut"]["file"] == name and meta["lut"]["v"]["range"] == [0.01, 1.0]
     assert meta["lut"]["v"]["unit"] == "1/mm" and meta["lut"]["u"]["range"] == [-1.0, 1.0]
-    assert meta["profile"]["variances"] == list(S.DEON_SKIN.variances)
+    assert meta["profile"]["variances"] == list(P.DEON_SKIN.variances)
     assert len(meta["jimenezKernel"]["kernel"]) == 17 and len(meta["deonGaussians"]["gaussians"]) == 6
     penumbra = read_image(tmp_path / meta["penumbra"]["file"])
     assert penumbra.shape == (128, 128, 3)

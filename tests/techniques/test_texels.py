@@ -1,4 +1,4 @@
-"""The shared texel engine (baker.geometry.texels): texture sizes from texel density, all texture sets in one
+"""The shared texel engine (baker.texels.sets): texture sizes from texel density, all texture sets in one
 stream, the thickness texels' prior test, and the curvature texture from the same engine."""
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ import trimesh
 
 import baker
 from baker import readers
-from baker.geometry.texels import gather_texels
-from baker.geometry.texture_space import TEXELS_PER_EDGE, SurfaceStatistics, size_for_density
+from baker.texels.sets import gather_texels
+from baker.texels.texture_space import TEXELS_PER_EDGE, SurfaceStatistics, size_for_density
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import decode_image
 from baker.pipeline import save
@@ -283,7 +283,7 @@ def test_first_rays_stop_on_the_prior_and_report_their_mean(tmp_path):
 def test_window_mean_matches_brute_force():
     """The windowed mean over included texels that are image neighbours and surface neighbours equals a brute
     force over every pair, on a texture with two charts side by side in the image but far apart in 3D."""
-    from baker.geometry.texture_space import window_mean
+    from baker.texels.texture_space import window_mean
 
     rng = np.random.default_rng(3)
     size, radius = 24, 2
@@ -339,7 +339,7 @@ def test_thickness_automatic_size_stops_at_its_own_bound(tmp_path, monkeypatch):
     """The automatic thickness texture is clamped to thickness's range (1024^2 at most), the other texture bakes'
     to AUTO_SIZE_RANGE; a forced size or density is not clamped by it. The step's bound, lowered here below the
     sphere's automatic size, decides the thickness texture's size, not the curvature texture's."""
-    from baker.geometry.texture_space import AUTO_SIZE_RANGE
+    from baker.texels.texture_space import AUTO_SIZE_RANGE
     from baker.techniques.thickness import step
 
     mesh = uv_sphere(radius=0.5, segments=48, rings=24)
@@ -381,7 +381,7 @@ def test_texel_tolerance_is_recorded_in_the_extension(spheres):
 def test_dilation_takes_the_nearest_covered_texel():
     """Every texel's fill comes from a covered texel at the smallest Euclidean distance (brute force over all
     covered texels), on random masks from sparse to dense."""
-    from baker.geometry.texture_space import nearest_inside
+    from baker.texels.texture_space import nearest_inside
 
     rng = np.random.default_rng(5)
     for density in (0.005, 0.05, 0.3, 0.9):
@@ -421,7 +421,7 @@ def test_grid_aligned_layout_covers_each_texel_once(mirrored):
     """A UV grid whose vertices sit exactly on texel centres (every shared edge and vertex runs through centres),
     with both diagonal directions and, mirrored, the other winding: each texel centre in the grid's closed square
     belongs to exactly one triangle, so the layout does not read as overlapping and keeps its UVs."""
-    from baker.geometry.texture_space import rasterize_uv, usable_layout_texels
+    from baker.texels.texture_space import rasterize_uv, usable_layout_texels
 
     size, cells = 64, 12
     ticks = (np.arange(cells + 1) * 4 + 8 + 0.5) / size  # texel centres 8.5, 12.5, ... 56.5

@@ -11,7 +11,7 @@ Where the data goes (see ``schemas/BAKER_hair_cards/README.md``):
   double-sided; ``BAKER_hair_cards`` on the material: the data texture (depth offset from the card plane,
   root-to-tip parameter, per-strand random value) and the flow texture (the strands' direction in tangent space),
   what each channel holds, the depth range and the atlas layout parameters; ``coverageMips``: the base colour's
-  coverage-preserving mip chain (Castaño 2010; :mod:`baker.gltf.alpha_mips`), an RGBA8 KTX2 in an accessor, so
+  coverage-preserving mip chain (Castaño 2010; :mod:`baker.texels.alpha_mips`), an RGBA8 KTX2 in an accessor, so
   the cards keep their alpha-test coverage with distance (RTR4 14.7.1) in a runtime that loads it.
 """
 from __future__ import annotations
@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from baker.gltf.alpha_mips import check_coverage_mips, write_coverage_mips
+from baker.texels.alpha_mips import check_coverage_mips, write_coverage_mips
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
 from baker.gltf.images import encode_image
 

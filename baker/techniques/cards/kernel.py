@@ -13,6 +13,7 @@ from baker.techniques.cards.clumps import cluster_strands
 from baker.techniques.cards.fit import fit_clumps
 from baker.techniques.cards.options import CardsOptions
 from baker.techniques.cards.ribbon import build_card, draw_order
+from baker.texels.color import linear_to_srgb
 
 # the data texture's channels (RGB) and the flow texture's encoding, as BAKER_hair_cards records them
 DATA_CHANNELS = {"r": "depth", "g": "rootToTip", "b": "strandRandom"}
@@ -41,12 +42,6 @@ class CardsResult:
     @property
     def card_count(self) -> int:
         return len(self.regions)
-
-
-def srgb_encode(linear: np.ndarray) -> np.ndarray:
-    """Linear [0, 1] -> sRGB [0, 1] (IEC 61966-2-1), in the input's float type."""
-    x = np.clip(linear, 0.0, 1.0)
-    return np.where(x <= 0.0031308, x * 12.92, np.power(x, 1.0 / 2.4) * 1.055 - 0.055).astype(x.dtype)
 
 
 def strand_random(count: int, seed: int) -> np.ndarray:
@@ -170,7 +165,7 @@ def make_cards(strands: np.ndarray, lengths: np.ndarray, widths: np.ndarray | No
     flow_image = to_u8(f32(0.5) + f32(0.5) * flow_texel)
     del flow_texel
     shade = (f32(0.55) + f32(0.45) * grad_texel) * (f32(0.8) + f32(0.4) * rand_texel)  # darker roots, variation
-    rgb = srgb_encode(np.asarray(options.color, f32)[None, None, :] * shade[..., None])
+    rgb = linear_to_srgb(np.asarray(options.color, f32)[None, None, :] * shade[..., None])
     base_color = np.concatenate([to_u8(rgb), to_u8(alpha)[..., None]], axis=2)
     del rgb, shade
     # statistics: how well the cards hold the strands

@@ -52,7 +52,7 @@ def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progre
 
     textures = {}
     if options.per_texel:
-        from baker.geometry.texels import gather_texels
+        from baker.texels.sets import gather_texels
 
         texels = gather_texels(asset, options.texture_size, options.texel_density, seed)
         with progress.task(f"curvature texels ({texels.describe()})", len(texels)) as advance:

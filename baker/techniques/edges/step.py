@@ -11,7 +11,7 @@ import numpy as np
 from baker.geometry.asset import Asset
 from baker.techniques.edges.options import EdgesOptions
 from baker.geometry.edges import analyze_mesh, primitive_edges
-from baker.geometry.texture_target import made_by_unwrap
+from baker.texels.targets import made_by_unwrap
 from baker.techniques.edges import extension as ext
 from baker.progress import QUIET, Progress
 

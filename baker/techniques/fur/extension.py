@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from baker.gltf.alpha_mips import check_coverage_mips, write_coverage_mips
+from baker.texels.alpha_mips import check_coverage_mips, write_coverage_mips
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER, GltfDocument
 from baker.gltf.derived import copy_skinning, match_morph_targets
 from baker.gltf.images import encode_image
@@ -45,7 +45,7 @@ def encode_rgba_png(pixels: np.ndarray) -> bytes:
 def write_fur_textures(doc: GltfDocument, shells: np.ndarray, fin: np.ndarray, alpha_cutoff: float | None = None
                        ) -> tuple[list, int, list]:
     """Add the shell textures and the fin texture, and with ``alpha_cutoff`` each one's coverage-preserving mip
-    chain (:mod:`baker.gltf.alpha_mips`); returns ([shell texture indices], fin texture index, coverageMips)."""
+    chain (:mod:`baker.texels.alpha_mips`); returns ([shell texture indices], fin texture index, coverageMips)."""
     out, mips = [], []
     for i, shell in enumerate(shells):
         image = doc.add_image(encode_rgba_png(shell), "image/png", f"fur_shell{i:02d}")

@@ -13,8 +13,8 @@ from baker.techniques.fur.options import FurOptions
 from baker.techniques.fur.kernel import bake_fur_textures
 from baker.techniques.fur import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_space import unwrap
-from baker.geometry.texture_target import reindex_primitive, unwrap_material
+from baker.texels.texture_space import unwrap
+from baker.texels.targets import reindex_primitive, unwrap_material
 
 
 def _fins(asset: Asset, m: int, prims: list, tile_size: float):

@@ -12,11 +12,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from baker.diffusion_profile import CHANNELS
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import decoded_texture, encode_image
 
 NAME = "BAKER_normal_blur"
-CHANNELS = ("red", "green", "blue")
 CLAMP_LINEAR = {"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 33071}
 DEFAULT_SAMPLER = {"magFilter": 9729, "minFilter": 9987}
 

@@ -15,7 +15,7 @@ from baker.techniques.normal_blur import extension as ext
 
 def profile_in_mesh_units(options: NormalBlurOptions):
     """(profile, variances in mesh units^2, (3, k) weights) of the options' profile (mm) and unit scale."""
-    from baker.techniques.skin.profile import DEON_SKIN, load_profile
+    from baker.diffusion_profile import DEON_SKIN, load_profile
 
     profile = load_profile(options.profile) if options.profile else DEON_SKIN
     variances, weights = profile.arrays()
@@ -68,8 +68,8 @@ def _normal_image(asset: Asset, material: int, info: dict) -> tuple[np.ndarray, 
 def _tangents(asset: Asset, members: list, texcoord: int, generated: list) -> dict:
     """{(mesh, primitive): (vertices, 4) TANGENT}: the primitive's own, else generated (and written as TANGENT when
     the primitive has NORMAL: glTF viewers pair TANGENT with NORMAL)."""
-    from baker.geometry.tangents import vertex_tangents
-    from baker.geometry.texture_target import smooth_normals
+    from baker.texels.tangents import vertex_tangents
+    from baker.texels.targets import smooth_normals
 
     doc = asset.doc
     out = {}
@@ -118,8 +118,8 @@ OVERLAP_TOLERANCE = 0.05  # UV area over covered texels beyond 1: chart borders 
 
 
 def run(asset: Asset, options: NormalBlurOptions, seed: int = 0, progress: Progress = QUIET) -> None:
-    from baker.geometry.tangents import uv_jacobians
-    from baker.geometry.texels import gather_texels
+    from baker.texels.tangents import uv_jacobians
+    from baker.texels.sets import gather_texels
     from baker.techniques.normal_blur.kernel import (TangentFrames, blur_normals, encode_normal_pixels,
                                                      sample_bilinear, texel_areas)
 

@@ -43,7 +43,8 @@ import numpy as np
 
 from baker.techniques.skin.options import (DEFAULT_RADII, FIT_PERCENTILES, JIMENEZ_FALLOFF, JIMENEZ_STRENGTH,
                                            MAX_RADIUS_RATIO, SkinOptions)
-from baker.techniques.skin.profile import CHANNELS, DEON_SKIN, Profile, load_profile  # noqa: F401 (re-exported)
+from baker.diffusion_profile import DEON_SKIN, Profile, load_profile
+from baker.texels.color import linear_to_srgb
 
 GAUSSIAN_CUTOFF = 7.0  # standard deviations beyond which a Gaussian is treated as zero (exp(-24.5) ~ 2e-11)
 
@@ -333,14 +334,9 @@ def skin_tables(options: SkinOptions, curvature: np.ndarray | None = None) -> Sk
                       deon_gaussians(profile), blend, FIT_PERCENTILES if from_asset else None)
 
 
-def srgb_encode(linear: np.ndarray) -> np.ndarray:
-    linear = np.clip(linear, 0.0, 1.0)
-    return np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * np.power(linear, 1.0 / 2.4) - 0.055)
-
-
 def quantize(values: np.ndarray, bits: int, encoding: str = "linear") -> np.ndarray:
     """Linear [0, 1] floats -> uint8/uint16 (optionally sRGB-encoded), round to nearest."""
     if encoding == "srgb":
-        values = srgb_encode(values)
+        values = linear_to_srgb(values)
     scale = (1 << bits) - 1
     return np.clip(np.rint(values * scale), 0, scale).astype(np.uint16 if bits == 16 else np.uint8)

@@ -2,8 +2,9 @@
 N.L and the baked curvature along the light (Euler's formula from BAKER_curvature's principal curvatures and
 direction when baked, else the mean curvature, else the curvature estimated from screen-space derivatives), N.L per
 channel from Penner's normal blending of the material's normal map with the interpolated normal; where the
-material also has BAKER_normal_blur, the LUT is read with its per-channel diffuse normals (``baker_normal_blur.glsl``,
-tangent frame from screen-space derivatives), as the three.js and Babylon.js hosts do."""
+material also has BAKER_normal_blur (``item.data["normal_blur"]``, read by the normal-blur panel), the LUT is read with
+its per-channel diffuse normals (``baker_normal_blur.glsl``, tangent frame from screen-space derivatives), as the
+three.js and Babylon.js hosts do."""
 from __future__ import annotations
 
 import numpy as np
@@ -11,7 +12,6 @@ import numpy as np
 from baker.gltf.vertex_attributes import unpadded
 from baker.preview.core import DrawItem, Panel, Scene
 from baker.techniques.curvature.extension import DIRECTION, PRINCIPAL
-from baker.techniques.normal_blur.extension import read as read_normal_blur
 from baker.techniques.skin.extension import read
 
 
@@ -24,7 +24,6 @@ class SkinPanel(Panel):
     def read_item(self, doc, item: DrawItem) -> None:
         if item.material_index is not None:
             item.data["skin"] = read(doc, item.material_index)
-            item.data["normal_blur"] = read_normal_blur(doc, item.material_index)
 
     def applies(self, item):
         return super().applies(item) and item.data.get("skin") is not None
@@ -65,7 +64,9 @@ class SkinPanel(Panel):
                 "a_direction": item.attributes[DIRECTION].reshape(n, -1)[:, :3]}
 
     def diffuse_normals(self, item):
-        """The material's BAKER_normal_blur when its UV set is on the primitive, else None."""
+        """The material's BAKER_normal_blur when its UV set is on the primitive, else None: what the normal-blur
+        panel's ``read_item`` stored (every panel reads every item before any draws), so that skin and normal-blur
+        need not import each other."""
         blur = item.data.get("normal_blur")
         return blur if blur is not None and blur.texcoord in item.texcoords else None
 

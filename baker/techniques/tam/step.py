@@ -17,7 +17,7 @@ from baker.techniques.tam.kernel import check_options, generate_tam
 from baker.errors import BakerError
 from baker.techniques.tam import extension as ext
 from baker.progress import QUIET, Progress
-from baker.geometry.texture_target import unwrap_material
+from baker.texels.targets import unwrap_material
 
 TILES_PER_DIAGONAL = 6.0
 

@@ -35,7 +35,7 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
             limits[m] = (options.max_distance or diag, options.bias if options.bias is not None else 1e-5 * diag)
 
     from baker.geometry.normals import vertex_normals
-    from baker.geometry.texels import gather_texels
+    from baker.texels.sets import gather_texels
     from baker.techniques.thickness.kernel import FIRST_RAYS, local_thickness
 
     def cast(meshes, points, normals, label, scene_of=None, prior=None, tolerance=0.0, rays=options.rays,

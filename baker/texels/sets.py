@@ -6,8 +6,8 @@ mesh, material and image cell, stacked over all texture sets so that one ray str
 covers them all. The technique computes one value per texel, and :meth:`TexelSets.images` puts the values back
 into one dilated image per material.
 
-Texture sizes follow the mesh unless forced (:func:`baker.geometry.texture_space.size_for_density`): about
-:data:`~baker.geometry.texture_space.TEXELS_PER_EDGE` texels along the average triangle edge, or a given density.
+Texture sizes follow the mesh unless forced (:func:`baker.texels.texture_space.size_for_density`): about
+:data:`~baker.texels.texture_space.TEXELS_PER_EDGE` texels along the average triangle edge, or a given density.
 """
 from __future__ import annotations
 
@@ -17,8 +17,8 @@ from typing import Callable, Iterator
 import numpy as np
 
 from baker.geometry.asset import Asset, PrimitiveGeometry
-from baker.geometry.texture_space import AUTO_SIZE_RANGE, dilate, interpolate, window_mean
-from baker.geometry.texture_target import MaterialTarget, PrimitiveTexels, material_targets
+from baker.texels.texture_space import AUTO_SIZE_RANGE, dilate, interpolate, window_mean
+from baker.texels.targets import MaterialTarget, PrimitiveTexels, material_targets
 
 
 @dataclass
@@ -113,7 +113,7 @@ class TexelSets:
         """Per texel, the mean of ``values`` over the ``include``-d texels of its own texture within ``radius``
         texels in the image that are also its neighbours on the surface of the same mesh, and that mean's squared
         standard error
-        (:func:`~baker.geometry.texture_space.window_mean`); NaN where there is none."""
+        (:func:`~baker.texels.texture_space.window_mean`); NaN where there is none."""
         mean, error = np.empty(len(self), np.float64), np.empty(len(self), np.float64)
         for s in self.sets:
             part = slice(s.start, s.stop)
@@ -157,7 +157,7 @@ class TexelSets:
 def gather_texels(asset: Asset, size: int | None = None, density: float | None = None, seed: int = 0,
                   layouts: dict | None = None, auto_range: tuple[int, int] = AUTO_SIZE_RANGE) -> TexelSets:
     """Texels of every material's texture (layouts chosen or unwrapped by
-    :func:`baker.geometry.texture_target.material_targets`): ``size`` forces the width and height, else ``density``
+    :func:`baker.texels.targets.material_targets`): ``size`` forces the width and height, else ``density``
     texels per mesh unit, else the automatic density (its size within ``auto_range``). ``layouts`` ({material: (texcoord, size)}) bakes only those
     materials, in the UV set and size given."""
     sets, positions, normals, mesh, material, rows, cols = [], [], [], [], [], [], []

@@ -15,7 +15,7 @@ from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.geometry.normals import vertex_normals
 from baker.geometry.welding import weld
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER
-from baker.geometry.texture_space import (AUTO_SIZE_RANGE, SurfaceStatistics, TexelSamples, rasterize_uv,
+from baker.texels.texture_space import (AUTO_SIZE_RANGE, SurfaceStatistics, TexelSamples, rasterize_uv,
                                           size_for_density, unwrap, usable_layout_texels)
 
 
@@ -57,7 +57,7 @@ def material_targets(asset: Asset, size: int | None = None, seed: int = 0,
                      density: float | None = None, layouts: dict | None = None,
                      auto_range: tuple[int, int] = AUTO_SIZE_RANGE) -> list[MaterialTarget]:
     """One target per material with triangles. ``size`` forces every texture's width and height; None sizes each
-    from its surface (:func:`baker.geometry.texture_space.size_for_density`, ``density`` texels per mesh unit or,
+    from its surface (:func:`baker.texels.texture_space.size_for_density`, ``density`` texels per mesh unit or,
     when None, the automatic density within ``auto_range``). The unwrap's layout does not depend on these.
 
     ``layouts`` ({material: (texcoord, size)}) instead bakes only those materials, each into the UV set and size

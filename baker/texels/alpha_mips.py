@@ -33,7 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from baker.gltf.ktx2 import decode_ktx2, encode_ktx2
+from baker.gltf.ktx2 import coverage_mips_bytes, decode_ktx2, encode_ktx2
+from baker.texels.color import TRANSFERS
 
 MIME_TYPE = "image/ktx2"
 SEARCH_STEPS = 24  # binary search on the scale: 2^-24 of the bracket, far below one texel's step in coverage
@@ -117,22 +118,6 @@ def _resample_axis(values: np.ndarray, n_out: int, axis: int) -> np.ndarray:
     upper = np.take(at, np.arange(1, n_out + 1), axis=axis)
     low = np.take(at, np.arange(n_out), axis=axis)
     return (upper - low) * (n_out / n_in)
-
-
-def srgb_to_linear(c: np.ndarray) -> np.ndarray:
-    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
-
-
-def linear_to_srgb(c: np.ndarray) -> np.ndarray:
-    c = np.clip(c, 0.0, 1.0)
-    return np.where(c <= 0.0031308, c * 12.92, 1.055 * c ** (1 / 2.4) - 0.055)
-
-
-TRANSFERS = {
-    "srgb": (srgb_to_linear, linear_to_srgb),
-    "gamma2.2": (lambda c: c ** 2.2, lambda c: np.clip(c, 0.0, 1.0) ** (1 / 2.2)),
-    "linear": (lambda c: c, lambda c: c),
-}
 
 
 def alpha_scale_for_coverage(alpha: np.ndarray, alpha_cutoff: float, target: float) -> float:
@@ -261,18 +246,6 @@ def write_coverage_mips(doc, texture: int, rgba: np.ndarray, alpha_cutoff: float
 def read_coverage_mips(doc, entry: dict) -> list:
     """The levels (uint8 RGBA arrays, level 0 first) of one ``coverageMips`` entry; ValueError when unreadable."""
     return decode_ktx2(coverage_mips_bytes(doc, entry))["levels"]
-
-
-def coverage_mips_bytes(doc, entry: dict) -> bytes:
-    """The KTX2 file of one ``coverageMips`` entry (its accessor's bytes); ValueError when it is not one."""
-    accessors = doc.json.get("accessors") or []
-    index = entry.get("accessor") if isinstance(entry, dict) else None
-    if not isinstance(index, int) or isinstance(index, bool) or not 0 <= index < len(accessors):
-        raise ValueError(f"accessor {index!r} does not exist")
-    acc = accessors[index]
-    if acc.get("componentType") != 5121 or acc.get("type") != "SCALAR" or acc.get("normalized"):
-        raise ValueError(f"accessor {index} is not UNSIGNED_BYTE SCALAR (one element per byte of the KTX2)")
-    return doc.accessor(index).tobytes()
 
 
 def check_coverage_mips(doc, entries, ptr: str, issues) -> None:

@@ -1,7 +1,8 @@
 """Diffusion profiles: sums of normalized 2D Gaussians with per-channel weights (d'Eon & Luebke, GPU Gems 3 ch. 14).
 
-The one place profiles live: the skin LUTs (:mod:`baker.techniques.skin.kernel`) and the surface normal blur
-(:mod:`baker.techniques.normal_blur`) read the default and the ``--*-profile`` JSON files from here.
+The one place profiles live, beside the techniques rather than in one of them: the skin LUTs
+(:mod:`baker.techniques.skin.kernel`) and the surface normal blur (:mod:`baker.techniques.normal_blur`) both read the
+default and the ``--*-profile`` JSON files from here, and neither technique imports the other.
 """
 from __future__ import annotations
 
