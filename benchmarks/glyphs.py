@@ -33,7 +33,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from baker.techniques.glyphs.options import GlyphOptions
-from baker.techniques.glyphs.kernel import bake_atlas, load_font  # noqa: E402
+from baker.techniques.glyphs.kernel import bake_atlas  # noqa: E402
+from baker.techniques.glyphs.outline import load_font  # noqa: E402
 from baker.techniques.glyphs.quality import glyph_errors  # noqa: E402
 from common import best_of  # noqa: E402
 

@@ -40,7 +40,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from baker.techniques.glyphs.atlas import bake_atlas  # noqa: E402
+from baker.techniques.glyphs.kernel import bake_atlas  # noqa: E402
 from baker.techniques.glyphs.options import GlyphOptions  # noqa: E402
 from baker.techniques.glyphs.outline import load_fonts  # noqa: E402
 from glyphs import NODE_MODULES, msdfgen_shape, score  # noqa: E402

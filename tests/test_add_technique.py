@@ -104,8 +104,7 @@ def write_vertex_heights(doc, mesh: int, primitive: int, heights: np.ndarray) ->
 
 def write_material(doc, material: int, *, axis: str, scale: float, max_height: float) -> None:
     ext = {"attribute": ATTRIBUTE, "axis": axis, "scale": float(scale), "maxHeight": float(max_height)}
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
+    doc.set_material_extension(material, NAME, ext)
 
 
 def read(doc) -> list:

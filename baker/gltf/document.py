@@ -321,6 +321,20 @@ class GltfDocument:
             if name not in req:
                 req.append(name)
 
+    def set_material_extension(self, material: int, name: str, data: dict) -> dict:
+        """Put extension ``name`` with ``data`` on material ``material`` (replacing one of that name a bake wrote
+        before) and list it in ``extensionsUsed``; returns ``data``."""
+        self.json["materials"][material].setdefault("extensions", {})[name] = data
+        self.use_extension(name)
+        return data
+
+    def set_primitive_extension(self, mesh: int, primitive: int, name: str, data: dict) -> dict:
+        """Put extension ``name`` with ``data`` on primitive ``primitive`` of mesh ``mesh`` and list it in
+        ``extensionsUsed``; returns ``data``."""
+        self.json["meshes"][mesh]["primitives"][primitive].setdefault("extensions", {})[name] = data
+        self.use_extension(name)
+        return data
+
     # ------------------------------------------------------------------ writing
     def save(self, path) -> list[Path]:
         """Write ``.glb`` or ``.gltf`` (+ ``.bin`` + images) atomically, chosen by the file extension.

@@ -11,7 +11,8 @@ import pytest
 from scipy import ndimage
 
 from baker.techniques.glyphs.options import GlyphOptions
-from baker.techniques.glyphs.kernel import bake_atlas, load_font, parse_charset
+from baker.techniques.glyphs.kernel import bake_atlas
+from baker.techniques.glyphs.outline import load_font, parse_charset
 from baker.techniques.glyphs.atlas import pack
 from baker.techniques.glyphs.coloring import edge_colors
 from baker.techniques.glyphs.outline import Font, FontMetrics, Glyph

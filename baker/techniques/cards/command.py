@@ -1,4 +1,4 @@
-"""``baker cards GROOM -o OUT``: the parser; the work is in :mod:`baker.techniques.cards.run`."""
+"""``baker cards GROOM -o OUT``: the parser; the work is :func:`baker.techniques.cards.step.run_cards`."""
 from __future__ import annotations
 
 from baker.options import add_arguments
@@ -17,4 +17,4 @@ def add_parser(subparsers) -> None:
     p.add_argument("--format", choices=("text", "json"), default="text", help="summary format (stdout for json)")
     p.add_argument("-q", "--quiet", action="store_true", help="no summary")
     add_arguments(p, CardsOptions, "cards", prefixed_flags=False)
-    p.set_defaults(func=lazy("baker.techniques.cards.run:run"))
+    p.set_defaults(func=lazy("baker.techniques.cards.step:run_cards"))

@@ -67,9 +67,7 @@ def write_caustics(doc: GltfDocument, material: int, options: CausticsOptions, f
     """``BAKER_caustics`` on ``material`` referencing the frame ``textures``; returns the extension object."""
     ext = {"frameTextures": [{"index": int(t)} for t in textures],
            **caustics_parameters(options, frames, scale, water_scale)}
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_material_extension(material, NAME, ext)
 
 
 def write_caustics_directory(options: CausticsOptions, frames, folder, seed: int = 0, ktx2: bool = False) -> dict:

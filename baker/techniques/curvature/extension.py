@@ -82,9 +82,7 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, valu
             info["texCoord"] = int(texcoord)
         ext["curvatureTexture"] = info
         ext["textureRange"] = [float(texture_range[0]), float(texture_range[1])]
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_material_extension(material, NAME, ext)
 
 
 def check(doc: GltfDocument, places: list, issues) -> None:

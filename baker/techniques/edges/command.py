@@ -1,4 +1,5 @@
-"""``baker lines IN -o drawing.svg``: the parser; the work is in :mod:`baker.techniques.edges.svg`, imported when it runs."""
+"""``baker lines IN -o drawing.svg``: the parser; the work is :func:`baker.techniques.edges.step.run_lines`, imported
+when it runs."""
 from __future__ import annotations
 
 from baker import memory
@@ -24,4 +25,4 @@ def add_parser(subparsers) -> None:
                                                   "material=1")
     p.add_argument("--step", type=float, default=2.0, help="visibility sampling step along lines, pixels (default 2)")
     memory.add_argument(p)
-    p.set_defaults(func=lazy("baker.techniques.edges.svg:run"))
+    p.set_defaults(func=lazy("baker.techniques.edges.step:run_lines"))

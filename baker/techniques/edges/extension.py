@@ -56,9 +56,7 @@ def write_edge_visibility(doc: GltfDocument, mesh: int, primitive: int, codes: n
     if len(mates):
         ext["silhouetteMates"] = doc.add_accessor(mates.astype(index_dtype(vertex_count)), target=None,
                                                   name="silhouette mates")
-    doc.json["meshes"][mesh]["primitives"][primitive].setdefault("extensions", {})[EXT_VISIBILITY] = ext
-    doc.use_extension(EXT_VISIBILITY)
-    return ext
+    return doc.set_primitive_extension(mesh, primitive, EXT_VISIBILITY, ext)
 
 
 def write_outline_normals(doc: GltfDocument, mesh: int, primitive: int, normals: np.ndarray) -> int:
@@ -128,9 +126,7 @@ def write_primitive_edges(doc: GltfDocument, mesh: int, primitive: int, pe: Prim
         ext["outlineNormal"] = OUTLINE_NORMAL
     if fins is not None:
         ext["fins"] = fins
-    doc.json["meshes"][mesh]["primitives"][primitive].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_primitive_extension(mesh, primitive, NAME, ext)
 
 
 # =========================================================================================================== USD

@@ -1,18 +1,18 @@
-"""Wire the edge kernel to an Asset: per glTF mesh, gather its triangle primitives, analyze, write per primitive.
-
-All triangle primitives of a mesh are analyzed together (edges between primitives are material edges and shells
-close across them); each primitive then gets its own data in its own vertex indices. The EXT bitfield covers every
-triangle of the primitive in glTF order, so triangles with a repeated index (which the kernel skips) get code 0.
-"""
+"""Wire the edge kernel (:mod:`baker.techniques.edges.kernel`) to an Asset: per glTF mesh, gather its triangle
+primitives and their per-corner UVs and normals, run the kernel, write each primitive's data; and the standalone
+``baker lines IN -o drawing.svg`` (:func:`run_lines`, the drawing in :mod:`.svg` and :mod:`.line_drawing`)."""
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 
+from baker.errors import BakerError
 from baker.geometry.asset import Asset
 from baker.techniques.edges.options import EdgesOptions
-from baker.geometry.edges import analyze_mesh, primitive_edges
 from baker.texels.targets import made_by_unwrap
 from baker.techniques.edges import extension as ext
+from baker.techniques.edges.kernel import mesh_edges
 from baker.progress import QUIET, Progress
 
 
@@ -51,47 +51,67 @@ def run(asset: Asset, options: EdgesOptions, seed: int = 0, progress: Progress =
                 members.append((p, positions, triangles, keep))
         if not members:
             continue
-        v_off = np.cumsum([0] + [len(x[1]) for x in members])
-        f_off = np.cumsum([0] + [int(x[3].sum()) for x in members])
-        if len(members) == 1:  # the common large case: no copies, and no material edges to look for
-            positions = members[0][1]
-            faces = members[0][2] if members[0][3].all() else members[0][2][members[0][3]]
-            group = None
-        else:
-            positions = np.concatenate([x[1] for x in members])
-            faces = np.concatenate([x[2][x[3]] + v_off[i] for i, x in enumerate(members)])
-            # a face's group: its primitive, so faces drawn by different primitives (materials) meet at material
-            # edges
-            group = np.repeat(np.arange(len(members)), np.diff(f_off))
         # per-corner attributes only where a primitive has them: no seam work on a mesh without UVs or normals
         # a layout baker made (an unwrap for a texture bake that ran first) is not the mesh's: its seams are not
         # UV seams of the asset, and the edges baked alone would not see them
         has_uv = any("TEXCOORD_0" in (prims[p].get("attributes") or {}) and not made_by_unwrap(asset, m, p, 0)
                      for p, *_ in members)
         has_normals = all("NORMAL" in (prims[p].get("attributes") or {}) for p, *_ in members)
-        uv = np.concatenate([_corner_attribute(asset, prims[p], "TEXCOORD_0", t[k], 2) for p, _, t, k in members]) \
-            if has_uv else None
-        normals = np.concatenate([_corner_attribute(asset, prims[p], "NORMAL", t[k], 3) for p, _, t, k in members]) \
-            if has_normals else None
         with progress.task(f"edges mesh {m}", 1) as advance:
-            analysis = analyze_mesh(positions, faces, face_group=group, corner_uv=uv, corner_normals=normals,
-                                    options=options)
+            found = mesh_edges(
+                [(positions, triangles, keep) for _, positions, triangles, keep in members],
+                np.concatenate([_corner_attribute(asset, prims[p], "TEXCOORD_0", t[k], 2) for p, _, t, k in members])
+                if has_uv else None,
+                np.concatenate([_corner_attribute(asset, prims[p], "NORMAL", t[k], 3) for p, _, t, k in members])
+                if has_normals else None,
+                options, fins=options.fins)
             advance(1)
-        del uv, normals, positions, faces, group
-        for i, (p, pos, triangles, keep) in enumerate(members):
-            pe = primitive_edges(analysis, (int(f_off[i]), int(f_off[i + 1])), (int(v_off[i]), int(v_off[i + 1])),
-                                 options, fins=options.fins)
-            # back to every triangle of the primitive (repeated-index triangles: hidden, not in the wireframe)
-            codes = np.zeros((len(triangles), 3), np.uint8)
-            codes[keep] = pe.visibility_codes
-            wire = np.zeros(len(triangles), np.uint8)
-            wire[keep] = pe.wireframe_mask
-            pe.visibility_codes, pe.wireframe_mask = codes, wire
+        for (p, pos, _, _), pe in zip(members, found):
             written = None
             if options.visibility:
-                written = ext.write_edge_visibility(doc, m, p, codes, pe.silhouette_mates, len(pos))
+                written = ext.write_edge_visibility(doc, m, p, pe.visibility_codes, pe.silhouette_mates, len(pos))
             if options.outline_normals:
                 ext.write_outline_normals(doc, m, p, pe.outline_normals)
             fins = ext.write_fin_primitive(doc, m, p, pe) if options.fins and len(pe.edges) else None
             ext.write_primitive_edges(doc, m, p, pe, options=options, vertex_count=len(pos), fins=fins, outline=options.outline_normals,
                                       visibility=written is not None)
+
+
+def run_lines(args) -> int:
+    """``baker lines IN -o drawing.svg``: the hidden-line drawing of the asset from the camera, as SVG."""
+    from baker.geometry import edges as E
+    from baker.geometry.raycast import RayScene
+    from baker.gltf.atomic import write_bytes_atomic
+    from baker.techniques.edges import line_drawing as L
+    from baker.techniques.edges.svg import DEFAULT_WIDTHS, make_camera, scene_triangles, svg_document
+
+    out = Path(args.output)
+    if out.suffix.lower() != ".svg":
+        raise BakerError(out, "output must end in .svg")
+    widths = dict(DEFAULT_WIDTHS)
+    if args.widths:
+        for item in args.widths.split(","):
+            key, _, value = item.partition("=")
+            if key.strip() not in widths:
+                raise BakerError(None, f"--widths: unknown line type {key!r} (known: {', '.join(widths)})")
+            try:
+                widths[key.strip()] = float(value)
+            except ValueError:
+                raise BakerError(None, f"--widths: {item!r} is not TYPE=NUMBER") from None
+    if args.step <= 0:
+        raise BakerError(None, "--step must be > 0")
+    from baker import readers
+    from baker.memory import check_bake, parse_limit
+
+    # the edge analysis and the ray scene cost what the edges bake does per triangle
+    limit = parse_limit(args.max_memory)
+    asset = readers.read(args.input, max_memory=limit)
+    check_bake(asset, ("edges",), None, limit, "drawing the lines of this asset")
+    positions, faces, groups = scene_triangles(asset)
+    camera = make_camera(args, asset, positions)
+    options = E.EdgeSettings(crease_angle=args.crease_angle)
+    mesh = E.analyze_mesh(positions, faces, face_group=groups, options=options)
+    scene = RayScene(mesh.welded, mesh.faces_welded)
+    lines = L.trace_lines(mesh, camera, scene, step=args.step, creases=not args.no_creases)
+    write_bytes_atomic(out, svg_document(lines, camera.width, camera.height, widths, args.hidden).encode("utf-8"))
+    return 0

@@ -1,4 +1,5 @@
-"""``baker lines IN -o drawing.svg``: a hidden-line drawing of an asset from a camera (RTR4 15.2.4-15.2.5).
+"""The parts of ``baker lines IN -o drawing.svg`` (run by :func:`baker.techniques.edges.step.run_lines`): a
+hidden-line drawing of an asset from a camera (RTR4 15.2.4-15.2.5).
 
 The scene's triangles (every node's mesh, in world space) are welded and classified (:mod:`baker.geometry.edges`), the
 contour edges for the camera are found by eq. 15.1 and chained with the crease, boundary and material edges,
@@ -8,11 +9,9 @@ visible lines solid, hidden ones dashed (``--hidden``), stroke widths by type.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 
-from baker.geometry import edges as E
 from baker.techniques.edges import line_drawing as L
 from baker.errors import BakerError
 from baker.gltf.document import world_nodes
@@ -138,39 +137,3 @@ def svg_document(lines: list, width: int, height: int, widths: dict, hidden: boo
             out.append("</g>")
     out.append("</svg>")
     return "\n".join(out) + "\n"
-
-
-def run(args) -> int:
-    from baker.geometry.raycast import RayScene
-    from baker.gltf.atomic import write_bytes_atomic
-
-    out = Path(args.output)
-    if out.suffix.lower() != ".svg":
-        raise BakerError(out, "output must end in .svg")
-    widths = dict(DEFAULT_WIDTHS)
-    if args.widths:
-        for item in args.widths.split(","):
-            key, _, value = item.partition("=")
-            if key.strip() not in widths:
-                raise BakerError(None, f"--widths: unknown line type {key!r} (known: {', '.join(widths)})")
-            try:
-                widths[key.strip()] = float(value)
-            except ValueError:
-                raise BakerError(None, f"--widths: {item!r} is not TYPE=NUMBER") from None
-    if args.step <= 0:
-        raise BakerError(None, "--step must be > 0")
-    from baker import readers
-    from baker.memory import check_bake, parse_limit
-
-    # the edge analysis and the ray scene cost what the edges bake does per triangle
-    limit = parse_limit(args.max_memory)
-    asset = readers.read(args.input, max_memory=limit)
-    check_bake(asset, ("edges",), None, limit, "drawing the lines of this asset")
-    positions, faces, groups = scene_triangles(asset)
-    camera = make_camera(args, asset, positions)
-    options = E.EdgeSettings(crease_angle=args.crease_angle)
-    mesh = E.analyze_mesh(positions, faces, face_group=groups, options=options)
-    scene = RayScene(mesh.welded, mesh.faces_welded)
-    lines = L.trace_lines(mesh, camera, scene, step=args.step, creases=not args.no_creases)
-    write_bytes_atomic(out, svg_document(lines, camera.width, camera.height, widths, args.hidden).encode("utf-8"))
-    return 0

@@ -115,9 +115,7 @@ def write_material(doc: GltfDocument, material: int, *, options, length: float, 
     }
     if coverage_mips:
         ext["coverageMips"] = [dict(entry) for entry in coverage_mips]
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_material_extension(material, NAME, ext)
 
 
 def check(doc: GltfDocument, places: list, issues) -> None:

@@ -6,5 +6,5 @@ TECHNIQUE = Technique(
     summary='SDF/PSDF/MSDF/MTSDF glyph atlases and distance-field text (BAKER_glyph_atlas + BAKER_text)',
     extensions=("baker.techniques.glyphs.extension:ATLAS", "baker.techniques.glyphs.extension:TEXT"),
     panels="baker.techniques.glyphs.panel:PANELS",
-    commands=('baker.techniques.glyphs.glyphs_command', 'baker.techniques.glyphs.text_command',),
+    commands=('baker.techniques.glyphs.command',),
 )

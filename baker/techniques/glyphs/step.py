@@ -1,19 +1,23 @@
-"""Wire the glyph kernels to files: a font -> an atlas (PNG + JSON), and text -> a glTF label.
-
-Used by the ``baker glyphs`` and ``baker text`` commands (:mod:`baker.techniques.glyphs.glyphs_command`, :mod:`baker.techniques.glyphs.text_command`).
+"""Wire the glyph kernel to files: a font -> an atlas (PNG + JSON), and text -> a glTF label; the work of the
+``baker glyphs`` (:func:`run_glyphs`) and ``baker text`` (:func:`run_text`) commands, whose parsers are in
+:mod:`baker.techniques.glyphs.command`.
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 import sys
 from pathlib import Path
 
-from baker.techniques.glyphs.atlas import GlyphAtlas, bake_atlas
+from baker.techniques.glyphs.atlas import GlyphAtlas
+from baker.techniques.glyphs.command import PREFIX
+from baker.techniques.glyphs.kernel import bake_atlas
 from baker.techniques.glyphs.options import GlyphOptions
 from baker.techniques.glyphs.layout import layout_text, quads_of_shaped
 from baker.techniques.glyphs.outline import face_metrics, load_fonts, variation_location
-from baker.techniques.glyphs.shaping import face_source, open_faces, shape_text
+from baker.techniques.glyphs.shaping import face_source, open_faces, parse_features, shape_text
 from baker.errors import BakerError
+from baker.options import from_args
 from baker.techniques.glyphs import extension as ext
 from baker.gltf.atomic import write_files_atomic
 from baker.gltf.document import GltfDocument
@@ -102,3 +106,120 @@ def text_document(text: str, atlas: GlyphAtlas, *, em_size: float = 1.0, align: 
     doc.json["scenes"] = [{"nodes": [node]}]
     doc.json["scene"] = 0
     return doc, quads.missing
+
+
+# ---------------------------------------------------------------------------------------------------- commands
+def shaping_options(args) -> dict:
+    """The shaping flags of ``baker text`` / ``baker glyphs --text-file`` as :func:`shape` keywords."""
+    return {"direction": args.direction, "script": args.script, "language": args.language,
+            "features": parse_features(args.features)}
+
+
+def options_from(args, **overrides) -> GlyphOptions:
+    """The glyph options of the parsed flags (``overrides`` replacing some); a bad value is a BakerError."""
+    try:
+        options = from_args(GlyphOptions, PREFIX, args)
+    except ValueError as exc:
+        raise BakerError(None, str(exc)) from None
+    return dataclasses.replace(options, **overrides) if overrides else options
+
+
+def parse_glyph_ids(spec: str) -> list:
+    """``gid:3,17-20`` -> [(0, 3), (0, 17), ..., (0, 20)] (glyph ids of the first font)."""
+    if not spec.startswith("gid:"):
+        raise BakerError(None, f"bad --glyphs {spec!r} (use gid:LIST, e.g. gid:3,17-20)")
+    ids = []
+    for item in (x.strip() for x in spec[4:].split(",")):
+        if not item:
+            continue
+        lo, sep, hi = item.partition("-")
+        if not lo.isdigit() or (sep and not hi.isdigit()) or (sep and int(hi) < int(lo)):
+            raise BakerError(None, f"bad glyph id range {item!r} in --glyphs (use gid:3,17-20)")
+        ids.extend((0, g) for g in range(int(lo), int(hi if sep else lo) + 1))
+    if not ids:
+        raise BakerError(None, "--glyphs names no glyph id")
+    return ids
+
+
+def parse_color(text: str) -> tuple:
+    try:
+        parts = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise BakerError(None, f"bad color {text!r} (use r,g,b or r,g,b,a in 0..1)") from None
+    if len(parts) == 3:
+        parts.append(1.0)
+    if len(parts) != 4 or any(not 0.0 <= v <= 1.0 for v in parts):
+        raise BakerError(None, f"bad color {text!r} (use r,g,b or r,g,b,a in 0..1)")
+    return tuple(parts)
+
+
+def run_glyphs(args) -> int:
+    """``baker glyphs FONT -o OUT``: the atlas of the fonts' charset, glyph ids and shaped text file, as PNG + JSON."""
+    options = options_from(args)
+    fonts = ([args.font] if args.font else []) + list(args.fallback_fonts)
+    glyph_ids = parse_glyph_ids(args.glyph_ids) if args.glyph_ids else []
+    if args.text_file:
+        try:
+            text = Path(args.text_file).read_text("utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise BakerError(args.text_file, f"cannot read the text file: {exc}") from None
+        shaped = shape(text, fonts, options, **shaping_options(args))
+        if shaped.missing and not args.quiet:
+            print(f"baker: warning: {args.text_file}: {len(shaped.missing)} character(s) in no font: "
+                  f"{''.join(shaped.missing[:20])!r}", file=sys.stderr)
+        glyph_ids += shaped_glyph_ids(shaped)
+    # a charset flag given with glyph ids adds those characters; the default charset only applies without them
+    charset = options.charset if (not glyph_ids or args.glyphs__charset is not None) else None
+    atlas = font_atlas(fonts, options, charset=charset, glyph_ids=glyph_ids)
+    if args.format == "bmfont" and len(atlas.codepoint_glyphs()) < len(atlas.glyphs) and not args.quiet:
+        print(f"baker: warning: BMFont has no place for {len(atlas.glyphs) - len(atlas.codepoint_glyphs())} glyph(s) "
+              "without a code point (ligatures, contextual forms): left out of the JSON", file=sys.stderr)
+    png, meta = write_atlas_files(atlas, args.output, args.format)
+    if not args.quiet:
+        drawn = sum(g.atlas is not None for g in atlas.glyphs)
+        print(f"baked {len(atlas.glyphs)} glyphs ({drawn} with outlines) as {options.type}, {atlas.width} x "
+              f"{atlas.height} -> {png}, {meta}", file=sys.stderr)
+    return 0
+
+
+def run_text(args) -> int:
+    """``baker text "TEXT" --font F -o OUT``: the text shaped, its glyphs baked, the label written as glTF."""
+    text = args.text.replace("\\n", "\n")
+    if Path(args.output).suffix.lower() not in (".glb", ".gltf"):
+        raise BakerError(args.output, "output must end in .glb or .gltf")
+    if args.em_size <= 0:
+        raise BakerError(None, "--em-size must be > 0")
+    if args.line_spacing <= 0:
+        raise BakerError(None, "--line-spacing must be > 0")
+    options = options_from(args)
+    shaping = shaping_options(args)
+    shaped = shape(text, args.font, options, max_width=args.max_width, align=args.align,
+                   line_spacing=args.line_spacing, **shaping)
+    glyph_ids = shaped_glyph_ids(shaped)
+    if not glyph_ids and not args.glyphs__charset:
+        chars = sorted(set(text) - {"\n"})
+        if not chars:
+            raise BakerError(None, "empty charset: the text has no characters to bake")
+        shown = ", ".join(f"U+{ord(c):04X}" for c in chars[:5]) + (" ..." if len(chars) > 5 else "")
+        raise BakerError(args.font[0] if len(args.font) == 1 else ", ".join(args.font),
+                         f"none of the {len(chars)} requested characters has a glyph in "
+                         f"{'this font' if len(args.font) == 1 else 'these fonts'} ({shown})")
+    atlas = font_atlas(args.font, options, charset=options.charset if args.glyphs__charset else None,
+                       glyph_ids=glyph_ids, warn=False)
+    if shaped.missing:
+        print(f"baker: warning: {len(shaped.missing)} character(s) of the text are in none of the fonts: "
+              f"{''.join(shaped.missing[:20])!r}", file=sys.stderr)
+    written = {k: v for k, v in shaping.items() if v}
+    if args.features:
+        written["features"] = args.features
+    if args.max_width:
+        written["maxWidth"] = float(args.max_width)
+    doc, missing = text_document(text, atlas, em_size=args.em_size, align=args.align, color=parse_color(args.color),
+                                 outline_width=args.outline_width, outline_color=parse_color(args.outline_color),
+                                 line_spacing=args.line_spacing, shaped=shaped, shaping=written)
+    doc.save(args.output)
+    if not args.quiet:
+        print(f"wrote {len(text)} characters as {len(shaped.glyphs)} shaped glyphs from {len(atlas.font.faces)} "
+              f"font(s) ({options.type}, atlas {atlas.width} x {atlas.height}, {len(atlas.glyphs)} glyphs) -> "
+              f"{args.output}", file=sys.stderr)
+    return 0

@@ -6,5 +6,5 @@ TECHNIQUE = Technique(
     summary='hair guide strands and interpolated children grown on an emitter (BAKER_hair)',
     extensions=("baker.techniques.hair.extension",),
     panels="baker.techniques.hair.panel:PANELS",
-    commands=('baker.techniques.hair.command', 'baker.techniques.hair.guides_command'),
+    commands=('baker.techniques.hair.command',),
 )

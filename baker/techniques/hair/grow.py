@@ -1,4 +1,5 @@
-"""``baker hair SCALP_MESH -o OUT``: grow guide strands and children on a mesh and write them.
+"""``baker hair SCALP_MESH -o OUT`` (run by :func:`baker.techniques.hair.step.run_hair`): grow guide strands and
+children on a mesh and write them.
 
 Outputs by suffix: ``.glb``/``.gltf`` (the input asset plus a LINES mesh carrying ``BAKER_hair``), ``.usda``/
 ``.usdc``/``.usd`` (the asset plus ``UsdGeom.BasisCurves``), ``.tfx`` (AMD TressFX 4 guide strands). Options are
@@ -6,7 +7,6 @@ the fields of :class:`baker.techniques.hair.options.HairOptions`, as ``--<name>`
 """
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,9 +18,7 @@ from baker.techniques.hair.kernel import Emitter, HairResult, SurfaceField, gene
 from baker.techniques.hair.options import HairOptions
 from baker.errors import BakerError
 
-from baker.techniques.hair.command import OUTPUT_SUFFIXES, checked_options
-
-
+from baker.techniques.hair.command import OUTPUT_SUFFIXES
 
 
 def _luminance(rgb: np.ndarray) -> np.ndarray:
@@ -130,15 +128,3 @@ def write_output(asset: Asset, result: HairResult, options: HairOptions, output)
         write_tfx(output, g.positions, thickness=g.width_scale, strand_uv=g.root_uv)
     else:
         raise BakerError(output, f"unsupported output type (use one of {', '.join(OUTPUT_SUFFIXES)})")
-
-
-def run(args) -> int:
-    from baker.memory import parse_limit
-
-    options = checked_options(args, HairOptions, "hair", OUTPUT_SUFFIXES)
-    asset, result = make_hair(args.input, options, seed=args.seed, max_memory=parse_limit(args.max_memory))
-    write_output(asset, result, options, args.output)
-    if not args.quiet:
-        print(f"hair: {result.guides.count} guides + {result.children.count} children x {result.guides.vertices} "
-              f"vertices -> {args.output}", file=sys.stderr)
-    return 0

@@ -84,9 +84,7 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, prof
     }
     if generated_tangents:
         ext["generatedTangents"] = list(generated_tangents)
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_material_extension(material, NAME, ext)
 
 
 def check(doc: GltfDocument, places: list, issues) -> None:

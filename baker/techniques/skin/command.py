@@ -1,4 +1,5 @@
-"""``baker skin-lut -o OUT``: the parser; the work is in :mod:`baker.techniques.skin.lut_files`, imported when it runs."""
+"""``baker skin-lut -o OUT``: the parser; the work is :func:`baker.techniques.skin.step.run_skin_lut`, imported when
+it runs."""
 from __future__ import annotations
 
 from baker.options import add_arguments
@@ -12,4 +13,4 @@ def add_parser(subparsers) -> None:
     p.add_argument("-o", "--output", required=True, help="LUT image (.exr float, .png 8/16-bit)")
     p.add_argument("-q", "--quiet", action="store_true", help="no summary line")
     add_arguments(p, SkinOptions, "skin")
-    p.set_defaults(func=lazy("baker.techniques.skin.lut_files:run"))
+    p.set_defaults(func=lazy("baker.techniques.skin.step:run_skin_lut"))

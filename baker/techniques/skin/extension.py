@@ -72,9 +72,7 @@ def write_material_parameters(doc: GltfDocument, material: int, *, tables: SkinT
     if curvature_texture:
         ext["curvatureTexture"] = dict(curvature_texture)
         ext["curvatureTextureRange"] = [float(x) for x in curvature_texture_range]
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_material_extension(material, NAME, ext)
 
 
 def check(doc: GltfDocument, places: list, issues) -> None:

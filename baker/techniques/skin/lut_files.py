@@ -1,30 +1,22 @@
-"""``baker skin-lut -o OUT``: write Penner's pre-integrated skin LUT (and penumbra LUT) as images plus a JSON sidecar
-with the axes, units, profile, Jimenez separable kernel and d'Eon Gaussian blur weights.
+"""The files of ``baker skin-lut -o OUT`` (:func:`baker.techniques.skin.step.run_skin_lut`): Penner's pre-integrated
+skin LUT (and penumbra LUT) as images, and a JSON sidecar with the axes, units, profile, Jimenez separable kernel and
+d'Eon Gaussian blur weights.
 
 OUT's suffix picks the format: ``.exr`` (32-bit float, linear), ``.png`` (``--skin-bits`` 16 or 8, ``--skin-encoding``
 linear or srgb). The penumbra LUT goes to ``<stem>_penumbra<suffix>``, the sidecar to ``<stem>.json``.
 """
 from __future__ import annotations
 
-import json
-import sys
-from pathlib import Path
-
 import numpy as np
 
+from baker.techniques.skin.kernel import quantize
 from baker.techniques.skin.options import SkinOptions
-from baker.techniques.skin.kernel import quantize, skin_tables
-from baker.errors import BakerError
-from baker.gltf.atomic import write_files_atomic
-from baker.gltf.images import encode_image
-from baker.options import from_args
 
 SUFFIXES = (".exr", ".png")
 
 
-
-
-def _pixels(values: np.ndarray, suffix: str, options: SkinOptions) -> np.ndarray:
+def lut_pixels(values: np.ndarray, suffix: str, options: SkinOptions) -> np.ndarray:
+    """A LUT's values as the image type of ``suffix`` stores them (EXR float32, or PNG integers)."""
     if suffix == ".exr":
         return np.ascontiguousarray(values, np.float32)
     return quantize(values, options.bits, options.encoding)
@@ -82,28 +74,3 @@ def sidecar(tables, options: SkinOptions, lut_file: str, penumbra_file: str | No
             "sharpening": float(options.sharpening),
         }
     return doc
-
-
-def run(args) -> int:
-    out = Path(args.output)
-    suffix = out.suffix.lower()
-    if suffix not in SUFFIXES:
-        raise BakerError(out, f"unsupported LUT image type (use one of {', '.join(SUFFIXES)})")
-    try:
-        options = from_args(SkinOptions, "skin", args)
-    except ValueError as exc:
-        raise BakerError(None, str(exc)) from None
-    tables = skin_tables(options)
-    penumbra_path = out.with_name(f"{out.stem}_penumbra{out.suffix}") if tables.penumbra is not None else None
-    json_path = out.with_suffix(".json")
-    fmt = "exr-float32" if suffix == ".exr" else f"png-{options.bits}bit"
-    files = [(out, encode_image(_pixels(tables.lut, suffix, options), suffix))]
-    if penumbra_path is not None:
-        files.append((penumbra_path, encode_image(_pixels(tables.penumbra, suffix, options), suffix)))
-    doc = sidecar(tables, options, out.name, penumbra_path.name if penumbra_path else None, fmt)
-    files.append((json_path, (json.dumps(doc, indent=2) + "\n").encode("utf-8")))
-    write_files_atomic(files)  # one atomic group, the sidecar last: all new files or all earlier ones
-    if not args.quiet:
-        extra = f", {penumbra_path}" if penumbra_path else ""
-        print(f"skin LUT {tables.axes.width}x{tables.axes.height} -> {out}{extra}, {json_path}", file=sys.stderr)
-    return 0

@@ -103,9 +103,7 @@ def write_tam(doc: GltfDocument, material: int, tam: TonalArtMap, textures: list
     ext["levels"] = levels
     ext["scale"] = float(scale)
     ext["texCoord"] = int(texcoord)
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_material_extension(material, NAME, ext)
 
 
 # ---------------------------------------------------------------------------------------------------------- files

@@ -3,11 +3,13 @@
 The TAM tiles, so any UV set works, overlapping or not: a material whose primitives all have ``TEXCOORD_0`` uses
 it; otherwise its primitives are unwrapped with xatlas into a new set (as the texture bakes do). The tiling rate
 ``scale`` (finest-level texels per UV unit) defaults to one tile across about 1/6 of the mesh's bounding-box
-diagonal, measured through the UV set's own texel density (world area / UV area).
+diagonal, measured through the UV set's own texel density (world area / UV area). The standalone ``baker tam -o
+DIR`` (:func:`run_tam`) writes the TAM to a folder instead.
 """
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
@@ -15,6 +17,7 @@ from baker.geometry.asset import Asset
 from baker.techniques.tam.options import TamOptions
 from baker.techniques.tam.kernel import check_options, generate_tam
 from baker.errors import BakerError
+from baker.options import from_args
 from baker.techniques.tam import extension as ext
 from baker.progress import QUIET, Progress
 from baker.texels.targets import unwrap_material
@@ -68,3 +71,21 @@ def run(asset: Asset, options: TamOptions, seed: int = 0, progress: Progress = Q
         if textures is None:
             textures = ext.write_tam_textures(doc, tam)
         ext.write_tam(doc, material, tam, textures, scale=scale, texcoord=texcoord)
+
+
+def run_tam(args) -> int:
+    """``baker tam -o DIR``: the per-level PNGs and ``tam.json`` (optionally KTX2) in a folder, no asset."""
+    from baker.gltf.atomic import output_folder
+
+    folder = output_folder(args.output)
+    try:
+        options = from_args(TamOptions, "tam", args)
+        check_options(options)
+    except ValueError as exc:
+        raise BakerError(None, str(exc)) from None
+    tam = generate_tam(options, seed=args.seed)
+    manifest = ext.write_tam_directory(tam, folder, ktx2=args.ktx2)
+    if not args.quiet:
+        print(f"tam: {len(tam.targets)} tones x {len(tam.sizes)} levels ({tam.sizes[0]}..{tam.sizes[-1]} px), "
+              f"{len(tam.strokes['x'])} strokes -> {folder}/tam.json", file=sys.stderr)
+    return 0 if manifest else 2

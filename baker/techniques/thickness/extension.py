@@ -101,9 +101,7 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, max_
             ext.update(texel_rule)
     if per_vertex:
         ext["attribute"] = ATTRIBUTE
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_material_extension(material, NAME, ext)
 
 
 def check(doc: GltfDocument, places: list, issues) -> None:

@@ -48,9 +48,7 @@ def write_toon_ramp(doc: GltfDocument, material: int, options: ToonOptions, text
         texture = doc.add_texture(image, sampler=RAMP_SAMPLER, name="baker toon ramp")
     ext = toon_parameters(options)
     ext["rampTexture"] = {"index": texture}
-    doc.json["materials"][material].setdefault("extensions", {})[NAME] = ext
-    doc.use_extension(NAME)
-    return ext
+    return doc.set_material_extension(material, NAME, ext)
 
 
 def write_toon_directory(options: ToonOptions, folder) -> dict:

@@ -12,7 +12,6 @@ import sys
 import time
 from pathlib import Path
 
-
 from baker.errors import BakerError
 from baker.techniques.cards.command import CARDS_OUTPUT_SUFFIXES
 from baker.techniques.cards.options import CardsOptions
@@ -78,7 +77,8 @@ def write_output(doc, output) -> None:
         write_usd(doc, output, usd_primitive_hooks(), vertex_attribute_widths(), usd_texture_color_spaces())
 
 
-def run(args) -> int:
+def run_cards(args) -> int:
+    """``baker cards GROOM -o OUT``: the cards of a groom file, written as glTF or USD, and a summary."""
     options = checked_options(args)
     result, counts, seconds = make_cards_from_file(args.input, options)
     start = time.perf_counter()
@@ -100,5 +100,3 @@ def run(args) -> int:
               f"5 % of the mean length of a card, {100 * s['pointsOnOpaqueTexels']:.1f} % on opaque texels -> "
               f"{args.output}", file=sys.stderr)
     return 0
-
-

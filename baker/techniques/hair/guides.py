@@ -1,4 +1,5 @@
-"""``baker guides GROOM -o OUT``: read a dense groom, choose guides, solve child weights, order LODs, write.
+"""``baker guides GROOM -o OUT`` (run by :func:`baker.techniques.hair.step.run_guides`): read a dense groom, choose
+guides, solve child weights, order LODs, write.
 
 Outputs by suffix (see ``schemas/BAKER_hair/README.md``):
 
@@ -13,9 +14,7 @@ Outputs by suffix (see ``schemas/BAKER_hair/README.md``):
 """
 from __future__ import annotations
 
-import json
 import struct
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,9 +27,7 @@ from baker.readers import read_groom
 from baker.readers.groom import clean_groom
 from baker.techniques.hair.guide_solver import (GuideSolution, lod_counts, progressive_order, resample_strands,
                                                  solve_guides)
-from baker.techniques.hair.command import checked_options
-from baker.techniques.hair.guides_command import GUIDES_OUTPUT_SUFFIXES
-from baker.techniques.hair.guides_options import GuidesOptions
+from baker.techniques.hair.options import GuidesOptions
 from baker.techniques.hair.kernel import HairResult, StrandSet
 
 WEIGHTS_MAGIC = b"BKHW"
@@ -271,22 +268,3 @@ def summary(bake: GuidesBake, input_path, output) -> dict:
             "verticesPerStrand": int(r.guides.vertices), "rmsError": bake.stats["rmsError"],
             "maxError": bake.stats["maxError"], "lods": bake.lods,
             "seconds": {k: round(v, 3) for k, v in bake.stats["seconds"].items()}}
-
-
-def run(args) -> int:
-    options = checked_options(args, GuidesOptions, "guides", GUIDES_OUTPUT_SUFFIXES)
-    progress = Progress(enabled=False) if args.quiet else Progress()
-    from baker.memory import parse_limit
-
-    bake = make_guides(args.input, options, progress, max_memory=parse_limit(args.max_memory))
-    write_output(bake, args.output, options)
-    info = summary(bake, args.input, args.output)
-    if args.format == "json":
-        print(json.dumps(info, indent=2, sort_keys=True))
-    elif not args.quiet:
-        skipped = ", ".join(f"{n} {reason}" for reason, n in info["skipped"].items()) or "none"
-        print(f"guides: {info['strands']} strands -> {info['guides']} guides x {info['verticesPerStrand']} vertices, "
-              f"reconstruction error RMS {100 * info['rmsError']:.2f} % / max {100 * info['maxError']:.2f} % of "
-              f"strand length, {len(bake.lods)} LODs, skipped: {skipped} -> {args.output}", file=sys.stderr)
-    return 0
-
