@@ -1,6 +1,7 @@
 """The runtime descriptors (runtime-shaders/shared/src/techniques.js) against what is written about the runtimes:
 every module named exists, the READMEs' runtime tables (which extension -> which module, switch, property) say what
-the descriptors say, and the viewer passes every module the descriptors name. A technique added to the descriptors
+the descriptors say and are the ones tools/readme_tables.mjs writes from them, and the viewer passes every module
+the descriptors name. A technique added to the descriptors
 and missing from a table, or a table row naming another extension's switch or module, fails here."""
 from __future__ import annotations
 
@@ -149,3 +150,10 @@ def test_descriptor_reads_only_properties_the_schemas_define(runtimes):
             sources = entry.get("from", [])
             for source in [sources] if isinstance(sources, str) else sources:
                 assert source.split(".")[0] in properties, f"{r['extension']}: {entry['name']} reads {source}"
+
+
+def test_readme_tables_are_the_descriptors(runtimes):
+    # the four READMEs' runtime tables are written from the descriptors' `readme` rows: rewritten, none may change
+    result = subprocess.run(["node", str(SHADERS / "shared" / "tools" / "readme_tables.mjs"), "--check"],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
