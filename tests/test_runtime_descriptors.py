@@ -1,8 +1,8 @@
 """The runtime descriptors (runtime-shaders/shared/src/techniques.js) against what is written about the runtimes:
 every module named exists, the READMEs' runtime tables (which extension -> which module, switch, property) say what
 the descriptors say and are the ones tools/readme_tables.mjs writes from them, and the viewer passes every module
-the descriptors name. A technique added to the descriptors
-and missing from a table, or a table row naming another extension's switch or module, fails here."""
+the descriptors name. A technique added to the descriptors and missing from a table, or a table row naming another
+extension's switch or module, fails here."""
 from __future__ import annotations
 
 import json

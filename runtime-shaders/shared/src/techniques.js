@@ -20,6 +20,9 @@
 //   `slice` ([begin, end] of an array), `count` (the length of an array property), `compute` (a formula of
 //   values.js COMPUTED, by name);
 // - struct: the module's parameter struct, built in GLSL from these uniforms in this order;
+// - surface: a surface part written once for both hosts, `stage` (runtime-shaders/hosts/web/<stage>.glsl, in
+//   stages.js) injected at `point`: 'afterLights' (reads bakerWorldPosition, bakerSunLight; writes bakerDiffuse) or
+//   'outgoing' (reads bakerUv, bakerNormal, bakerKeyLight; writes bakerColor), names each host's surface.js defines;
 // - options: the defaults of options.<name> (a host's user overrides);
 // - readme: the technique's rows in the READMEs' runtime tables, the cells the descriptor cannot give:
 //   `shaders` (runtime-shaders/README.md's module table: technique, extension, twin and tests), `three` (one
@@ -129,6 +132,7 @@ export const RUNTIMES = [
 	{
 		name: 'tonal_art_map', extension: 'BAKER_tonal_art_map', on: ['material'], kind: 'surface',
 		modules: { glsl: 'baker_hatching.glsl', key: 'hatching', wgsl: null },
+		surface: { stage: 'surface_hatching', point: 'outgoing' },
 		switches: [{ name: 'tam', label: 'hatching (TAM)' }],
 		attributes: [],
 		// the packed layout's two textures per level, uploaded as the mip levels of two textures (a host's own code)
@@ -273,6 +277,7 @@ export const RUNTIMES = [
 	{
 		name: 'caustics', extension: 'BAKER_caustics', on: ['material'], kind: 'surface',
 		modules: { glsl: 'baker_caustics.glsl', key: 'caustics', wgsl: null },
+		surface: { stage: 'surface_caustics', point: 'afterLights' },
 		switches: [{ name: 'caustics', label: 'caustics' }],
 		attributes: [],
 		// the two frames of the current time (GLSL ES 3.00 cannot index a sampler array with a variable)
