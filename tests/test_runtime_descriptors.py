@@ -1,7 +1,8 @@
 """The runtime descriptors (runtime-shaders/shared/src/techniques.js) against what is written about the runtimes:
 every module named exists, the READMEs' runtime tables (which extension -> which module, switch, property) say what
-the descriptors say, and the viewer passes every module the descriptors name. A technique added to the descriptors
-and missing from a table, or a table row naming another extension's switch or module, fails here."""
+the descriptors say and are the ones tools/readme_tables.mjs writes from them, and the viewer passes every module
+the descriptors name. A technique added to the descriptors and missing from a table, or a table row naming another
+extension's switch or module, fails here."""
 from __future__ import annotations
 
 import json
@@ -103,11 +104,26 @@ def test_gltf_transform_table_places_match(runtimes):
         assert said == set(r["on"]), f"{r['extension']}: the README puts it on {said}, the descriptor on {r['on']}"
 
 
-def test_viewer_passes_every_module(runtimes):
-    text = (ROOT / "examples" / "viewer" / "src" / "shaders.js").read_text()
-    imported = dict(re.findall(r"import (\w+) from '\.\./\.\./\.\./runtime-shaders/([\w.]+)';", text))
+def test_viewer_passes_every_module(runtimes, tmp_path):
+    # the viewer's shaders.js derives its list from the descriptors: bundled as the viewer builds it and run, it must
+    # hold every descriptor's module, as the file's text, under its key
+    viewer = ROOT / "examples" / "viewer"
+    esbuild = viewer / "node_modules" / ".bin" / "esbuild"
+    assert esbuild.is_file(), "examples/viewer has no esbuild (scripts/test installs it)"
+    bundle = tmp_path / "shaders.mjs"
+    build = subprocess.run([str(esbuild), "src/shaders.js", "--bundle", "--format=esm", "--platform=node",
+                            "--loader:.glsl=text", "--alias:@baker/shared=../../runtime-shaders/shared/src/index.js",
+                            f"--outfile={bundle}", "--log-level=warning"], cwd=viewer, capture_output=True, text=True,
+                           timeout=60)
+    assert build.returncode == 0, build.stderr
+    script = f"import {{ shaders }} from {json.dumps(bundle.as_uri())}; console.log(JSON.stringify(shaders));"
+    result = subprocess.run(["node", "--input-type=module", "-e", script], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    passed = json.loads(result.stdout)
     wanted = {r["modules"]["key"]: r["modules"]["glsl"] for r in runtimes["RUNTIMES"] if r["modules"].get("glsl")}
-    assert imported == wanted
+    assert set(passed) == set(wanted)
+    for key, module in wanted.items():
+        assert passed[key] == (SHADERS / module).read_text(), f"options.shaders.{key} is not {module}"
 
 
 def test_descriptor_places_are_the_schemas(runtimes):
@@ -134,3 +150,10 @@ def test_descriptor_reads_only_properties_the_schemas_define(runtimes):
             sources = entry.get("from", [])
             for source in [sources] if isinstance(sources, str) else sources:
                 assert source.split(".")[0] in properties, f"{r['extension']}: {entry['name']} reads {source}"
+
+
+def test_readme_tables_are_the_descriptors(runtimes):
+    # the four READMEs' runtime tables are written from the descriptors' `readme` rows: rewritten, none may change
+    result = subprocess.run(["node", str(SHADERS / "shared" / "tools" / "readme_tables.mjs"), "--check"],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr

@@ -1,14 +1,10 @@
-// The runtime-shaders/ modules as text (esbuild's text loader at build time): both engines inject these very files.
-import translucency from '../../../runtime-shaders/baker_translucency.glsl';
-import skin from '../../../runtime-shaders/baker_skin.glsl';
-import toon from '../../../runtime-shaders/baker_toon.glsl';
-import hatching from '../../../runtime-shaders/baker_hatching.glsl';
-import edges from '../../../runtime-shaders/baker_edges.glsl';
-import fur from '../../../runtime-shaders/baker_fur.glsl';
-import hair from '../../../runtime-shaders/baker_hair.glsl';
-import text from '../../../runtime-shaders/baker_text.glsl';
-import caustics from '../../../runtime-shaders/baker_caustics.glsl';
-import cards from '../../../runtime-shaders/baker_hair_cards.glsl';
-import normalBlur from '../../../runtime-shaders/baker_normal_blur.glsl';
+// The runtime-shaders/ modules as text, one per descriptor that names a GLSL module, under its options.shaders key:
+// both engines inject these very files. esbuild bundles every file the template can name (its glob import, with
+// the text loader for .glsl), so the list is the descriptors' and a new technique needs no line here.
+import { RUNTIMES } from '@baker/shared';
 
-export const shaders = { translucency, skin, toon, hatching, edges, fur, hair, text, caustics, cards, normalBlur };
+// 'baker_<stem>.glsl' -> the import's template needs the fixed prefix and suffix to glob only the GLSL modules
+const stem = (file) => file.replace(/^baker_/, '').replace(/\.glsl$/, '');
+
+export const shaders = Object.fromEntries(await Promise.all(RUNTIMES.filter((r) => r.modules.glsl).map(async (r) =>
+	[r.modules.key, (await import(`../../../runtime-shaders/baker_${stem(r.modules.glsl)}.glsl`)).default])));

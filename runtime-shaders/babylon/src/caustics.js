@@ -29,3 +29,6 @@ export const BakerCausticsExtension = surfaceExtension('caustics', BAKER_CAUSTIC
 		},
 	};
 });
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_CAUSTICS]: BakerCausticsExtension };

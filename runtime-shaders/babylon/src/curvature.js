@@ -12,3 +12,6 @@ export const BakerCurvatureExtension = surfaceExtension('curvature', BAKER_CURVA
 		...descriptorUniforms('curvature', ext),
 	};
 });
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_CURVATURE]: BakerCurvatureExtension };

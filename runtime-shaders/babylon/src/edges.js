@@ -136,3 +136,6 @@ export class EdgeVisibilityExtension {
 		await this.edges.onReady();
 	}
 }
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_EDGES]: BakerEdgesExtension, [EXT_EDGE_VISIBILITY]: EdgeVisibilityExtension };

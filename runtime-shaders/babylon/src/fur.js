@@ -95,3 +95,6 @@ export class BakerFurExtension {
 		}
 	}
 }
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_FUR]: BakerFurExtension };

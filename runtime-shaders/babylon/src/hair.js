@@ -85,3 +85,6 @@ export class BakerHairExtension {
 		}
 	}
 }
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_HAIR]: BakerHairExtension };

@@ -33,3 +33,6 @@ export const BakerHairCardsExtension = surfaceExtension('cards', BAKER_HAIR_CARD
 		samplers: { u_bakerCardsData: data, u_bakerCardsFlow: flow },
 	};
 });
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_HAIR_CARDS]: BakerHairCardsExtension };

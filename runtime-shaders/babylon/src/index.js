@@ -16,24 +16,8 @@
 // that include the matching module, lit by the scene's directional lights. Every extension does its work in
 // onReady, when the loader has built the whole scene, and reads custom attributes from their accessors.
 import { registerGLTFExtension, unregisterGLTFExtension } from '@babylonjs/loaders/glTF/2.0/glTFLoaderExtensionRegistry.js';
-import {
-	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_HAIR_CARDS,
-	BAKER_NORMAL_BLUR, BAKER_SKIN_LUT, BAKER_TEXT, BAKER_THICKNESS, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
-	EXT_EDGE_VISIBILITY, controls,
-} from './common.js';
-import { BakerThicknessExtension } from './thickness.js';
-import { BakerCurvatureExtension } from './curvature.js';
-import { BakerSkinLutExtension } from './skin_lut.js';
-import { BakerToonRampExtension } from './toon_ramp.js';
-import { BakerTonalArtMapExtension } from './tonal_art_map.js';
-import { BakerEdgesExtension, EdgeVisibilityExtension } from './edges.js';
-import { BakerFurExtension } from './fur.js';
-import { BakerHairExtension } from './hair.js';
-import { BakerGlyphAtlasExtension } from './glyph_atlas.js';
-import { BakerTextExtension } from './text.js';
-import { BakerCausticsExtension } from './caustics.js';
-import { BakerHairCardsExtension } from './hair_cards.js';
-import { BakerNormalBlurExtension } from './normal_blur.js';
+import { RUNTIMES } from '@baker/shared';
+import { controls } from './common.js';
 
 export {
 	BAKER_CAUSTICS, BAKER_CURVATURE, BAKER_EDGES, BAKER_FUR, BAKER_GLYPH_ATLAS, BAKER_HAIR, BAKER_HAIR_CARDS,
@@ -46,23 +30,29 @@ export { tamTextures } from './tonal_art_map.js';
 export { wireframeArrays, maskFromVisibility } from './edges.js';
 export { ribbonArrays } from './hair.js';
 export { textStyle } from './text.js';
-export {
-	BakerThicknessExtension, BakerCurvatureExtension, BakerSkinLutExtension, BakerToonRampExtension,
-	BakerTonalArtMapExtension, BakerEdgesExtension, EdgeVisibilityExtension, BakerFurExtension, BakerHairExtension,
-	BakerGlyphAtlasExtension, BakerTextExtension, BakerCausticsExtension, BakerHairCardsExtension,
-	BakerNormalBlurExtension,
-};
+// the extension classes by name, as earlier releases exported them; a technique needs none here (EXTENSIONS has it)
+export { BakerThicknessExtension } from './thickness.js';
+export { BakerCurvatureExtension } from './curvature.js';
+export { BakerSkinLutExtension } from './skin_lut.js';
+export { BakerToonRampExtension } from './toon_ramp.js';
+export { BakerTonalArtMapExtension } from './tonal_art_map.js';
+export { BakerEdgesExtension, EdgeVisibilityExtension } from './edges.js';
+export { BakerFurExtension } from './fur.js';
+export { BakerHairExtension } from './hair.js';
+export { BakerGlyphAtlasExtension } from './glyph_atlas.js';
+export { BakerTextExtension } from './text.js';
+export { BakerCausticsExtension } from './caustics.js';
+export { BakerHairCardsExtension } from './hair_cards.js';
+export { BakerNormalBlurExtension } from './normal_blur.js';
+
+// Every technique's loader extensions, from its host module <descriptor name>.js (its LOADER_EXTENSIONS: extension
+// name -> class, the extensions it uses included), in the descriptors' order: a new technique is registered by its
+// descriptor and its module, not by a line here. A bundler includes every ./*.js the template can name (esbuild's
+// glob import, Vite's dynamic-import-vars).
+const HOST_MODULES = await Promise.all(RUNTIMES.map((r) => import(`./${r.name}.js`)));
 
 /** extension name -> loader extension class (each a glTF extension: used only by files that list it). */
-export const EXTENSIONS = {
-	[BAKER_THICKNESS]: BakerThicknessExtension, [BAKER_CURVATURE]: BakerCurvatureExtension,
-	[BAKER_SKIN_LUT]: BakerSkinLutExtension, [BAKER_TOON_RAMP]: BakerToonRampExtension,
-	[BAKER_TONAL_ART_MAP]: BakerTonalArtMapExtension, [BAKER_EDGES]: BakerEdgesExtension,
-	[EXT_EDGE_VISIBILITY]: EdgeVisibilityExtension, [BAKER_FUR]: BakerFurExtension, [BAKER_HAIR]: BakerHairExtension,
-	[BAKER_GLYPH_ATLAS]: BakerGlyphAtlasExtension, [BAKER_TEXT]: BakerTextExtension,
-	[BAKER_CAUSTICS]: BakerCausticsExtension, [BAKER_HAIR_CARDS]: BakerHairCardsExtension,
-	[BAKER_NORMAL_BLUR]: BakerNormalBlurExtension,
-};
+export const EXTENSIONS = Object.assign({}, ...HOST_MODULES.map((module) => module.LOADER_EXTENSIONS));
 
 const CONTROLS = 'BAKER_controls';
 

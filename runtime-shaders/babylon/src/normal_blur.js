@@ -19,3 +19,6 @@ export const BakerNormalBlurExtension = surfaceExtension('normalBlur', BAKER_NOR
 		uniforms: {},
 	};
 });
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_NORMAL_BLUR]: BakerNormalBlurExtension };

@@ -27,3 +27,6 @@ export const BakerSkinLutExtension = surfaceExtension('skin', BAKER_SKIN_LUT, as
 		...descriptorUniforms('skin_lut', ext),
 	};
 });
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_SKIN_LUT]: BakerSkinLutExtension };

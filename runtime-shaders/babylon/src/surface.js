@@ -8,6 +8,7 @@
 // redistribute the directional lights' Lambert light (on the base colour too); hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
 // curvature view replaces it. Each part is gated by a uniform, so a switch costs no recompile.
 import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase.js';
+import { surfaceStages } from '@baker/shared';
 import { controls, glslType, loadedPrimitives } from './common.js';
 
 const PLUGIN_NAME = 'BakerSurface';
@@ -36,20 +37,6 @@ vec3 baker_key_light(vec3 fallback) {
 #else
 	return fallback;
 #endif
-}`;
-
-// caustics: the directional lights' Lambert light scaled by the irradiance of the two current frames
-// (baker_caustics.glsl); browsers decode a gray PNG to equal RGB channels, so the frames are read as RGB
-const CAUSTICS = `
-if (u_baker_caustics_on > 0.5) {
-	vec2 bakerCausticsUv = baker_caustics_uv(vPositionW, u_bakerCausticsProjection, u_bakerCausticsWaterLevel,
-		u_bakerCausticsDepth, u_bakerCausticsTileSize);
-	float bakerCausticsFade = baker_caustics_fade(baker_caustics_depth(vPositionW, u_bakerCausticsWaterLevel),
-		u_bakerCausticsDepth, u_bakerCausticsFadeDistance);
-	vec3 bakerCausticsE = baker_caustics_irradiance(u_bakerCausticsFirst, u_bakerCausticsNext, bakerCausticsUv,
-		u_bakerCausticsBlend, u_bakerCausticsScale, 1.0);
-	finalDiffuse = baker_caustics_apply(finalDiffuse, bakerSun * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x,
-		bakerCausticsE, u_bakerCausticsStrength, bakerCausticsFade);
 }`;
 
 // hair cards: the strand direction from the flow texture in the card's frame (from screen-space derivatives, as
@@ -212,7 +199,8 @@ if (u_baker_normalBlur_on > 0.5) {
 		const code = {
 			CUSTOM_FRAGMENT_DEFINITIONS: `${modules}\n${structs}\n${samplers}\n${varyings}\n${KEY_LIGHT}`,
 		};
-		if (diffuse.length || p.translucency || p.caustics || p.cards) {
+		const afterLights = surfaceStages(p, 'afterLights');
+		if (diffuse.length || p.translucency || afterLights || p.cards) {
 			// after Babylon's own diffuse of light $1 (directional, point or spot): f replaces the clamped N.L
 			code[LIGHT_POINT] = `info.diffuse=computeDiffuseLighting(preInfo,diffuse$1.rgb);
 {
@@ -241,14 +229,25 @@ if (u_baker_normalBlur_on > 0.5) {
 		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;' +
 			`\nfinalDiffuse += bakerLambert * ${albedo} * vLightingIntensity.x;` +
 			'\nfinalDiffuse += bakerCards * vLightingIntensity.x;' +
-			(p.caustics ? CAUSTICS : '');
+			// the parts both hosts share (runtime-shaders/hosts/web/surface_*.glsl) in a block defining their names
+			(afterLights && `
+{
+vec3 bakerWorldPosition = vPositionW;
+vec3 bakerSunLight = bakerSun * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;
+vec3 bakerDiffuse = finalDiffuse;
+${afterLights}
+finalDiffuse = bakerDiffuse;
+}`);
 		let outgoing = '';
-		if (p.tam) outgoing += `
-if (u_baker_tam_on > 0.5) {
-	vec2 tile = baker_tam_coord(v_bakerUv, u_bakerTamScale, u_bakerTamFinestSize);
-	float lod = baker_tam_lod(dFdx(tile), dFdy(tile), u_bakerTamFinestSize, u_bakerTamLevels);
-	float darkness = baker_hatching_darkness(normalW, baker_key_light(viewDirectionW), 1.0);
-	finalColor.rgb *= baker_hatching(u_bakerTam012, u_bakerTam345, tile, lod, darkness, u_bakerTamTonesA, u_bakerTamTonesB);
+		const onOutgoing = surfaceStages(p, 'outgoing');
+		if (onOutgoing) outgoing += `
+{
+vec2 bakerUv = v_bakerUv;
+vec3 bakerNormal = normalW;
+vec3 bakerKeyLight = baker_key_light(viewDirectionW);
+vec3 bakerColor = finalColor.rgb;
+${onOutgoing}
+finalColor.rgb = bakerColor;
 }`;
 		if (p.curvature) outgoing += `
 if (u_baker_curvature_on > 0.5) {

@@ -1,9 +1,9 @@
 // BAKER_text: a label's glyph quads drawn with the distance-field shader (outline, glow, shadow; RTR4 15.5); the
 // stages are runtime-shaders/hosts/web/text.*.glsl.
 import { textFieldType, textShadowOffset, textStyle as sharedTextStyle } from '@baker/shared';
-import { BAKER_TEXT, controls, requireShader, stageMaterial } from './common.js';
+import { BAKER_GLYPH_ATLAS, BAKER_TEXT, controls, requireShader, stageMaterial } from './common.js';
 import { premultiplied } from './geometry.js';
-import { glyphAtlasFont } from './glyph_atlas.js';
+import { BakerGlyphAtlasExtension, glyphAtlasFont } from './glyph_atlas.js';
 
 const STYLE_FIELDS = ['color', 'softness', 'outlineColor', 'outlineWidth', 'glowColor', 'glowWidth', 'shadowColor', 'shadowSoftness'];
 
@@ -57,3 +57,6 @@ export class BakerTextExtension {
 		}
 	}
 }
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_TEXT]: BakerTextExtension, [BAKER_GLYPH_ATLAS]: BakerGlyphAtlasExtension };

@@ -20,3 +20,6 @@ export const BakerThicknessExtension = surfaceExtension('translucency', BAKER_TH
 		...descriptorUniforms('thickness', { ...ext, ...(this.options.thickness || {}) }),
 	};
 });
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_THICKNESS]: BakerThicknessExtension };

@@ -55,3 +55,6 @@ export const BakerTonalArtMapExtension = surfaceExtension('tam', BAKER_TONAL_ART
 		...descriptorUniforms('tonal_art_map', ext),
 	};
 });
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_TONAL_ART_MAP]: BakerTonalArtMapExtension };

@@ -12,3 +12,6 @@ export const BakerToonRampExtension = surfaceExtension('toon', BAKER_TOON_RAMP, 
 		...descriptorUniforms('toon_ramp', ext),
 	};
 });
+
+/** What index.js registers with Babylon's glTF loader for this technique (found through the descriptor's name). */
+export const LOADER_EXTENSIONS = { [BAKER_TOON_RAMP]: BakerToonRampExtension };

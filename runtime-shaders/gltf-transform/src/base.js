@@ -349,3 +349,28 @@ export function finsOfPrimitive(mesh, self, name) {
 		return ext && ext.getPrimitive('finsOf') === self;
 	});
 }
+
+const PARENT_OF = Object.fromEntries(Object.entries(PLACES).map(([parent, place]) => [place, parent]));
+const OBJECT_NAMES = { material: 'Material', 'mesh.primitive': 'Primitive', node: 'Node', glTF: 'Root' };
+const pascal = (words) => words.split('_').map((w) => w.charAt(0).toUpperCase() + w.slice(1)).join('');
+
+/**
+ * The class of an extension that needs nothing but its JSON and its references (an extension with no derived back
+ * references and no accessors of its own): one property per glTF object its schemas put it on (references.js), so
+ * a new extension is carried by its schema alone. Named as the hand-written ones are: BAKER_skin_lut ->
+ * BakerSkinLut (property and extension); on several objects, each property gets the object's kind appended.
+ */
+export function plainExtension(extensionName) {
+	const places = Object.keys(REFERENCES[extensionName] ?? {});
+	if (!places.length) throw new Error(`@baker/gltf-transform: references.js has no ${extensionName} (run tools/references.mjs)`);
+	const name = `Baker${pascal(extensionName.replace(/^BAKER_/, ''))}`;
+	const properties = places.map((place) => defineProperty(extensionName,
+		places.length > 1 ? `${name}${OBJECT_NAMES[place]}` : name, PARENT_OF[place]));
+	const Plain = class extends BakerExtension {
+		static EXTENSION_NAME = extensionName;
+		static PROPERTIES = properties;
+		extensionName = extensionName;
+	};
+	Object.defineProperty(Plain, 'name', { value: name });
+	return Plain;
+}

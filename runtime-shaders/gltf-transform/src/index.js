@@ -21,54 +21,49 @@
 // Custom vertex attributes (`_THICKNESS`, `_CURVATURE`, `_FIN_V0`, ...) need nothing: glTF-Transform keeps them
 // (`prune` removes only unused NORMAL, TANGENT, TEXCOORD_n and COLOR_n).
 //
-// One module per extension (BAKER_<name> -> <name>.js, EXT_mesh_primitive_edge_visibility -> edge_visibility.js);
-// base.js holds the base classes. Which fields of each extension are references is not written in the classes: it
-// is REFERENCES (references.js), generated from baker's schemas by tools/references.mjs.
+// Every extension of REFERENCES (references.js, generated from baker's schemas by tools/references.mjs: which
+// fields of each extension are references, on which glTF objects) gets a class: a plain one from base.js's
+// plainExtension, or a module of its own where it needs more (BAKER_<name> -> <name>.js: derived back references,
+// accessors, property names of its own; EXT_mesh_primitive_edge_visibility -> edge_visibility.js). So a new
+// extension that needs nothing more is carried by its schema alone, with no file here.
 export { BakerProperty, BakerExtension } from './base.js';
 export { REFERENCES } from './references.js';
+import { REFERENCES } from './references.js';
+import { plainExtension } from './base.js';
 import { BakerThickness } from './thickness.js';
-import { BakerCurvature } from './curvature.js';
-import { BakerSkinLut } from './skin_lut.js';
-import { BakerTonalArtMap } from './tonal_art_map.js';
-import { BakerToonRamp } from './toon_ramp.js';
 import { BakerEdges } from './edges.js';
 import { EXTMeshPrimitiveEdgeVisibility } from './edge_visibility.js';
-import { BakerHair } from './hair.js';
 import { BakerFur } from './fur.js';
-import { BakerGlyphAtlas } from './glyph_atlas.js';
-import { BakerText } from './text.js';
-import { BakerCaustics } from './caustics.js';
 import { BakerHairCards } from './hair_cards.js';
-import { BakerNormalBlur } from './normal_blur.js';
 export { Thickness, BakerThickness } from './thickness.js';
-export { Curvature, BakerCurvature } from './curvature.js';
-export { SkinLut, BakerSkinLut } from './skin_lut.js';
-export { TonalArtMap, BakerTonalArtMap } from './tonal_art_map.js';
-export { ToonRamp, BakerToonRamp } from './toon_ramp.js';
 export { Edges, BakerEdges } from './edges.js';
 export { EdgeVisibility, EXTMeshPrimitiveEdgeVisibility } from './edge_visibility.js';
-export { Hair, BakerHair } from './hair.js';
 export { Fur, FurFins, BakerFur } from './fur.js';
-export { GlyphAtlas, BakerGlyphAtlas } from './glyph_atlas.js';
-export { Text, BakerText } from './text.js';
-export { Caustics, BakerCaustics } from './caustics.js';
 export { HairCardsMaterial, HairCards, BakerHairCards } from './hair_cards.js';
-export { NormalBlur, BakerNormalBlur } from './normal_blur.js';
+
+const HAND_WRITTEN = [BakerThickness, BakerEdges, EXTMeshPrimitiveEdgeVisibility, BakerFur, BakerHairCards];
 
 /** Every class, for `io.registerExtensions([...KHRONOS_EXTENSIONS, ...BAKER_EXTENSIONS])`. */
-export const BAKER_EXTENSIONS = [
-	BakerThickness,
-	BakerCurvature,
-	BakerSkinLut,
-	BakerTonalArtMap,
-	BakerToonRamp,
-	BakerEdges,
-	EXTMeshPrimitiveEdgeVisibility,
-	BakerHair,
-	BakerFur,
-	BakerGlyphAtlas,
-	BakerText,
-	BakerCaustics,
-	BakerHairCards,
-	BakerNormalBlur,
-];
+export const BAKER_EXTENSIONS = Object.keys(REFERENCES).map((name) =>
+	HAND_WRITTEN.find((E) => E.EXTENSION_NAME === name) ?? plainExtension(name));
+
+// the plain classes and their properties by name, as earlier releases exported them; an extension needs none here
+const plain = (name) => BAKER_EXTENSIONS.find((E) => E.EXTENSION_NAME === name);
+export const BakerCurvature = plain('BAKER_curvature');
+export const BakerSkinLut = plain('BAKER_skin_lut');
+export const BakerTonalArtMap = plain('BAKER_tonal_art_map');
+export const BakerToonRamp = plain('BAKER_toon_ramp');
+export const BakerHair = plain('BAKER_hair');
+export const BakerGlyphAtlas = plain('BAKER_glyph_atlas');
+export const BakerText = plain('BAKER_text');
+export const BakerCaustics = plain('BAKER_caustics');
+export const BakerNormalBlur = plain('BAKER_normal_blur');
+export const [Curvature] = BakerCurvature.PROPERTIES;
+export const [SkinLut] = BakerSkinLut.PROPERTIES;
+export const [TonalArtMap] = BakerTonalArtMap.PROPERTIES;
+export const [ToonRamp] = BakerToonRamp.PROPERTIES;
+export const [Hair] = BakerHair.PROPERTIES;
+export const [GlyphAtlas] = BakerGlyphAtlas.PROPERTIES;
+export const [Text] = BakerText.PROPERTIES;
+export const [Caustics] = BakerCaustics.PROPERTIES;
+export const [NormalBlur] = BakerNormalBlur.PROPERTIES;

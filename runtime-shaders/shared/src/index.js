@@ -4,6 +4,7 @@
 // here: each runtime adds what its engine needs in its own common.js.
 
 import { RUNTIMES } from './techniques.js';
+import { STAGES } from './stages.js';
 
 export { RUNTIMES, runtime, runtimeOfSwitch } from './techniques.js';
 export { structExpression, uniformValue, uniformValues } from './values.js';
@@ -39,6 +40,16 @@ export function shaderText(shaders, key, packageName) {
 	const glsl = shaders[key];
 	if (!glsl) throw new Error(`${packageName}: options.shaders.${key} (runtime-shaders/${GLSL_NAMES[key]} as text) is missing`);
 	return glsl;
+}
+
+/**
+ * The host-neutral surface parts (a descriptor's `surface`: a stage of hosts/web/) of the techniques among `parts`
+ * (an object keyed by switch name) injected at `point`, in the descriptors' order; '' when there is none. The host
+ * wraps them in a block defining the point's names (techniques.js).
+ */
+export function surfaceStages(parts, point) {
+	return RUNTIMES.filter((r) => r.surface?.point === point && r.switches.some((s) => parts[s.name]))
+		.map((r) => STAGES[r.surface.stage]).join('\n');
 }
 
 // ------------------------------------------------------------------------------------------------ switches

@@ -39,3 +39,6 @@ export const BakerCausticsPlugin = surfacePlugin('caustics', async function (ext
 		types: { ...part.types, u_bakerCausticsFirst: 'sampler2D', u_bakerCausticsNext: 'sampler2D' },
 	};
 });
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerCausticsPlugin];

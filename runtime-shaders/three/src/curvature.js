@@ -11,3 +11,6 @@ export const BakerCurvaturePlugin = surfacePlugin('curvature', function (ext, ob
 		...descriptorUniforms('curvature', ext),
 	};
 });
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerCurvaturePlugin];

@@ -92,3 +92,6 @@ export class BakerEdgesPlugin {
 		return null;
 	}
 }
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerEdgesPlugin];

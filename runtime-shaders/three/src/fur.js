@@ -79,3 +79,6 @@ export class BakerFurPlugin {
 		return null;
 	}
 }
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerFurPlugin];

@@ -101,3 +101,6 @@ export class BakerHairPlugin {
 		return null;
 	}
 }
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerHairPlugin];

@@ -34,3 +34,6 @@ export const BakerHairCardsPlugin = surfacePlugin('cards', async function (ext, 
 		types: { u_bakerCardsData: 'sampler2D', u_bakerCardsFlow: 'sampler2D' },
 	};
 });
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerHairCardsPlugin];

@@ -22,29 +22,32 @@ export {
 	BAKER_THICKNESS, BAKER_CURVATURE, BAKER_SKIN_LUT, BAKER_EDGES, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
 	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, BAKER_NORMAL_BLUR, TECHNIQUES,
 } from './common.js';
+import { RUNTIMES } from '@baker/shared';
 import { controls } from './common.js';
-import { BakerThicknessPlugin } from './thickness.js';
-import { BakerCurvaturePlugin } from './curvature.js';
-import { BakerSkinLutPlugin } from './skin_lut.js';
-import { BakerToonRampPlugin } from './toon_ramp.js';
-import { BakerTonalArtMapPlugin } from './tonal_art_map.js';
-import { BakerEdgesPlugin } from './edges.js';
-import { BakerFurPlugin } from './fur.js';
-import { BakerHairPlugin } from './hair.js';
-import { BakerTextPlugin } from './text.js';
-import { BakerCausticsPlugin } from './caustics.js';
-import { BakerHairCardsPlugin } from './hair_cards.js';
-import { BakerNormalBlurPlugin } from './normal_blur.js';
 export { thicknessParameters } from './thickness.js';
 export { tamTextures } from './tonal_art_map.js';
 export { wireframeGeometry } from './edges.js';
 export { ribbonGeometry, setHairLod } from './hair.js';
 export { BakerGlyphAtlasPlugin } from './glyph_atlas.js';
-export {
-	BakerThicknessPlugin, BakerCurvaturePlugin, BakerSkinLutPlugin, BakerToonRampPlugin, BakerTonalArtMapPlugin,
-	BakerEdgesPlugin, BakerFurPlugin, BakerHairPlugin, BakerTextPlugin, BakerCausticsPlugin, BakerHairCardsPlugin,
-	BakerNormalBlurPlugin,
-};
+// the plugin classes by name, as earlier releases exported them; a technique needs none here (PLUGINS has it)
+export { BakerThicknessPlugin } from './thickness.js';
+export { BakerCurvaturePlugin } from './curvature.js';
+export { BakerSkinLutPlugin } from './skin_lut.js';
+export { BakerToonRampPlugin } from './toon_ramp.js';
+export { BakerTonalArtMapPlugin } from './tonal_art_map.js';
+export { BakerEdgesPlugin } from './edges.js';
+export { BakerFurPlugin } from './fur.js';
+export { BakerHairPlugin } from './hair.js';
+export { BakerTextPlugin } from './text.js';
+export { BakerCausticsPlugin } from './caustics.js';
+export { BakerHairCardsPlugin } from './hair_cards.js';
+export { BakerNormalBlurPlugin } from './normal_blur.js';
+
+// Every technique's plugins, from its host module <descriptor name>.js (its GLTF_LOADER_PLUGINS), in the
+// descriptors' order: a new technique is registered by its descriptor and its module, not by a line here. A
+// bundler includes every ./*.js the template can name (esbuild's glob import, Vite's dynamic-import-vars).
+const HOST_MODULES = await Promise.all(RUNTIMES.map((r) => import(`./${r.name}.js`)));
+export const PLUGINS = HOST_MODULES.flatMap((module) => module.GLTF_LOADER_PLUGINS);
 
 // ------------------------------------------------------------------------------------------------ registration
 /** Publishes the switches of every technique found as gltf.userData.baker (runs after every other plugin). */
@@ -61,10 +64,6 @@ class BakerControlsPlugin {
 		return null;
 	}
 }
-
-export const PLUGINS = [BakerThicknessPlugin, BakerCurvaturePlugin, BakerSkinLutPlugin, BakerToonRampPlugin,
-	BakerTonalArtMapPlugin, BakerEdgesPlugin, BakerFurPlugin, BakerHairPlugin, BakerTextPlugin, BakerCausticsPlugin,
-	BakerHairCardsPlugin, BakerNormalBlurPlugin];
 
 /**
  * Register every baker plugin on a GLTFLoader. `options.shaders` holds the runtime-shaders/ modules as text:

@@ -27,3 +27,6 @@ export const BakerNormalBlurPlugin = surfacePlugin('normalBlur', async function 
 		types: { u_bakerNormalBlurRed: 'sampler2D', u_bakerNormalBlurGreen: 'sampler2D', u_bakerNormalBlurBlue: 'sampler2D' },
 	};
 });
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerNormalBlurPlugin];

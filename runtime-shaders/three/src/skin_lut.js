@@ -31,3 +31,6 @@ export const BakerSkinLutPlugin = surfacePlugin('skin', async function (ext, obj
 		types: { ...types, u_bakerSkinLut: 'sampler2D' },
 	};
 });
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerSkinLutPlugin];

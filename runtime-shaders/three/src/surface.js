@@ -2,6 +2,7 @@
 // BAKER_caustics, BAKER_hair_cards, BAKER_normal_blur):
 // the plugins of those extensions each build one part (GLSL module, uniforms, attributes); BakerSurface composes
 // the parts of one material in a single onBeforeCompile.
+import { surfaceStages } from '@baker/shared';
 import { DIRECTIONAL_DIFFUSE, TECHNIQUES, controls, sceneMaterials } from './common.js';
 
 // ------------------------------------------------------------------------------------------------ surface
@@ -94,8 +95,17 @@ vBakerUv = uv;`)
 		// diffuse normals on the material's diffuse albedo (metal-weighted), so a metal, which has no diffuse term,
 		// shows no change
 		const albedo = p.normalBlur ? 'material.diffuseContribution' : 'diffuseColor.rgb';
+		// the parts both hosts share (runtime-shaders/hosts/web/surface_*.glsl) in a block defining their names
+		const afterLights = surfaceStages(p, 'afterLights');
+		const shared = afterLights && `{
+vec3 bakerWorldPosition = vBakerWorldPosition;
+vec3 bakerSunLight = bakerSun;
+vec3 bakerDiffuse = reflectedLight.directDiffuse;
+${afterLights}
+reflectedLight.directDiffuse = bakerDiffuse;
+}`;
 		let lights = '';
-		if (diffuse.length || p.translucency || p.caustics || p.cards) {  // normal blur: one of `diffuse`
+		if (diffuse.length || p.translucency || afterLights || p.cards) {  // normal blur: one of `diffuse`
 			lights = `${p.normalBlur ? NORMAL_BLUR : ''}
 vec3 bakerSun = vec3(0.0);  // Lambert light of the directional lights (the sun) on the base colour
 ${p.cards ? CARDS_FRAME : ''}
@@ -112,15 +122,18 @@ ${p.cards ? CARDS_FRAME : ''}
 		bakerSun += directionalLights[i].color * BRDF_Lambert(diffuseColor.rgb) * saturate(dotNL);
 	}
 #endif
-${p.caustics ? CAUSTICS : ''}`;
+${shared}`;
 		}
 		let outgoing = '';
-		if (p.tam) outgoing += `
-	if (u_baker_tam_on > 0.5) {
-		vec2 tile = baker_tam_coord(vBakerUv, u_bakerTamScale, u_bakerTamFinestSize);
-		float lod = baker_tam_lod(dFdx(tile), dFdy(tile), u_bakerTamFinestSize, u_bakerTamLevels);
-		float darkness = baker_hatching_darkness(normal, baker_key_light(vec3(0.0, 0.0, 1.0)), 1.0);
-		outgoingLight *= baker_hatching(u_bakerTam012, u_bakerTam345, tile, lod, darkness, u_bakerTamTonesA, u_bakerTamTonesB);
+		const onOutgoing = surfaceStages(p, 'outgoing');
+		if (onOutgoing) outgoing += `
+	{
+	vec2 bakerUv = vBakerUv;
+	vec3 bakerNormal = normal;
+	vec3 bakerKeyLight = baker_key_light(vec3(0.0, 0.0, 1.0));
+	vec3 bakerColor = outgoingLight;
+	${onOutgoing}
+	outgoingLight = bakerColor;
 	}`;
 		if (p.curvature) outgoing += `
 	if (u_baker_curvature_on > 0.5) {
@@ -155,20 +168,6 @@ vec3 bakerNormalGreen = normalize(tbn * baker_normal_blur_decode(texture2D(u_bak
 	u_bakerNormalBlurFlipY));
 vec3 bakerNormalBlue = normalize(tbn * baker_normal_blur_decode(texture2D(u_bakerNormalBlurBlue, vNormalMapUv).rgb,
 	u_bakerNormalBlurFlipY));`;
-
-// caustics: the sun's Lambert light scaled by the irradiance of the two current frames (baker_caustics.glsl);
-// browsers decode a gray PNG to equal RGB channels, so the frames are read as RGB whatever their colour type
-const CAUSTICS = `
-if (u_baker_caustics_on > 0.5) {
-	vec2 bakerCausticsUv = baker_caustics_uv(vBakerWorldPosition, u_bakerCausticsProjection, u_bakerCausticsWaterLevel,
-		u_bakerCausticsDepth, u_bakerCausticsTileSize);
-	float bakerCausticsFade = baker_caustics_fade(baker_caustics_depth(vBakerWorldPosition, u_bakerCausticsWaterLevel),
-		u_bakerCausticsDepth, u_bakerCausticsFadeDistance);
-	vec3 bakerCausticsE = baker_caustics_irradiance(u_bakerCausticsFirst, u_bakerCausticsNext, bakerCausticsUv,
-		u_bakerCausticsBlend, u_bakerCausticsScale, 1.0);
-	reflectedLight.directDiffuse = baker_caustics_apply(reflectedLight.directDiffuse, bakerSun, bakerCausticsE,
-		u_bakerCausticsStrength, bakerCausticsFade);
-}`;
 
 // hair cards: the strand direction from the flow texture in the card's frame (from screen-space derivatives: three.js
 // passes no TANGENT without a normal map), then per directional light Kajiya-Kay along it instead of Lambert

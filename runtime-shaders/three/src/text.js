@@ -53,3 +53,6 @@ export class BakerTextPlugin {
 		return null;
 	}
 }
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerTextPlugin];

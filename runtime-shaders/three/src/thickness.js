@@ -18,3 +18,6 @@ export const BakerThicknessPlugin = surfacePlugin('translucency', function (ext,
 		...descriptorUniforms('thickness', ext),
 	};
 });
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerThicknessPlugin];

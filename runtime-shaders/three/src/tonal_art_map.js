@@ -39,3 +39,6 @@ export const BakerTonalArtMapPlugin = surfacePlugin('tam', async function (ext) 
 		types: { ...types, u_bakerTam012: 'sampler2D', u_bakerTam345: 'sampler2D' },
 	};
 });
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerTonalArtMapPlugin];

@@ -13,3 +13,6 @@ export const BakerToonRampPlugin = surfacePlugin('toon', async function (ext) {
 		types: { ...types, u_bakerToonRamp: 'sampler2D' },
 	};
 });
+
+/** What index.js registers on a GLTFLoader for this technique (found through the descriptor's name). */
+export const GLTF_LOADER_PLUGINS = [BakerToonRampPlugin];
