@@ -184,3 +184,18 @@ def test_degenerate_face_and_non_manifold_edge_still_get_coordinates():
     good = ~degenerate
     assert area_distortion(density[good]) <= 2.0
     assert np.median(density[good]) == pytest.approx(4.0, rel=0.1)
+
+
+def test_an_edge_between_faces_wound_alike_is_a_cut():
+    positions = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [2, 0, 0], [2, 1, 0]], np.float64)
+    # faces 0-1 share edge 0-2 properly; face 2 shares edge 1-2 with face 0 but is wound the same way
+    faces = np.array([[0, 1, 2], [0, 2, 3], [1, 2, 5], [1, 5, 4]])
+    normals = np.tile([0.0, 0.0, 1.0], (6, 1))
+    result = stroke_parameterization(positions, faces, normals, np.tile([1.0, 0.0, 0.0], (6, 1)))
+    assert_split_mesh_is_the_input(positions, faces, result)
+    assert result.fallback.tolist() == [True, False, True, False]
+    assert result.patch[0] == result.patch[1] and result.patch[2] == result.patch[3]
+    assert result.patch[0] != result.patch[2]  # no chart across the cut
+    signed, _, _ = charts(positions, result)
+    # every face's chart keeps its own winding: face 2 (and 3, wound with it) are clockwise seen from +z
+    assert (signed > 0).all()

@@ -373,6 +373,9 @@ def stroke_parameterization(positions: np.ndarray, faces: np.ndarray, normals: n
             # later rounds grow narrower patches: the faces a wide patch could not hold get smaller ones
             cone_cos = float(np.cos(np.radians(cone_degrees) / used_rounds))
             patch, choice = grow_patches(pool, seeds, neighbours, face_normal, cone_cos, max_turn)
+            # absorbing slivers can cut a small patch in two; one pinned vertex per connected piece keeps the
+            # solve non-singular
+            patch = split_components(patch, pairs)
         angle = theta + choice * QUARTER
         direction_u = np.stack([np.cos(angle), np.sin(angle)], axis=1)  # in the face frame
         direction_v = np.stack([-direction_u[:, 1], direction_u[:, 0]], axis=1)  # n x a
