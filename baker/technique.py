@@ -11,6 +11,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 
+# The file roles of a technique's package, the same names in every folder (docs/ARCHITECTURE.md, "How to add a
+# technique"): a bake's work is ``run`` in step.py, and the work of a verb that command.py adds is ``run_<verb>``
+# (``-`` as ``_``) there too. Other modules are the steps of the kernel or of a command, named by what they do.
+REQUIRED_FILES = ("__init__.py", "options.py", "kernel.py", "extension.py", "step.py")  # + command.py, panel.py
+
+
 def load(reference: str):
     """The object a ``"package.module:attribute"`` (or ``"package.module"``) reference names, imported now."""
     module_name, _, attribute = reference.partition(":")

@@ -134,7 +134,7 @@ def check(doc, places: list, issues) -> None:
 
 # 4. the step: kernel on the asset's cached geometry, results through the extension into the document
 STEP_4_STEP = '''
-"""Wire the height kernel to an Asset."""
+"""Wire the height kernel to an Asset (``run``), and to the ``baker height-range`` command (``run_height_range``)."""
 from __future__ import annotations
 
 from baker.progress import QUIET
@@ -154,34 +154,35 @@ def run(asset, options, seed: int = 0, progress=QUIET) -> None:
             tallest[material] = max(tallest.get(material, 0.0), float(heights.values.max()))
     for material, max_height in tallest.items():
         extension.write_material(doc, material, axis=options.axis, scale=options.scale, max_height=max_height)
+
+
+def run_height_range(args) -> int:
+    """``baker height-range IN``: the lowest and highest coordinate of the asset along the axis, as JSON."""
+    import json
+
+    import numpy as np
+
+    from baker import readers
+
+    asset = readers.read(args.input)
+    values = np.concatenate([asset.mesh_triangles(m)[0][:, AXES[args.axis]] for m in range(len(asset.meshes()))])
+    print(json.dumps({"lowest": float(values.min()), "highest": float(values.max())}))
+    return 0
 '''
 
-# 5. a standalone command (optional): a light module with add_parser; heavy imports only inside the function
+# 5. a standalone command (optional): a light module with add_parser naming its work, ``run_<verb>`` in step.py
 STEP_5_COMMAND = '''
-"""``baker height-range IN``: the lowest and highest coordinate of an asset along an axis, as JSON."""
+"""``baker height-range IN``: the parser; the work is ``baker_height.step:run_height_range``."""
 from __future__ import annotations
+
+from baker.technique import lazy
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("height-range", help="print the lowest and highest point of an asset along an axis")
     p.add_argument("input")
     p.add_argument("--axis", default="y", choices=("x", "y", "z"))
-    p.set_defaults(func=run)
-
-
-def run(args) -> int:
-    import json
-
-    import numpy as np
-
-    from baker.geometry.asset import Asset
-    from baker import readers
-    from baker_height.kernel import AXES
-
-    asset = readers.read(args.input)
-    values = np.concatenate([asset.mesh_triangles(m)[0][:, AXES[args.axis]] for m in range(len(asset.meshes()))])
-    print(json.dumps({"lowest": float(values.min()), "highest": float(values.max())}))
-    return 0
+    p.set_defaults(func=lazy("baker_height.step:run_height_range"))
 '''
 
 # 6. a preview panel (optional): Panel objects of baker.preview.core, drawn by ``baker preview`` in ``order``
@@ -365,6 +366,61 @@ def baked(plugin) -> Path:
     baker(plugin, "bake", SPOT, "-o", out, "--bakes", "height,thickness", "--height-scale", "2",
           "--thickness-rays", "4", "--thickness-texture-size", "16", "-q")
     return out
+
+
+def shape_problems(folder: Path, package: str) -> list[str]:
+    """What keeps the technique package in ``folder`` (importable as ``package``) from the shape every technique
+    shares: the files of ``baker.technique.REQUIRED_FILES``; ``add_parser`` in command.py alone, each verb it adds
+    naming ``run_<verb>`` of step.py as its work (and step.py defining it); the bake's ``run`` in step.py; the panels
+    in panel.py."""
+    import argparse
+    import ast
+    import importlib
+
+    from baker.technique import REQUIRED_FILES, load
+
+    problems = [f"{package}: no {name}" for name in REQUIRED_FILES if not (folder / name).is_file()]
+    for module in sorted(folder.glob("*.py")):
+        defined = {node.name for node in ast.parse(module.read_text()).body if isinstance(node, ast.FunctionDef)}
+        if "add_parser" in defined and module.name != "command.py":
+            problems.append(f"{package}: a parser outside command.py ({module.name})")
+    technique = importlib.import_module(package).TECHNIQUE
+    if technique.commands not in ((), (f"{package}.command",)):
+        problems.append(f"{package}: commands {technique.commands} (one command.py holds every verb)")
+    if technique.run is not None and technique.run != f"{package}.step:run":
+        problems.append(f"{package}: the bake runs {technique.run}, not {package}.step:run")
+    if technique.panels is not None and technique.panels != f"{package}.panel:PANELS":
+        problems.append(f"{package}: panels {technique.panels}, not {package}.panel:PANELS")
+    for reference in technique.commands:
+        sub = argparse.ArgumentParser().add_subparsers()
+        load(reference).add_parser(sub)
+        for verb, parser in sub.choices.items():
+            work = parser.get_default("func").__name__  # baker.technique.lazy names the reference it loads
+            expected = f"{package}.step:run_{verb.replace('-', '_')}"
+            if work != expected:
+                problems.append(f"{package}: baker {verb} runs {work}, not {expected}")
+            elif not callable(getattr(importlib.import_module(f"{package}.step"), expected.partition(":")[2], None)):
+                problems.append(f"{package}: step.py has no {expected.partition(':')[2]}")
+    return problems
+
+
+def test_every_technique_folder_has_the_same_file_roles(plugin):
+    """The built-in techniques and the plugin written by the docs' steps share one shape (the same file roles under
+    the same names), so the steps describe every technique."""
+    import baker.techniques
+
+    root = Path(baker.techniques.__file__).parent
+    folders = [(f, f"baker.techniques.{f.name}") for f in sorted(root.iterdir()) if (f / "__init__.py").is_file()]
+    assert len(folders) >= 12
+    sys.path.insert(0, str(plugin))
+    try:
+        problems = [p for folder, package in folders + [(plugin / PACKAGE, PACKAGE)]
+                    for p in shape_problems(folder, package)]
+    finally:
+        sys.path.remove(str(plugin))
+        for name in [n for n in sys.modules if n == PACKAGE or n.startswith(PACKAGE + ".")]:
+            del sys.modules[name]  # the other tests meet the plugin in fresh interpreters only
+    assert not problems, "\n".join(problems)
 
 
 def test_help_lists_the_technique_its_command_and_flags(plugin):
