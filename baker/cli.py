@@ -28,10 +28,12 @@ def _swallowing(frame) -> bool:
     """Whether an exception raised in ``frame`` would be printed and dropped rather than unwind the command: inside
     a ``__del__`` or a ctypes callback (llvmlite's object-cache hooks run while numba compiles; a KeyboardInterrupt
     there was reported as "Exception ignored on calling ctypes callback function" and left the compilation broken,
-    exit 1 instead of 130)."""
+    exit 1 instead of 130), or inside numba's ``_numba_unpickle`` (called from a compiled dispatcher's C code, which
+    turns an exception there into ``SystemError: ... returned a result with an exception set``)."""
     while frame is not None:
         code = frame.f_code
-        if code.co_name == "__del__" or "llvmlite" in code.co_filename.replace("\\", "/").split("/"):
+        parts = code.co_filename.replace("\\", "/").split("/")
+        if code.co_name in ("__del__", "_numba_unpickle") or "llvmlite" in parts:
             return True
         frame = frame.f_back
     return False
@@ -70,6 +72,17 @@ def _one_line_notes(show):
     return showwarning
 
 
+def _signal_cause(exc: BaseException):
+    """The KeyboardInterrupt or Terminated at the root of ``exc``'s chain of causes, or None."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, (KeyboardInterrupt, Terminated)):
+            return exc
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return None
+
+
 def main(argv=None) -> int:
     previous = {}
     try:
@@ -94,6 +107,12 @@ def main(argv=None) -> int:
     except Terminated:
         print("baker: terminated", file=sys.stderr)
         return 143
+    except SystemError as exc:  # a signal's exception wrapped by C code that called back into Python
+        cause = _signal_cause(exc)
+        if cause is None:
+            raise
+        print(f"baker: {'interrupted' if isinstance(cause, KeyboardInterrupt) else 'terminated'}", file=sys.stderr)
+        return 130 if isinstance(cause, KeyboardInterrupt) else 143
     except BrokenPipeError:  # the reader of our output went away (`baker inspect x.glb | head`): not an error of ours
         import os
 

@@ -8,14 +8,9 @@ import { Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 
 import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
-// the extension names, TECHNIQUES (the same switch names as @baker/three's) and the switch registry are
-// engine-neutral: @baker/shared, re-exported here
-export {
-	BAKER_THICKNESS, BAKER_CURVATURE, BAKER_SKIN_LUT, BAKER_EDGES, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
-	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, BAKER_NORMAL_BLUR, TECHNIQUES,
-	BakerControls,
-	controls,
-} from '@baker/shared';
+// the extension names, TECHNIQUES and the switch registry are engine-neutral: everything @baker/shared exports
+// is re-exported here (index.js names what the package makes public)
+export * from '@baker/shared';
 export const EXT_EDGE_VISIBILITY = 'EXT_mesh_primitive_edge_visibility';
 
 /**

@@ -5,13 +5,9 @@ import * as THREE from 'three';
 
 import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
-// the extension names, TECHNIQUES and the switch registry are engine-neutral: @baker/shared, re-exported here
-export {
-	BAKER_THICKNESS, BAKER_CURVATURE, BAKER_SKIN_LUT, BAKER_EDGES, BAKER_TONAL_ART_MAP, BAKER_TOON_RAMP,
-	BAKER_GLYPH_ATLAS, BAKER_TEXT, BAKER_HAIR, BAKER_FUR, BAKER_CAUSTICS, BAKER_HAIR_CARDS, BAKER_NORMAL_BLUR, TECHNIQUES,
-	BakerControls,
-	controls,
-} from '@baker/shared';
+// the extension names, TECHNIQUES and the switch registry are engine-neutral: everything @baker/shared exports
+// is re-exported here (index.js names what the package makes public)
+export * from '@baker/shared';
 
 export function requireShader(shaders, key) {
 	return shaderText(shaders, key, '@baker/three');
