@@ -1,5 +1,6 @@
 """The direct binary-PLY reader (issue 18): what the file has reaches the document (positions, normals, UVs, exactly
-as float32), nothing is added (no computed normals), and anything else goes through trimesh, which keeps it."""
+as float32), a file without normals gets the smooth normals the other readers compute, and anything else goes through
+trimesh, which keeps it."""
 from __future__ import annotations
 
 import numpy as np
@@ -39,12 +40,45 @@ def attributes(asset):
 
 
 @pytest.mark.parametrize("fmt", ["binary_little_endian", "binary_big_endian"])
-def test_positions_and_faces_only_no_normals_added(tmp_path, fmt):
+def test_positions_and_faces_only_get_smooth_normals(tmp_path, fmt):
     path = write_ply(tmp_path / "t.ply", {"x": TETRA[:, 0], "y": TETRA[:, 1], "z": TETRA[:, 2]}, FACES, fmt=fmt)
     attrs, indices = attributes(readers.read(path))
-    assert sorted(attrs) == ["POSITION"]  # nothing computed that the file did not have
+    assert sorted(attrs) == ["NORMAL", "POSITION"]
     assert attrs["POSITION"].dtype == np.float32 and np.array_equal(attrs["POSITION"], TETRA)
     assert np.array_equal(indices.reshape(-1, 3), FACES)
+    # the corner at the origin sees three right angles: its angle-weighted normal is -(1, 1, 1)/sqrt(3)
+    assert np.allclose(attrs["NORMAL"][0], -np.ones(3) / np.sqrt(3), atol=1e-6)
+    assert np.allclose(np.linalg.norm(attrs["NORMAL"], axis=1), 1, atol=1e-6)
+
+
+def test_computed_normals_match_the_ascii_and_obj_readers(tmp_path):
+    """A bunny-like irregular mesh written as binary PLY, ASCII PLY (trimesh's path) and OBJ without ``vn``: the
+    three readers give the same smooth normals, so the format a mesh comes in does not change its shading."""
+    sphere = trimesh.creation.icosphere(subdivisions=2)
+    rng = np.random.default_rng(3)
+    vertices = (sphere.vertices * (1 + 0.2 * rng.random((len(sphere.vertices), 1)))).astype(np.float32)
+    faces = sphere.faces
+    columns = {"x": vertices[:, 0], "y": vertices[:, 1], "z": vertices[:, 2]}
+    binary, _ = attributes(readers.read(write_ply(tmp_path / "b.ply", columns, faces)))
+    obj = tmp_path / "m.obj"
+    obj.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices.tolist())
+                   + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces.tolist()))
+    from_obj, _ = attributes(readers.read(obj))
+    assert np.allclose(binary["POSITION"], from_obj["POSITION"])
+    assert np.allclose(binary["NORMAL"], from_obj["NORMAL"], atol=1e-6)
+    # an independent reference: the angle-weighted normal summed here from each face's corner angles
+    v = vertices.astype(np.float64)
+    reference = np.zeros_like(v)
+    for face in faces:
+        p = v[face]
+        n = np.cross(p[1] - p[0], p[2] - p[0])
+        n /= np.linalg.norm(n)
+        for k in range(3):
+            a, b = p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]
+            angle = np.arccos(np.clip(a @ b / np.linalg.norm(a) / np.linalg.norm(b), -1, 1))
+            reference[face[k]] += angle * n
+    reference /= np.linalg.norm(reference, axis=1, keepdims=True)
+    assert np.allclose(binary["NORMAL"], reference, atol=1e-5)
 
 
 def test_normals_and_uvs_survive(tmp_path):

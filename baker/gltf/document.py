@@ -102,7 +102,7 @@ class GltfDocument:
     def from_triangles(cls, path, name: str, attributes: dict, indices: np.ndarray, generator: str) -> "GltfDocument":
         """A one-mesh, one-node document holding a triangle primitive: ``attributes`` maps glTF attribute names to
         (n, k) arrays (float32 stays float32), ``indices`` is (3m,) uint32. Built straight from a mesh file's arrays:
-        no exporter round trip, and nothing the file did not have (no computed normals)."""
+        no exporter round trip, and nothing computed here (a reader passes the normals it wants written)."""
         doc = cls(json={"asset": {"version": "2.0", "generator": generator}, "scene": 0,
                         "scenes": [{"nodes": [0]}], "nodes": [{"name": name, "mesh": 0}]}, path=Path(path))
         prim = {"attributes": {}, "mode": 4}

@@ -19,6 +19,7 @@ import numpy as np
 
 from baker import memory
 from baker.errors import BakerError
+from baker.geometry.angle_normals import seamless_vertex_normals, unit_normals, unitize
 from baker.geometry.strips import triangles_from_strips
 from baker.gltf.document import GltfDocument
 from baker.readers.finite import FLOAT32_MAX, refuse_non_finite
@@ -78,8 +79,9 @@ def read(path: Path, allow_outside=None, max_memory: int | None = None) -> GltfD
 
 def read_direct(path: Path, header: PlyHeader) -> GltfDocument | None:
     """A binary PLY of triangles (:func:`read_ply_triangles`) straight into a document without trimesh; None for
-    every other PLY (trimesh reads it). The positions, normals and UVs the file has are kept as float32; no
-    normals are computed."""
+    every other PLY (trimesh reads it). The positions, normals and UVs the file has are kept as float32; a file
+    without normals gets the smooth ones the OBJ and ASCII PLY readers compute (angle-weighted, welded by position),
+    so the output is not drawn faceted (glTF viewers flat-shade a primitive without NORMAL)."""
     arrays = read_ply_triangles(path, header)
     if arrays is None:
         return None
@@ -87,6 +89,11 @@ def read_direct(path: Path, header: PlyHeader) -> GltfDocument | None:
     for name, values in arrays.items():
         # float32 already: a double beyond float32 became an infinity
         refuse_non_finite(path, values, name, non_finite_location)
+    if "NORMAL" not in arrays:
+        with np.errstate(all="ignore"):
+            (normals,) = seamless_vertex_normals([(arrays["POSITION"].astype(np.float64), indices.reshape(-1, 3),
+                                                   None)])
+        arrays["NORMAL"] = unitize(unit_normals(normals)).astype(np.float32)
     doc = GltfDocument.from_triangles(path, path.name, arrays, indices, "baker (converted from ply)")
     assign_materials(doc, {})
     return doc
