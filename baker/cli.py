@@ -128,17 +128,20 @@ def entry() -> None:
 
     Every output was written, closed and renamed before :func:`main` returned, so what the teardown would still do
     is collect and free the ~10^5 cyclic objects numba and LLVM leave: 0.25-0.7 s of every bake here (15% of a
-    1024² thickness texture). The atexit handlers still run and the streams are flushed; then the process ends
+    1024² thickness texture). The atexit handlers still run (not after a signal) and the streams are flushed; then the process ends
     (``os._exit``). Unlike ``gc.freeze`` this also holds with OpenImageIO loaded, whose nanobind module reports
     every object still alive at its teardown as a leak."""
     code = main()
-    from baker import numba_warmup
-
-    numba_warmup.finish()
     import atexit
     import os
 
-    atexit._run_exitfuncs()
+    if code not in (130, 143):
+        from baker import numba_warmup
+
+        numba_warmup.finish()
+        atexit._run_exitfuncs()
+    # else: interrupted or terminated, with nothing written: end now rather than wait up to ~1.5 s for the warm-up
+    # thread's numba initialisation (``os._exit`` runs no static destructor, so the thread cannot crash the exit)
     try:
         sys.stdout.flush()
         sys.stderr.flush()

@@ -11,11 +11,11 @@ u in [x/W, (x+1)/W], v in [y/H, (y+1)/H]; arrays are indexed [row, column].
 """
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numba
 import numpy as np
+from baker import interruptible
 
 
 @numba.njit(cache=True)
@@ -309,7 +309,7 @@ def window_mean(size: int, rows: np.ndarray, cols: np.ndarray, values: np.ndarra
     reach = 2.0 * np.sqrt(2.0) * (radius + 1) * _median_texel_spacing(rows, cols, planes)
     mean, error = np.empty(len(rows), np.float64), np.empty(len(rows), np.float64)
     half = len(rows) // 2
-    with ThreadPoolExecutor(2) as pool:  # GIL-free halves
+    with interruptible.thread_pool(2) as pool:  # GIL-free halves
         list(pool.map(lambda part: _window_mean(planes, rows[part], cols[part], groups[part], int(radius),
                                                 reach * reach, mean[part], error[part]),
                       (slice(0, half), slice(half, None))))

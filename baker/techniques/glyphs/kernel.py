@@ -24,6 +24,7 @@ from baker.techniques.glyphs.options import GlyphOptions
 from baker.techniques.glyphs.outline import Font
 from baker.techniques.glyphs.sdf import GlyphBatch
 from baker.techniques.glyphs.shape import monotone_pieces, prepare
+from baker import interruptible
 
 
 def bake_atlas(font: Font, options: GlyphOptions = GlyphOptions()) -> GlyphAtlas:
@@ -80,9 +81,7 @@ def _prepared(outlines: list) -> list:
     threads = min(numba.get_num_threads(), max(1, len(outlines) // 64))
     if threads <= 1:
         return [prepare(s) for s in outlines]
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(threads) as pool:
+    with interruptible.thread_pool(threads) as pool:
         return list(pool.map(prepare, outlines))
 
 

@@ -36,6 +36,7 @@ import numba
 import numpy as np
 from scipy.spatial import cKDTree
 
+from baker import interruptible
 from baker.techniques.hair.options import HairOptions
 from baker.geometry.frames import orthonormal_basis
 
@@ -413,8 +414,8 @@ class WindingTree:
         points = np.ascontiguousarray(points, np.float64)
         if self.count == 0 or len(points) == 0:
             return np.zeros(len(points))
-        return _fast_winding_numbers(points, self.triangles, self.centre, self.area_vector, self.radius,
-                                     self.depth, self.BETA if beta is None else beta)
+        return interruptible.call(_fast_winding_numbers, points, self.triangles, self.centre, self.area_vector,
+                                  self.radius, self.depth, self.BETA if beta is None else beta)
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -518,7 +519,7 @@ class InsideTest:
         near = near[np.abs(w[near] - 0.5) < self.AMBIGUOUS / 8.0]
         for i in range(0, len(near), 64):  # brute force: a block of 64 takes ~0.05 s on the bunny
             part = near[i:i + 64]
-            w[part] = winding_numbers(points[part], self.vertices, self.faces)
+            w[part] = interruptible.call(winding_numbers, points[part], self.vertices, self.faces)
         return w > 0.5
 
     def _parity(self, points: np.ndarray, direction: np.ndarray) -> np.ndarray:
@@ -541,9 +542,8 @@ class InsideTest:
                 origins[active] += directions[active] * (t[hit][:, None] + step)
             return crossings % 2 == 1
 
-        from concurrent.futures import ThreadPoolExecutor
-
-        with ThreadPoolExecutor(2) as pool:  # Embree's numba loop releases the GIL
+        
+        with interruptible.thread_pool(2) as pool:  # Embree's numba loop releases the GIL
             parts = list(pool.map(run, chunks))
         return np.concatenate(parts) if parts else np.zeros(0, bool)
 

@@ -41,13 +41,13 @@ from __future__ import annotations
 
 import math
 import os
-from concurrent.futures import ThreadPoolExecutor
 
 import numba
 import numpy as np
 
 from baker.geometry import embree_trace
 from baker.geometry.raycast import RayScene
+from baker import interruptible
 
 
 
@@ -413,7 +413,7 @@ def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int
 
     # BAKER_THREADS caps the ray threads (``baker build --jobs`` sets 1 per process); results do not depend on it
     threads = threads or int(os.environ.get("BAKER_THREADS", 0)) or min(2, os.cpu_count() or 1)
-    with ThreadPoolExecutor(threads) as pool:
+    with interruptible.thread_pool(threads) as pool:
         for done in pool.map(run, range(0, n, batch)):
             if progress:
                 progress(done)

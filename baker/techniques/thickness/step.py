@@ -11,12 +11,13 @@ from baker.geometry.raycast import RayScene  # ctypes only: the BVH build does n
 from baker.techniques.thickness.options import ThicknessOptions
 from baker.techniques.thickness import extension as ext
 from baker.progress import QUIET, Progress
+from baker import interruptible
 
 
 def run(asset: Asset, options: ThicknessOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     # Embree builds the BVHs (GIL released, ~1.6 of 2 cores busy) in a thread while this one welds, computes
     # normals and lays out texels: at 1.1M triangles the build is the largest cost before the first ray
-    with ThreadPoolExecutor(1) as builder:
+    with interruptible.thread_pool(1) as builder:
         _run(asset, options, seed, progress, builder)
 
 
