@@ -154,7 +154,8 @@ class SurfaceImage:
 
     valid: np.ndarray
     point: np.ndarray  # (H, W, 3) surface point
-    screen: np.ndarray  # (2, H, W, 2) primary / secondary branch projected: pixels per (pixel-sized) world step
+    tangent: np.ndarray  # (2, H, W, 3) primary / secondary branch: unit tangents on the surface
+    screen: np.ndarray  # (2, H, W, 2) the same projected: pixels per (pixel-sized) world step
     darkness: np.ndarray  # (H, W) 1 - max(0, n . l)
     slack: np.ndarray  # (H, W) world distance a one-pixel move along the surface may cover before it is a jump
 
@@ -198,11 +199,14 @@ def surface_image(camera, scene, positions, faces, normals, direction, light) ->
         pixel = 2.0 * depth * math.tan(camera.yfov / 2.0) / height
     here, _ = camera.project(point)
     screen = np.zeros((2, height * width, 2))
+    tangents = np.zeros((2, height * width, 3))
     for b, tangent in enumerate((field, second)):
+        tangents[b, idx] = tangent
         there, _ = camera.project(point + tangent * (1e-3 * pixel)[:, None])
         projected = (there - here) / 1e-3
         projected[length < 1e-9] = 0.0  # no field here (an isolated corner): no stroke either
         screen[b, idx] = projected
+        tangents[b, idx[length < 1e-9]] = 0.0
     cos_view = np.abs(np.einsum("ij,ij->i", normal, view))
     out_point = np.zeros((height * width, 3))
     out_point[idx] = point
@@ -212,20 +216,22 @@ def surface_image(camera, scene, positions, faces, normals, direction, light) ->
     # a one-pixel step along the surface covers at most pixel / cos(view) of it; a few times that is a jump
     slack[idx] = 3.0 * pixel / np.maximum(cos_view, 0.2)
     return SurfaceImage(valid.reshape(height, width), out_point.reshape(height, width, 3),
-                        screen.reshape(2, height, width, 2), out_dark.reshape(height, width),
+                        tangents.reshape(2, height, width, 3), screen.reshape(2, height, width, 2), out_dark.reshape(height, width),
                         slack.reshape(height, width))
 
 
 # ---------------------------------------------------------------------------------------------------- streamlines
 @numba.njit(cache=True, nogil=True)
-def _direction(screen, valid, point, slack, x, y, rx, ry):
-    """The field at pixel position (x, y): the four pixel centres around it, each turned to its cross branch nearest
-    (rx, ry), weighted bilinearly; pixels across a depth jump from the nearest one are left out. Returns (dx, dy,
-    foreshortening, ok)."""
+def _direction(screen, tangent, valid, point, slack, x, y, r):
+    """The field at pixel position (x, y): the four pixel centres around it, each turned to its cross branch whose
+    tangent on the surface is nearest the 3D direction ``r`` (continuity judged on the surface, where the branches
+    stay 90 degrees apart, not on screen, where foreshortening can bring them together), weighted bilinearly;
+    pixels across a depth jump from the nearest one are left out. Returns (dx, dy, foreshortening, tangent, ok)."""
     h, w = valid.shape
+    out = np.zeros(3)
     ix, iy = int(math.floor(x)), int(math.floor(y))
     if ix < 0 or iy < 0 or ix >= w or iy >= h or not valid[iy, ix]:
-        return 0.0, 0.0, 0.0, False
+        return 0.0, 0.0, 0.0, out, False
     gx, gy = x - 0.5, y - 0.5
     x0, y0 = int(math.floor(gx)), int(math.floor(gy))
     fx, fy = gx - x0, gy - y0
@@ -241,29 +247,27 @@ def _direction(screen, valid, point, slack, x, y, rx, ry):
             if d2 > (2.0 * slack[iy, ix]) ** 2:
                 continue
             weight = (fx if i else 1.0 - fx) * (fy if j else 1.0 - fy)
-            best, bx, by = -1e300, 0.0, 0.0
+            best, branch, sign = 0.0, -1, 1.0
             for b in range(2):
-                ax, ay = screen[b, py, px, 0], screen[b, py, px, 1]
-                norm = math.sqrt(ax * ax + ay * ay)
-                if norm <= 0.0:
-                    continue
-                dot = (ax * rx + ay * ry) / norm
-                if dot > best:
-                    best, bx, by = dot, ax, ay
-                if -dot > best:
-                    best, bx, by = -dot, -ax, -ay
-            if best > -1e300:
-                sx += weight * bx
-                sy += weight * by
-                total += weight
+                dot = tangent[b, py, px, 0] * r[0] + tangent[b, py, px, 1] * r[1] + tangent[b, py, px, 2] * r[2]
+                if abs(dot) > best:
+                    best, branch, sign = abs(dot), b, 1.0 if dot >= 0 else -1.0
+            if branch < 0:
+                continue
+            sx += weight * sign * screen[branch, py, px, 0]
+            sy += weight * sign * screen[branch, py, px, 1]
+            for c in range(3):
+                out[c] += weight * sign * tangent[branch, py, px, c]
+            total += weight
     if total <= 0.0:
-        return 0.0, 0.0, 0.0, False
+        return 0.0, 0.0, 0.0, out, False
     sx /= total
     sy /= total
     fore = math.sqrt(sx * sx + sy * sy)
-    if fore <= 0.0:
-        return 0.0, 0.0, 0.0, False
-    return sx / fore, sy / fore, fore, True
+    norm = math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2])
+    if fore <= 0.0 or norm <= 0.0:
+        return 0.0, 0.0, 0.0, out, False
+    return sx / fore, sy / fore, fore, out / norm, True
 
 
 @numba.njit(cache=True, nogil=True)
@@ -299,27 +303,29 @@ def _push(x, y, line, arc, px, py, pline, parc, head, nxt, cell, gw, state):
 
 
 @numba.njit(cache=True, nogil=True)
-def _trace(sx, sy, sign, line, screen, valid, point, slack, darkness, dsep, floor, params,
+def _trace(sx, sy, sign, line, screen, tangent, valid, point, slack, darkness, dsep, floor, params,
            px, py, pline, parc, alive, head, nxt, cell, gw, gh, state):
     """Grow stroke ``line`` from its seed (sx, sy) one way (sign +1: along the seed's direction, -1: against it);
     returns the arc length covered."""
     step, test_ratio, max_turn_cos, min_fore = params[0], params[1], params[2], params[3]
     h, w = valid.shape
-    # the seed's own branch (screen[0] is this family's), the way ``sign`` says
-    ax, ay = screen[0, int(sy), int(sx), 0], screen[0, int(sy), int(sx), 1]
-    norm = math.sqrt(ax * ax + ay * ay)
-    if norm <= 0.0:
+    # the seed's own branch (index 0 is this family's), the way ``sign`` says
+    ix, iy = int(math.floor(sx)), int(math.floor(sy))
+    ax, ay = screen[0, iy, ix, 0], screen[0, iy, ix, 1]
+    if math.sqrt(ax * ax + ay * ay) < min_fore:  # seen nearly end on: its direction on screen is not to be trusted
         return 0.0
-    rx, ry = sign * ax / norm, sign * ay / norm
+    r = sign * tangent[0, iy, ix].copy()
+    rx, ry = 0.0, 0.0
     x, y, arc = sx, sy, 0.0
+    first = True
     limit = 4 * (h + w) * (h + w) / step  # a stroke can't be longer than the image's area in steps
     for _ in range(int(limit)):
-        d1x, d1y, f1, ok = _direction(screen, valid, point, slack, x, y, rx, ry)
+        d1x, d1y, f1, t1, ok = _direction(screen, tangent, valid, point, slack, x, y, r)
         if not ok:
             break
         mx, my = x + 0.5 * step * d1x, y + 0.5 * step * d1y
-        d2x, d2y, f2, ok = _direction(screen, valid, point, slack, mx, my, d1x, d1y)
-        if not ok or d2x * rx + d2y * ry < max_turn_cos or f2 < min_fore:
+        d2x, d2y, f2, t2, ok = _direction(screen, tangent, valid, point, slack, mx, my, t1)
+        if not ok or f2 < min_fore or (not first and d2x * rx + d2y * ry < max_turn_cos):
             break
         nx, ny = x + step * d2x, y + step * d2y
         ix, iy = int(math.floor(nx)), int(math.floor(ny))
@@ -339,12 +345,13 @@ def _trace(sx, sy, sign, line, screen, valid, point, slack, darkness, dsep, floo
             break
         if not _push(nx, ny, line, next_arc, px, py, pline, parc, head, nxt, cell, gw, state):
             break
-        x, y, rx, ry, arc = nx, ny, d2x, d2y, next_arc
+        x, y, rx, ry, r, arc = nx, ny, d2x, d2y, t2, next_arc
+        first = False
     return abs(arc)
 
 
 @numba.njit(cache=True, nogil=True)
-def _try_seed(x, y, screen, valid, point, slack, darkness, dsep, floor, params, px, py, pline, parc, alive,
+def _try_seed(x, y, screen, tangent, valid, point, slack, darkness, dsep, floor, params, px, py, pline, parc, alive,
               line_start, line_end, head, nxt, cell, gw, gh, state, queue):
     """Place a stroke from seed (x, y) if it is far enough from every other; True when one was kept."""
     h, w = valid.shape
@@ -360,9 +367,9 @@ def _try_seed(x, y, screen, valid, point, slack, darkness, dsep, floor, params, 
     alive[line] = True
     if not _push(x, y, line, 0.0, px, py, pline, parc, head, nxt, cell, gw, state):
         return False
-    length = _trace(x, y, 1.0, line, screen, valid, point, slack, darkness, dsep, floor, params,
+    length = _trace(x, y, 1.0, line, screen, tangent, valid, point, slack, darkness, dsep, floor, params,
                     px, py, pline, parc, alive, head, nxt, cell, gw, gh, state)
-    length += _trace(x, y, -1.0, line, screen, valid, point, slack, darkness, dsep, floor, params,
+    length += _trace(x, y, -1.0, line, screen, tangent, valid, point, slack, darkness, dsep, floor, params,
                      px, py, pline, parc, alive, head, nxt, cell, gw, gh, state)
     line_start[line], line_end[line] = start, state[4]
     state[5] = line + 1
@@ -375,7 +382,7 @@ def _try_seed(x, y, screen, valid, point, slack, darkness, dsep, floor, params, 
 
 
 @numba.njit(cache=True, nogil=True)
-def _place(screen, valid, point, slack, darkness, dsep, floor, params, seeds, px, py, pline, parc, alive,
+def _place(screen, tangent, valid, point, slack, darkness, dsep, floor, params, seeds, px, py, pline, parc, alive,
            line_start, line_end, head, nxt, cell, gw, gh, state, queue, budget):
     """Jobard & Lefer's loop for up to ``budget`` seed tries: seeds beside accepted strokes first (queue), else the
     next shuffled grid seed. ``state``: queue head, queue tail, position in the head stroke, side, points used,
@@ -416,13 +423,13 @@ def _place(screen, valid, point, slack, darkness, dsep, floor, params, seeds, px
             ix, iy = int(px[k]), int(py[k])
             d = dsep[iy, ix]
             sx, sy = px[k] - side * ty / norm * d, py[k] + side * tx / norm * d
-            _try_seed(sx, sy, screen, valid, point, slack, darkness, dsep, floor, params, px, py, pline,
+            _try_seed(sx, sy, screen, tangent, valid, point, slack, darkness, dsep, floor, params, px, py, pline,
                       parc, alive, line_start, line_end, head, nxt, cell, gw, gh, state, queue)
             tries += 1
         elif state[6] < len(seeds):
             s = state[6]
             state[6] += 1
-            _try_seed(seeds[s, 0], seeds[s, 1], screen, valid, point, slack, darkness, dsep, floor, params,
+            _try_seed(seeds[s, 0], seeds[s, 1], screen, tangent, valid, point, slack, darkness, dsep, floor, params,
                       px, py, pline, parc, alive, line_start, line_end, head, nxt, cell, gw, gh, state, queue)
             tries += 1
         else:
@@ -445,6 +452,7 @@ def place_family(image: SurfaceImage, family: int, floor: float, settings: Hatch
     # the family's field first, the other branch second: strokes start on their family's branch and may then only
     # turn continuously (the branch nearest the previous direction)
     screen = np.ascontiguousarray(image.screen if family == 0 else image.screen[::-1])
+    tangent = np.ascontiguousarray(image.tangent if family == 0 else image.tangent[::-1])
     hatched = image.valid & (image.darkness >= floor)
     stride = max(1, int(settings.spacing // 2))
     ys, xs = np.nonzero(hatched[::stride, ::stride])
@@ -470,7 +478,7 @@ def place_family(image: SurfaceImage, family: int, floor: float, settings: Hatch
         done = 0
         while True:
             # short compiled batches: Ctrl-C lands between them, and the bar moves
-            tries = _place(screen, image.valid, image.point, image.slack, image.darkness, dsep, floor,
+            tries = _place(screen, tangent, image.valid, image.point, image.slack, image.darkness, dsep, floor,
                            params, seeds, px, py, pline, parc, alive, line_start, line_end, head, nxt, cell, gw, gh,
                            state, queue, budget)
             advance(int(state[6]) - done)
