@@ -91,8 +91,12 @@ def load(name: str):
     if not path.exists():
         return None
     positions, texcoords, faces, uv_faces = read_obj(path)
+    # weld by exact position, keeping only the vertices faces use (a vertex of no face is a zero row of the field's
+    # matrix)
     positions, inverse = np.unique(positions, axis=0, return_inverse=True)
     faces = inverse.reshape(-1)[faces]
+    used, faces = np.unique(faces, return_inverse=True)
+    positions, faces = positions[used], faces.reshape(-1, 3)
     return positions, faces, (texcoords[uv_faces], uv_faces) if uv_faces is not None else None
 
 

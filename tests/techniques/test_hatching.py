@@ -244,3 +244,45 @@ def test_bad_hatching_options_exit_2(tmp_path, capsys, flags):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "Traceback" not in err[0]
     assert not out.exists()
+
+
+def test_sigint_stops_hatching_promptly(tmp_path):
+    """Ctrl-C once the drawing is under way (a 1600 x 1600 drawing at 1.5-pixel spacing, ~8 CPU seconds in all;
+    signalled after 4, past the imports: in the field, the rays or the stroke placement, which runs in short compiled
+    batches) ends the run within a few seconds, exit 130, one line, and no SVG."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    src = tmp_path / "sphere.glb"
+    trimesh.creation.icosphere(5).export(str(src))
+    out = tmp_path / "drawing.svg"
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[2])}
+    proc = subprocess.Popen([sys.executable, "-m", "baker.cli", "lines", str(src), "-o", str(out), "--hatching",
+                             "--size", "1600x1600", "--hatch-spacing", "1.5"], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        start = time.monotonic()
+        clock = os.sysconf("SC_CLK_TCK")
+        while True:  # until it has worked 4 CPU seconds
+            assert proc.poll() is None, proc.communicate()
+            fields = Path(f"/proc/{proc.pid}/stat").read_text().rsplit(")", 1)[1].split()
+            if (int(fields[11]) + int(fields[12])) / clock >= 4.0:
+                break
+            assert time.monotonic() - start < 300
+            time.sleep(0.05)
+        signalled = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        _, stderr = proc.communicate(timeout=120)
+        stopped = time.monotonic() - signalled
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 130, stderr
+    assert stderr.strip().splitlines() == ["baker: interrupted"], stderr
+    assert stopped < 5.0, f"took {stopped:.2f} s to stop"
+    assert not out.exists()
