@@ -4,7 +4,9 @@ screen space, denser where a Lambert light leaves the surface darker (RTR4 15.3;
 1. **Field**: per vertex of the welded scene, principal curvatures (:mod:`baker.techniques.curvature.kernel`) and
    Knöppel et al.'s globally optimal cross field aligned with them where |k1 - k2| is clear
    (:func:`baker.techniques.tam.direction_field.cross_field`, one solve per connected piece: a piece without any
-   anisotropy, a plane, gets its smoothest field). Of the cross's four directions the *primary* one is the branch
+   anisotropy, a plane, gets its smoothest field), weighted ``alignment`` = 0.1 against smoothness: on a scanned
+   mesh (the bunny) the strokes then follow the form rather than the fit's noise, while on a torus or a cylinder
+   they still follow the principal directions to half a degree (tests/techniques/test_hatching.py). Of the cross's four directions the *primary* one is the branch
    nearest the direction of the largest curvature k1 (around a cylinder, across a torus's tube), the secondary one
    turned by 90 degrees (Hertzmann & Zorin 2000 draw strokes along principal directions the same way).
 2. **The visible surface**: one ray per pixel centre from the eye (Embree, the visibility ``baker lines`` uses for its
@@ -49,6 +51,7 @@ class HatchSettings:
     max_turn_degrees: float = 20.0  # largest turn of a stroke in one step
     min_foreshortening: float = 0.25  # projected length of a unit tangent / that of one facing the eye
     light: tuple | None = None  # world direction towards a directional light; None: camera-relative default
+    alignment: float = 0.1  # the cross field's data weight against its smoothness (``cross_field``'s)
     seed: int = 0
 
 
@@ -68,7 +71,8 @@ def default_light(camera) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------------------------------------- field
-def principal_cross_field(positions: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def principal_cross_field(positions: np.ndarray, faces: np.ndarray,
+                          alignment: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """(unit vertex normals, primary field direction per vertex) of a welded mesh: the cross field of
     :mod:`baker.techniques.tam.direction_field` aligned with the principal directions, turned to its branch nearest
     the k1 direction. A vertex used by no face gets a zero direction."""
@@ -106,7 +110,8 @@ def principal_cross_field(positions: np.ndarray, faces: np.ndarray) -> tuple[np.
             continue
         vertices, local = np.unique(piece_faces, return_inverse=True)
         piece = cross_field(positions[vertices], local.reshape(-1, 3), normals[vertices],
-                            directions=curvature.direction1[vertices], strength=strength[vertices])
+                            directions=curvature.direction1[vertices], strength=strength[vertices],
+                            alignment=alignment)
         direction[vertices] = piece.direction
     # the branch nearest the k1 direction: d or n x d, whichever is more parallel to it
     turned = np.cross(normals, direction)
@@ -182,13 +187,13 @@ def surface_image(camera, scene, positions, faces, normals, direction, light) ->
     corner = direction[f]  # (p, 3, 3)
     corner_normal = normals[f]
     first = corner[:, 0]
-    field = bary[:, :1] * first
+    along = bary[:, :1] * first
     for k in (1, 2):
-        field += bary[:, k:k + 1] * matched(first, corner[:, k], corner_normal[:, k])
-    field -= normal * np.einsum("ij,ij->i", field, normal)[:, None]
-    length = np.linalg.norm(field, axis=1)
-    field /= np.maximum(length, 1e-300)[:, None]
-    second = np.cross(normal, field)
+        along += bary[:, k:k + 1] * matched(first, corner[:, k], corner_normal[:, k])
+    along -= normal * np.einsum("ij,ij->i", along, normal)[:, None]
+    length = np.linalg.norm(along, axis=1)
+    along /= np.maximum(length, 1e-300)[:, None]
+    second = np.cross(normal, along)
     darkness = 1.0 - np.clip(normal @ np.asarray(light, np.float64), 0.0, 1.0)
     # the world size of one pixel at the point, facing the eye: projected tangents are measured in it, so that a
     # tangent's projected length is its foreshortening (1: in the image plane)
@@ -200,7 +205,7 @@ def surface_image(camera, scene, positions, faces, normals, direction, light) ->
     here, _ = camera.project(point)
     screen = np.zeros((2, height * width, 2))
     tangents = np.zeros((2, height * width, 3))
-    for b, tangent in enumerate((field, second)):
+    for b, tangent in enumerate((along, second)):
         tangents[b, idx] = tangent
         there, _ = camera.project(point + tangent * (1e-3 * pixel)[:, None])
         projected = (there - here) / 1e-3
@@ -497,7 +502,7 @@ def hatch(camera, scene, positions: np.ndarray, faces: np.ndarray, settings: Hat
           progress: Progress = QUIET) -> Hatching:
     """Hatching strokes of the welded scene (``positions``, ``faces``, traced by ``scene``) seen by ``camera``."""
     with progress.task("hatching field", 1) as advance:
-        normals, direction = principal_cross_field(positions, faces)
+        normals, direction = principal_cross_field(positions, faces, settings.alignment)
         advance(1)
     light = np.asarray(settings.light, np.float64) if settings.light is not None else default_light(camera)
     light = light / np.linalg.norm(light)
