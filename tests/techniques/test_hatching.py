@@ -286,3 +286,28 @@ def test_sigint_stops_hatching_promptly(tmp_path):
     assert stderr.strip().splitlines() == ["baker: interrupted"], stderr
     assert stopped < 5.0, f"took {stopped:.2f} s to stop"
     assert not out.exists()
+
+
+@pytest.mark.parametrize("backend", ["direct", "embreex"])
+def test_first_hits_give_the_triangle_and_barycentrics(backend):
+    """``RayScene.first_hits`` (the pixel rays' surface points): the barycentric point of the reported triangle is
+    the ray's point at the reported distance, on the triangle the distance-only query agrees with; misses are -1."""
+    sphere = trimesh.creation.icosphere(3)
+    positions, faces = np.asarray(sphere.vertices), np.asarray(sphere.faces)
+    scene = RayScene(positions, faces, backend=backend)
+    rng = np.random.default_rng(0)
+    origins = np.tile([0.0, 0.0, 3.0], (500, 1))
+    targets = np.column_stack([rng.uniform(-1.5, 1.5, (500, 2)), np.zeros(500)])
+    directions = targets - origins
+    directions /= np.linalg.norm(directions, axis=1)[:, None]
+    distance, face, u, v = scene.first_hits(origins, directions)
+    hit = face >= 0
+    assert 100 < hit.sum() < 500
+    corners = positions[faces[face[hit]]]
+    point = (1 - u[hit] - v[hit])[:, None] * corners[:, 0] + u[hit][:, None] * corners[:, 1] \
+        + v[hit][:, None] * corners[:, 2]
+    assert np.abs(point - (origins[hit] + directions[hit] * distance[hit][:, None])).max() < 1e-5
+    assert np.allclose(distance[hit], scene.distances(origins, directions)[hit], atol=1e-6)
+    # a miss: the ray passes the unit sphere by (|target| > 1 and the sphere's silhouette from z = 3 is smaller)
+    far = np.linalg.norm(targets[:, :2], axis=1) > 1.2
+    assert not hit[far].any() and (distance[~hit] >= RayScene.MISS).all()
