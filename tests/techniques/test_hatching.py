@@ -235,7 +235,8 @@ def test_same_seed_same_bytes(tmp_path, torus_svg):
 
 @pytest.mark.parametrize("flags", [["--hatching", "--hatch-spacing", "0"], ["--hatching", "--light", "0,0,0"],
                                    ["--light", "1,0,0"], ["--hatching", "--hatch-width", "-1"],
-                                   ["--hatching", "--light", "1,x,0"]])
+                                   ["--hatching", "--light", "1,x,0"],
+                                   ["--hatching", "--size", "8000x8000", "--max-memory", "2G"]])
 def test_bad_hatching_options_exit_2(tmp_path, capsys, flags):
     src = tmp_path / "box.glb"
     trimesh.creation.box().export(str(src))

@@ -39,6 +39,11 @@ import numpy as np
 from baker.progress import QUIET, Progress
 
 
+# peak bytes per pixel of the drawing: the pixel rays, the surface image (point, both branches' tangents and
+# projections, tone, slack) and the temporaries that build it (measured: 255 on a 1600 x 1600 drawing of a sphere)
+BYTES_PER_PIXEL = 320
+
+
 @dataclass(frozen=True)
 class HatchSettings:
     spacing: float = 6.0  # d_sep at the darkest tone, pixels

@@ -120,12 +120,22 @@ def run_lines(args) -> int:
     from baker import readers
     from baker.memory import check_bake, parse_limit
 
-    # the edge analysis and the ray scene cost what the edges bake does per triangle
+    # the edge analysis and the ray scene cost what the edges bake does per triangle; hatching adds the curvature
+    # fit and the field (about the curvature bake's) and the per-pixel surface image
     limit = parse_limit(args.max_memory)
     asset = readers.read(args.input, max_memory=limit)
-    check_bake(asset, ("edges",), None, limit, "drawing the lines of this asset")
+    need = check_bake(asset, ("edges", "curvature") if args.hatching else ("edges",), None, limit,
+                      "drawing the lines of this asset")
     positions, faces, groups = scene_triangles(asset)
     camera = make_camera(args, asset, positions)
+    if args.hatching:
+        from baker.memory import human
+        from baker.techniques.edges.hatching import BYTES_PER_PIXEL
+
+        need += BYTES_PER_PIXEL * camera.width * camera.height
+        if limit is not None and need > limit:
+            raise BakerError(asset.source, f"hatching a {camera.width}x{camera.height} drawing needs about "
+                                           f"{human(need)}, more than --max-memory {human(limit)}")
     options = E.EdgeSettings(crease_angle=args.crease_angle)
     mesh = E.analyze_mesh(positions, faces, face_group=groups, options=options)
     scene = RayScene(mesh.welded, mesh.faces_welded)
