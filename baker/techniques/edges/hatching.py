@@ -484,17 +484,22 @@ def place_family(image: SurfaceImage, family: int, floor: float, settings: Hatch
     params = np.array([settings.step, settings.test_ratio, math.cos(math.radians(settings.max_turn_degrees)),
                        settings.min_foreshortening, settings.min_length])
     budget = 512
-    with progress.task(label, len(seeds)) as advance:
+    # the bar counts stroke points against what evenly spaced strokes would need (one stroke per d_sep across, a
+    # point per step along); most seeds come from beside earlier strokes, so the grid seeds used would not move it
+    expected = int(np.sum(1.0 / dsep[hatched]) / settings.step) + 1
+    with progress.task(label, expected) as advance:
         done = 0
         while True:
             # short compiled batches: Ctrl-C lands between them, and the bar moves
             tries = _place(screen, tangent, image.valid, image.point, image.slack, image.darkness, dsep, floor,
                            params, seeds, px, py, pline, parc, alive, line_start, line_end, head, nxt, cell, gw, gh,
                            state, queue, budget)
-            advance(int(state[6]) - done)
-            done = int(state[6])
+            placed = min(int(state[4]), expected - 1)
+            advance(max(placed - done, 0))
+            done = max(done, placed)
             if tries < budget:
                 break
+        advance(expected - done)
     strokes = []
     for line in np.flatnonzero(alive[:state[5]]):
         s, e = line_start[line], line_end[line]
