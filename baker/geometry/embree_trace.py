@@ -53,3 +53,14 @@ def trace_rays(scene, origins, directions, out, rayhit):
     for r in range(origins.shape[0]):
         out[r] = trace_one(scene, rayhit, origins[r, 0], origins[r, 1], origins[r, 2],
                            directions[r, 0], directions[r, 1], directions[r, 2])
+
+
+@numba.njit(cache=True, nogil=True)
+def trace_hits(scene, origins, directions, distance, face, u, v, rayhit):
+    """First hits with the triangle and its barycentric (u, v): ``face`` -1 on a miss."""
+    f = rayhit.view(np.float32)
+    for r in range(origins.shape[0]):
+        distance[r] = trace_one(scene, rayhit, origins[r, 0], origins[r, 1], origins[r, 2],
+                                directions[r, 0], directions[r, 1], directions[r, 2])
+        face[r] = -1 if rayhit[17] == INVALID_ID else np.int64(rayhit[17])
+        u[r], v[r] = f[15], f[16]

@@ -24,5 +24,16 @@ def add_parser(subparsers) -> None:
     p.add_argument("--widths", default=None, help="stroke widths in pixels, e.g. contour=2,boundary=1.5,crease=1,"
                                                   "material=1")
     p.add_argument("--step", type=float, default=2.0, help="visibility sampling step along lines, pixels (default 2)")
+    p.add_argument("--hatching", action="store_true",
+                   help="also draw hatching strokes along the surface's principal-direction cross field, evenly "
+                        "spaced, denser where a Lambert light leaves it darker, cross-hatched where darkest")
+    p.add_argument("--hatch-spacing", type=float, default=6.0,
+                   help="hatching: stroke spacing in pixels at the darkest tone (default 6; up to 4x wider in light "
+                        "tones)")
+    p.add_argument("--hatch-width", type=float, default=0.6, help="hatching: stroke width in pixels (default 0.6)")
+    p.add_argument("--light", help="hatching: world direction towards the light X,Y,Z (default: from the upper "
+                                   "left of the view, in front of the subject)")
+    p.add_argument("--seed", type=int, default=0, help="hatching: seed of the stroke placement (default 0)")
+    p.add_argument("--quiet", action="store_true", help="no progress bars")
     memory.add_argument(p)
     p.set_defaults(func=lazy("baker.techniques.edges.step:run_lines"))

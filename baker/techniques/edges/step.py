@@ -3,6 +3,7 @@ primitives and their per-corner UVs and normals, run the kernel, write each prim
 ``baker lines IN -o drawing.svg`` (:func:`run_lines`, the drawing in :mod:`.svg` and :mod:`.line_drawing`)."""
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -100,18 +101,51 @@ def run_lines(args) -> int:
                 raise BakerError(None, f"--widths: {item!r} is not TYPE=NUMBER") from None
     if args.step <= 0:
         raise BakerError(None, "--step must be > 0")
+    hatch_settings = None
+    if args.hatching:
+        from baker.techniques.edges.hatching import HatchSettings
+        from baker.techniques.edges.svg import parse_vector
+
+        if not (args.hatch_spacing >= 1.0 and math.isfinite(args.hatch_spacing)):
+            raise BakerError(None, "--hatch-spacing must be >= 1 pixel")
+        if not (args.hatch_width > 0 and math.isfinite(args.hatch_width)):
+            raise BakerError(None, "--hatch-width must be > 0")
+        light = parse_vector(args.light, "--light") if args.light else None
+        if light is not None and np.linalg.norm(light) == 0:
+            raise BakerError(None, "--light must not be zero")
+        hatch_settings = HatchSettings(spacing=args.hatch_spacing, light=None if light is None else tuple(light),
+                                       seed=args.seed)
+    elif args.light:
+        raise BakerError(None, "--light needs --hatching")
     from baker import readers
     from baker.memory import check_bake, parse_limit
 
-    # the edge analysis and the ray scene cost what the edges bake does per triangle
+    # the edge analysis and the ray scene cost what the edges bake does per triangle; hatching adds the curvature
+    # fit and the field (about the curvature bake's) and the per-pixel surface image
     limit = parse_limit(args.max_memory)
     asset = readers.read(args.input, max_memory=limit)
-    check_bake(asset, ("edges",), None, limit, "drawing the lines of this asset")
+    need = check_bake(asset, ("edges", "curvature") if args.hatching else ("edges",), None, limit,
+                      "drawing the lines of this asset")
     positions, faces, groups = scene_triangles(asset)
     camera = make_camera(args, asset, positions)
+    if args.hatching:
+        from baker.memory import human
+        from baker.techniques.edges.hatching import BYTES_PER_PIXEL
+
+        need += BYTES_PER_PIXEL * camera.width * camera.height
+        if limit is not None and need > limit:
+            raise BakerError(asset.source, f"hatching a {camera.width}x{camera.height} drawing needs about "
+                                           f"{human(need)}, more than --max-memory {human(limit)}")
     options = E.EdgeSettings(crease_angle=args.crease_angle)
     mesh = E.analyze_mesh(positions, faces, face_group=groups, options=options)
     scene = RayScene(mesh.welded, mesh.faces_welded)
     lines = L.trace_lines(mesh, camera, scene, step=args.step, creases=not args.no_creases)
-    write_bytes_atomic(out, svg_document(lines, camera.width, camera.height, widths, args.hidden).encode("utf-8"))
+    hatching = None
+    if hatch_settings is not None:
+        from baker.techniques.edges.hatching import hatch
+
+        progress = Progress(enabled=False if args.quiet else None)
+        hatching = hatch(camera, scene, mesh.welded, mesh.faces_welded, hatch_settings, progress)
+    write_bytes_atomic(out, svg_document(lines, camera.width, camera.height, widths, args.hidden, hatching,
+                                         args.hatch_width).encode("utf-8"))
     return 0

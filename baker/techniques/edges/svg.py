@@ -21,7 +21,7 @@ DEFAULT_WIDTHS = {"contour": 2.0, "boundary": 1.5, "crease": 1.0, "material": 1.
 
 
 
-def _vector(text: str, what: str) -> np.ndarray:
+def parse_vector(text: str, what: str) -> np.ndarray:
     try:
         v = np.array([float(x) for x in text.split(",")], np.float64)
     except ValueError:
@@ -77,7 +77,7 @@ def make_camera(args, asset, positions: np.ndarray) -> L.Camera:
         except (ValueError, AssertionError):
             raise BakerError(None, f"--size must be WIDTHxHEIGHT, got {args.size!r}") from None
         size = (w, h)
-    up = _vector(args.up, "--up")
+    up = parse_vector(args.up, "--up")
     center = (positions.min(0) + positions.max(0)) / 2.0
     camera_spec = args.camera
     if camera_spec and not all(c in "0123456789.,-+eE " for c in camera_spec):
@@ -99,10 +99,10 @@ def make_camera(args, asset, positions: np.ndarray) -> L.Camera:
         yfov = math.radians(args.fov) if args.fov else float(persp.get("yfov", math.radians(40.0)))
         return L.Camera(eye, eye + forward, cam_up, w, h, yfov, znear=float(persp.get("znear", 1e-3)))
     w, h = size or (800, 800)
-    target = _vector(args.target, "--target") if args.target else center
+    target = parse_vector(args.target, "--target") if args.target else center
     fov = args.fov or 40.0
     if camera_spec:
-        eye = _vector(camera_spec, "--camera")
+        eye = parse_vector(camera_spec, "--camera")
     else:
         eye = L.fit_camera(positions, w, h, fov).eye + (target - center)
     if np.linalg.norm(eye - target) < 1e-12:
@@ -118,11 +118,22 @@ def _path(points: np.ndarray, closed: bool) -> str:
     return "M" + " L".join(coords) + (" Z" if closed else "")
 
 
-def svg_document(lines: list, width: int, height: int, widths: dict, hidden: bool) -> str:
-    """SVG text: one group per (type, visibility), visible lines solid black, hidden lines dashed grey."""
+def svg_document(lines: list, width: int, height: int, widths: dict, hidden: bool, hatching=None,
+                 hatch_width: float = 0.6) -> str:
+    """SVG text: one group per (type, visibility), visible lines solid black, hidden lines dashed grey; with
+    ``hatching`` (a :class:`baker.techniques.edges.hatching.Hatching`) its strokes first, underneath, in the groups
+    ``hatching primary`` and ``hatching cross``."""
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'viewBox="0 0 {width} {height}">',
            '<rect width="100%" height="100%" fill="white"/>']
+    if hatching is not None:
+        for name, strokes in (("primary", hatching.primary), ("cross", hatching.cross)):
+            if not strokes:
+                continue
+            out.append(f'<g class="hatching {name}" fill="none" stroke="#000000" stroke-width="{hatch_width:g}" '
+                       'stroke-linecap="round" stroke-linejoin="round">')
+            out.extend(f'<path d="{_path(s, False)}"/>' for s in strokes)
+            out.append("</g>")
     for visible in ((False, True) if hidden else (True,)):  # hidden first: visible strokes draw on top
         for kind, name in enumerate(L.TYPE_NAMES):
             paths = [l for l in lines if l.kind == kind and l.visible == visible]
