@@ -413,10 +413,17 @@ def local_thickness(scene, points: np.ndarray, normals: np.ndarray, *, rays: int
 
     # BAKER_THREADS caps the ray threads (``baker build --jobs`` sets 1 per process); results do not depend on it
     threads = threads or int(os.environ.get("BAKER_THREADS", 0)) or min(2, os.cpu_count() or 1)
-    with ThreadPoolExecutor(threads) as pool:
+    pool = ThreadPoolExecutor(threads)
+    try:
         for done in pool.map(run, range(0, n, batch)):
             if progress:
                 progress(done)
+    except BaseException:
+        # a signal (or an error) unwinds at once: the batches already in Embree (~0.5 M rays each, seconds on a
+        # loaded machine) finish on their threads, unwaited, and the batches not started are dropped
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown()
     result[order] = out
     if rays_used is not None:
         rays_used[order] = used

@@ -31,9 +31,9 @@ class ThicknessOptions:
     tolerance: float = opt(0.25, "texels whose first 12 rays agree within +-tolerance (relative) with the thickness "
                                  "interpolated from the per-vertex solution take that value, corrected by "
                                  "their neighbours (--thickness-texel-window); the others trace all "
-                                 "--thickness-rays, as do texels whose normal turns more than 10 degrees from the "
-                                 "vertices' (a hard edge) and texels beside those (0: every texel traces them "
-                                 "all)", min=0.0, max=1.0)
+                                 "--thickness-rays, as do texels on the edge of a chart of the asset's own UVs, "
+                                 "texels whose normal turns more than 10 degrees from the vertices' (a hard edge) "
+                                 "and texels beside those (0: every texel traces them all)", min=0.0, max=1.0)
     texel_window: int = opt(3, "texels that take the per-vertex value add the mean deviation of the first rays "
                                "from it over the (2 x window + 1)^2 texels around them on the surface, shrunk "
                                "toward 0 as far as its noise exceeds the texture's spread of corrections (0: the "
