@@ -140,7 +140,7 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
 # vertices dense enough for its per-vertex solution, fitted over each one-ring (texel_prior), to carry the shape
 # between texels: on the Stanford bunny (69k triangles, benchmarks/unwrap.py) the texture reads 0.0185 relative RMS
 # at surface points against 2048 rays at 512^2 and 0.0166 at 1024^2 (the fitted per-vertex values alone: 0.0168),
-# while 1024^2 traces 4x the texels (294k) and the texture bake then costs 2.8x the per-vertex one instead of 2x.
+# while 1024^2 traces 4x the texels (294k) and the texture bake then costs 2.5x the per-vertex one instead of 2.1x.
 AUTO_TEXTURE_SIZE_RANGE = (64, 512)
 PRIOR_MIN_TEXELS_PER_VERTEX = 16  # below this a prior of its own would cost more than a quarter of the texels
 PRIOR_SELF_WEIGHT = 4.0  # a vertex's own value in its ring fit, against 2 per interior neighbour (one per face)
