@@ -5,7 +5,7 @@
 
 - time: whole processes, interleaved, best of ``--repeat``: ``baker bake MESH --bakes thickness --thickness-per-texel
   false`` (per-vertex work only, no unwrap) against ``--bakes tam`` and ``--bakes thickness`` (each unwraps), and
-  thickness at 2048^2 (the bunny's automatic size before thickness's stopped at 1024^2).
+  thickness at 1024^2 (the bunny's automatic size before thickness's stopped at 512^2).
 - layout: :func:`baker.texels.texture_space.unwrap` as the bakes call it (padding for the automatic texture size S):
   its time, the charts, texel utilisation (texel centres covered at S x S / all texels), the L2 stretch of Sander et
   al., "Texture Mapping Progressive Meshes" (SIGGRAPH 2001), normalised so that 1 is no stretch, and the spread of
@@ -181,15 +181,15 @@ def main() -> None:
     parser.add_argument("--section", default="time,layout")
     parser.add_argument("--unbounded", action="store_true")
     parser.add_argument("--markdown", action="store_true")
-    parser.add_argument("--sizes", default="0,2048")
+    parser.add_argument("--sizes", default="0,1024")
     parser.add_argument("--points", type=int, default=4000)
     parser.add_argument("--reference-rays", type=int, default=2048)
     args = parser.parse_args()
     sections = set(args.section.split(","))
     if "time" in sections:
-        # the last: the automatic thickness size before it stopped at 1024^2 (the bunny's)
+        # the last: the automatic thickness size before it stopped at 512^2 (the bunny's)
         runs = {"--bakes thickness --thickness-per-texel false": [], "--bakes tam": [], "--bakes thickness": [],
-                "--bakes thickness --thickness-texture-size 2048": []}
+                "--bakes thickness --thickness-texture-size 1024": []}
         with tempfile.TemporaryDirectory() as folder:
             for _ in range(args.repeat):
                 for command, times in runs.items():

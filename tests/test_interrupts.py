@@ -282,3 +282,62 @@ def test_output_equal_to_input(tmp_path, suffix):
         assert (tmp_path / "spot.bin").stat().st_size == gltf["buffers"][0]["byteLength"]
     assert main(["validate", str(asset), "--no-khronos", "-q"]) == 0
     assert not [p.name for p in tmp_path.iterdir() if ".tmp" in p.name]
+
+
+def _forked_children(pid: int) -> list[int]:
+    """The child processes of ``pid`` that are forks of it (its command line; not a program it runs)."""
+    children = []
+    try:
+        command = Path(f"/proc/{pid}/cmdline").read_bytes()
+        for task in Path(f"/proc/{pid}/task").iterdir():
+            for child in (task / "children").read_text().split():
+                if Path(f"/proc/{child}/cmdline").read_bytes() == command:
+                    children.append(int(child))
+    except (FileNotFoundError, ProcessLookupError):
+        pass
+    return children
+
+
+@pytest.mark.parametrize("signum, code, line", [(signal.SIGTERM, 143, "baker: terminated"),
+                                                (signal.SIGINT, 130, "baker: interrupted")],
+                         ids=["SIGTERM", "SIGINT"])
+def test_signal_while_the_unwrap_runs_in_its_child(tmp_path, signum, code, line):
+    """A texture bake of a mesh without UVs unwraps it in a forked child process (xatlas, while the parent traces
+    its per-vertex rays). Signalled (the parent alone, as ``kill`` does) while that child runs: the parent stops
+    within 2 s with one line and 130 / 143, writes nothing, and the child is gone (killed and reaped, no orphan
+    left running xatlas)."""
+    import trimesh
+
+    sphere = trimesh.creation.icosphere(subdivisions=6)  # 82k triangles, no UVs: xatlas takes seconds
+    v = sphere.vertices * (1.0 + 0.1 * np.sin(5 * sphere.vertices[:, :1]) * np.sin(7 * sphere.vertices[:, 1:2]))
+    mesh = tmp_path / "bumpy.obj"
+    trimesh.Trimesh(v, sphere.faces, process=False).export(mesh)
+    out = tmp_path / "out.glb"
+    before = sorted(p.name for p in tmp_path.iterdir())
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    proc = subprocess.Popen([sys.executable, "-m", "baker.cli", "bake", mesh.name, "-o", out.name, "--bakes",
+                             "thickness", "--thickness-rays", "4096"], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        start, children = time.monotonic(), []
+        while not children and time.monotonic() - start < 120:
+            assert proc.poll() is None, f"the bake ended before it unwrapped: {proc.communicate()}"
+            children = _forked_children(proc.pid)
+            time.sleep(0.01)
+        assert children, "no unwrap child appeared"
+        time.sleep(0.3)  # inside xatlas
+        assert _forked_children(proc.pid) == children, "the unwrap ended before it was signalled"
+        signalled = time.monotonic()
+        proc.send_signal(signum)
+        stdout, stderr = proc.communicate(timeout=60)
+        stopped = time.monotonic() - signalled
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == code, stderr
+    assert stderr.strip().splitlines() == [line], stderr
+    assert stopped < 2.0, f"took {stopped:.2f} s to stop"
+    for child in children:
+        assert not Path(f"/proc/{child}").exists(), "the unwrap child outlived the bake"
+    assert sorted(p.name for p in tmp_path.iterdir()) == before

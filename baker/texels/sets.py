@@ -122,15 +122,19 @@ class TexelSets:
                                                   self.mesh[part])
         return mean, error
 
-    def region_edges(self, inside: np.ndarray) -> np.ndarray:
+    def region_edges(self, inside: np.ndarray, within_charts: bool = False) -> np.ndarray:
         """Per texel, whether it is an ``inside`` texel on the edge of that region in its image: one of its 8
         neighbours in the image is no ``inside`` texel of the same texture (or lies off the image). With every
         texel inside these are the charts' edges, which dilation copies into the padding and bilinear filtering and
-        mip levels read; a window of texels around an edge texel is one-sided."""
+        mip levels read; a window of texels around an edge texel is one-sided. ``within_charts``: only covered
+        texels that are not ``inside`` count as outside (the edge of the region inside the charts, not the charts'
+        own edges)."""
         edge = np.zeros(len(self), bool)
         for s in self.sets:
             rows, cols = self.rows[s.start: s.stop], self.cols[s.start: s.stop]
-            covered = np.zeros((s.size + 2, s.size + 2), bool)  # a border of False: off the image counts as outside
+            # a border (and, within charts, every uncovered texel) of True or False: off the image counts as
+            # outside, or not within charts
+            covered = np.full((s.size + 2, s.size + 2), within_charts, bool)
             covered[rows + 1, cols + 1] = inside[s.start: s.stop]
             part = np.zeros(len(rows), bool)
             for dy in (-1, 0, 1):

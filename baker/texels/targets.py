@@ -7,6 +7,7 @@ attribute and morph target copied along) and the new layout becomes a new TEXCOO
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
@@ -15,8 +16,9 @@ from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.geometry.normals import vertex_normals
 from baker.geometry.welding import weld
 from baker.gltf.document import TARGET_ELEMENT_ARRAY_BUFFER
-from baker.texels.texture_space import (AUTO_SIZE_RANGE, SurfaceStatistics, TexelSamples, rasterize_uv,
-                                          size_for_density, unwrap, usable_layout_texels)
+from baker.texels.texture_space import (AUTO_SIZE_RANGE, UNWRAP_IN_CHILD_FROM_FACES, SurfaceStatistics, TexelSamples,
+                                          UnwrapInChild, rasterize_uv, size_for_density, unwrap,
+                                          usable_layout_texels)
 
 
 @dataclass
@@ -113,12 +115,14 @@ def unwrap_material(asset: Asset, material: int, members: list[tuple[int, int]],
     texture size, not a forced ``size``): a bake's output must not depend on which other bakes ran."""
     key = ("unwrap", material)
     if key not in asset.cache:
-        geoms = [asset.primitive(m, p) for m, p in members]
-        texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
-        # xatlas pads charts by texels of `resolution`: the size the surface gets at the automatic density and the
-        # coverage xatlas typically reaches (a bake's final size follows the coverage it really reached)
-        resolution = size_for_density(_statistics(geoms, None, UNWRAP_COVERAGE))
-        charts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
+        geoms, texcoord, resolution = _unwrap_inputs(asset, members)
+        started = asset.cache.pop(("unwrap started", material), None)
+        if started is not None and started[0] == _unwrap_key(asset, geoms):
+            charts = started[1].result()
+        else:
+            if started is not None:
+                started[1].cancel()
+            charts = unwrap([(g.positions, g.faces) for g in geoms], resolution=resolution, seed=seed)
         vmaps = {}
         for g, (vmap, faces, uv) in zip(geoms, charts):
             # the slots reindex_primitive fills with the new layout (those the primitive had not)
@@ -128,6 +132,50 @@ def unwrap_material(asset: Asset, material: int, members: list[tuple[int, int]],
             vmaps[(g.mesh, g.primitive)] = (vmap, g.positions.shape)
         asset.cache[key] = (texcoord, vmaps)
     return asset.cache[key]
+
+
+def _unwrap_inputs(asset: Asset, members: list[tuple[int, int]]) -> tuple[list, int, int]:
+    """(primitives, the new TEXCOORD index, xatlas's resolution) of an unwrap of ``members``."""
+    geoms = [asset.primitive(m, p) for m, p in members]
+    texcoord = max(max(g.texcoords, default=-1) for g in geoms) + 1
+    # xatlas pads charts by texels of `resolution`: the size the surface gets at the automatic density and the
+    # coverage xatlas typically reaches (a bake's final size follows the coverage it really reached)
+    resolution = size_for_density(_statistics(geoms, None, UNWRAP_COVERAGE))
+    return geoms, texcoord, resolution
+
+
+def _unwrap_key(asset: Asset, geoms: list[PrimitiveGeometry]) -> tuple:
+    """What an unwrap's input is: the primitives as they are now (their key changes when they are re-indexed)."""
+    return tuple(asset.primitive_key(g.mesh, g.primitive) for g in geoms)
+
+
+@contextmanager
+def unwraps_started(asset: Asset, size: int | None = None):
+    """Start, in child processes (:class:`~baker.texels.texture_space.UnwrapInChild`), the unwraps a texture bake
+    of ``size`` (None: automatic) will ask :func:`unwrap_material` for: the materials whose primitives have no
+    usable TEXCOORD_0 (the test :func:`material_targets` makes) and at least
+    :data:`~baker.texels.texture_space.UNWRAP_IN_CHILD_FROM_FACES` triangles. The bake meanwhile builds its BVHs
+    and traces its per-vertex rays; :func:`unwrap_material` takes the child's layout, the same one it would compute
+    itself. Children not asked for by the end of the block (the bake failed, or was interrupted) are killed."""
+    started = []
+    try:
+        for material, members in asset.material_groups().items():
+            if ("unwrap", material) in asset.cache or ("unwrap started", material) in asset.cache:
+                continue
+            geoms = [g for g in (asset.primitive(m, p) for m, p in members) if len(g.faces)]
+            if not geoms or sum(len(g.faces) for g in geoms) < UNWRAP_IN_CHILD_FROM_FACES \
+                    or _existing_uv_texels(geoms, size or 256) is not None:
+                continue
+            geoms, _, resolution = _unwrap_inputs(asset, [(g.mesh, g.primitive) for g in geoms])
+            child = UnwrapInChild([(g.positions, g.faces) for g in geoms], resolution)
+            asset.cache[("unwrap started", material)] = (_unwrap_key(asset, geoms), child)
+            started.append(material)
+        yield
+    finally:
+        for material in started:
+            left = asset.cache.pop(("unwrap started", material), None)
+            if left is not None:
+                left[1].cancel()
 
 
 def made_by_unwrap(asset: Asset, mesh: int, primitive: int, texcoord: int) -> bool:

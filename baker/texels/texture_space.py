@@ -157,6 +157,11 @@ def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding
 
     Returns one (vmapping, faces, uv) per mesh: new vertex i copies old vertex ``vmapping[i]``; ``uv`` in [0, 1].
     """
+    return [_in_source_order(*chart) for chart in _xatlas_charts(meshes, resolution, padding)]
+
+
+def _xatlas_charts(meshes, resolution: int, padding: int) -> list:
+    """xatlas's (vmapping, faces, uv) per mesh, as it returns them."""
     import xatlas
 
     atlas = xatlas.Atlas()
@@ -180,7 +185,117 @@ def unwrap(meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding
     pack.bilinear = True
     pack.bruteForce = False
     atlas.generate(chart, pack)
-    return [_in_source_order(*atlas[i]) for i in range(len(meshes))]
+    return [atlas[i] for i in range(len(meshes))]
+
+
+UNWRAP_IN_CHILD_FROM_FACES = 4096  # triangles from which an early unwrap runs in a child process (below: ~0.1 s)
+
+
+class UnwrapInChild:
+    """:func:`unwrap` of the same arguments, computed by a forked child process while this one goes on.
+
+    xatlas holds the GIL for its whole run (~1-2 s on the 69k-triangle bunny), so a thread cannot overlap it with
+    the BVH build and the per-vertex rays that every texture bake traces first; a process can, on a second core.
+    The child runs xatlas alone (imported before the fork: the child imports nothing, takes no lock another thread
+    of this process may hold), sends its arrays through a pipe and exits; the layout is byte for byte the one
+    :func:`unwrap` computes here (xatlas is deterministic). The child dies by default on SIGINT and SIGTERM (as the
+    process group's Ctrl-C sends it), and with this process (Linux's parent-death signal); :meth:`cancel` kills and
+    reaps it when this process unwinds first. Where fork is unavailable (not Linux) or the process is one of
+    ``baker build --jobs``' (``BAKER_THREADS=1``: its cores are taken), :meth:`result` unwraps here instead."""
+
+    def __init__(self, meshes: list[tuple[np.ndarray, np.ndarray]], resolution: int, padding: int = 4):
+        import os
+        import sys
+
+        self.meshes = [(np.ascontiguousarray(v, np.float32), np.ascontiguousarray(f, np.uint32)) for v, f in meshes]
+        self.resolution, self.padding = int(resolution), int(padding)
+        self.pid, self.pipe = None, None
+        if sys.platform != "linux" or os.environ.get("BAKER_THREADS") == "1":
+            return
+        import xatlas  # noqa: F401 - imported before the fork: the child must import nothing
+        read, write = os.pipe()
+        pid = os.fork()
+        if pid == 0:
+            _unwrap_child(read, write, self.meshes, self.resolution, self.padding)  # never returns
+        os.close(write)
+        self.pid, self.pipe = pid, os.fdopen(read, "rb")
+
+    def result(self) -> list:
+        """One (vmapping, faces, uv) per mesh, as :func:`unwrap` returns them; waits for the child."""
+        if self.pid is None:
+            return [_in_source_order(*c) for c in _xatlas_charts(self.meshes, self.resolution, self.padding)]
+        import os
+
+        try:
+            charts = []
+            for vertices, faces in self.meshes:
+                count = np.frombuffer(self._read(16), np.int64)
+                charts.append((np.frombuffer(self._read(4 * int(count[0])), np.uint32),
+                               np.frombuffer(self._read(12 * int(count[1])), np.uint32).reshape(-1, 3),
+                               np.frombuffer(self._read(8 * int(count[0])), np.float32).reshape(-1, 2)))
+        except EOFError:
+            charts = None
+        finally:
+            self.pipe.close()
+            _, status = os.waitpid(self.pid, 0)
+            self.pid = None
+        if charts is None or status != 0:
+            # the child did not finish (killed from outside, out of memory): unwrap here
+            charts = _xatlas_charts(self.meshes, self.resolution, self.padding)
+        return [_in_source_order(*c) for c in charts]
+
+    def _read(self, size: int) -> bytes:
+        data = self.pipe.read(size)
+        if len(data) != size:
+            raise EOFError
+        return data
+
+    def cancel(self) -> None:
+        """Kill and reap the child, if it is still there."""
+        if self.pid is None:
+            return
+        import os
+        import signal
+
+        try:
+            os.kill(self.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        self.pipe.close()
+        os.waitpid(self.pid, 0)
+        self.pid = None
+
+
+def _unwrap_child(read: int, write: int, meshes, resolution: int, padding: int) -> None:
+    """The forked child: xatlas, its arrays into ``write``, exit. Any failure exits 1 (the parent unwraps)."""
+    import os
+    import signal
+
+    code = 1
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        try:
+            import ctypes
+
+            ctypes.CDLL(None).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG: die with the parent
+        except (OSError, AttributeError):
+            pass
+        if os.getppid() == 1:
+            os._exit(1)  # the parent died before the line above: nobody reads
+        os.close(read)
+        for vmapping, faces, uv in _xatlas_charts(meshes, resolution, padding):
+            vmapping = np.ascontiguousarray(vmapping, np.uint32)
+            parts = (np.array([len(vmapping), len(faces)], np.int64), vmapping,
+                     np.ascontiguousarray(faces, np.uint32), np.ascontiguousarray(uv, np.float32))
+            for part in parts:
+                view = memoryview(part.tobytes())
+                while len(view):
+                    view = view[os.write(write, view):]
+        os.close(write)
+        code = 0
+    finally:
+        os._exit(code)
 
 
 def _in_source_order(vmapping, faces, uv):

@@ -336,7 +336,7 @@ def test_curvature_texture_from_the_engine_matches_the_sphere(tmp_path):
 
 
 def test_thickness_automatic_size_stops_at_its_own_bound(tmp_path, monkeypatch):
-    """The automatic thickness texture is clamped to thickness's range (1024^2 at most), the other texture bakes'
+    """The automatic thickness texture is clamped to thickness's range (512^2 at most), the other texture bakes'
     to AUTO_SIZE_RANGE; a forced size or density is not clamped by it. The step's bound, lowered here below the
     sphere's automatic size, decides the thickness texture's size, not the curvature texture's."""
     from baker.texels.texture_space import AUTO_SIZE_RANGE
@@ -346,7 +346,7 @@ def test_thickness_automatic_size_stops_at_its_own_bound(tmp_path, monkeypatch):
     stats = SurfaceStatistics.of([(mesh.vertices, mesh.faces, mesh.visual.uv)])
     dense = SurfaceStatistics(stats.area, stats.uv_coverage, stats.mean_edge / 8)  # 64x the triangles
     assert size_for_density(dense) == AUTO_SIZE_RANGE[1] == 2048
-    assert size_for_density(dense, auto_range=step.AUTO_TEXTURE_SIZE_RANGE) == 1024
+    assert size_for_density(dense, auto_range=step.AUTO_TEXTURE_SIZE_RANGE) == 512
     assert size_for_density(dense, 1e6, auto_range=step.AUTO_TEXTURE_SIZE_RANGE) == 8192
     path = tmp_path / "sphere.glb"
     mesh.export(str(path))
@@ -449,3 +449,78 @@ def test_grid_aligned_layout_covers_each_texel_once(mirrored):
     # each texel's barycentrics rebuild its centre
     centre = np.einsum("kj,kjd->kd", texels.bary, uv[faces[texels.triangle]] * size)
     np.testing.assert_allclose(centre, np.stack([texels.cols + 0.5, texels.rows + 0.5], 1), atol=1e-9)
+
+
+def test_unwrap_in_a_child_process_is_the_unwrap_and_cancel_reaps_it():
+    """The layout a forked child computes (UnwrapInChild) is array for array, dtype for dtype, the one unwrap
+    computes in this process; a child cancelled before it finished is killed and reaped (no zombie, no orphan)."""
+    import os
+
+    from baker.texels.texture_space import UnwrapInChild, unwrap
+
+    sphere = trimesh.creation.icosphere(subdivisions=4)
+    meshes = [(sphere.vertices, sphere.faces), (sphere.vertices + 3.0, sphere.faces[::2])]
+    here = unwrap(meshes, resolution=512)
+    child = UnwrapInChild(meshes, resolution=512)
+    assert child.pid is not None and os.path.exists(f"/proc/{child.pid}")
+    there = child.result()
+    assert child.pid is None
+    for ours, theirs in zip(here, there):
+        for a, b in zip(ours, theirs):
+            assert a.dtype == b.dtype and np.array_equal(a, b)
+    cancelled = UnwrapInChild(meshes, resolution=512)
+    pid = cancelled.pid
+    cancelled.cancel()
+    assert not os.path.exists(f"/proc/{pid}")  # reaped: not even a zombie
+    with pytest.raises(ChildProcessError):
+        os.waitpid(pid, os.WNOHANG)
+
+
+def test_thickness_bake_unwrapping_in_a_child_writes_the_same_bytes(tmp_path, monkeypatch):
+    """A thickness bake of a mesh without UVs above UNWRAP_IN_CHILD_FROM_FACES triangles (its unwrap started in a
+    child while the per-vertex rays run) writes the same GLB as with the unwrap computed in the bake's own process
+    (BAKER_THREADS=1, as ``baker build --jobs`` runs: no child)."""
+    from baker.texels import texture_space
+
+    sphere = trimesh.creation.icosphere(subdivisions=5)  # 20k triangles
+    path = tmp_path / "sphere.obj"
+    trimesh.Trimesh(sphere.vertices, sphere.faces, process=False).export(path)
+    assert len(sphere.faces) >= texture_space.UNWRAP_IN_CHILD_FROM_FACES
+    started = []
+    original = texture_space.UnwrapInChild.__init__
+
+    def spy(self, *args, **kwargs):
+        original(self, *args, **kwargs)
+        started.append(self.pid)
+
+    monkeypatch.setattr(texture_space.UnwrapInChild, "__init__", spy)
+    options = {"thickness": {"rays": 8}}
+    forked = baker.bake(path, bakes=("thickness",), options=options)
+    save(forked, tmp_path / "forked.glb")
+    assert len(started) == 1 and started[0] is not None
+    monkeypatch.setenv("BAKER_THREADS", "1")
+    here = baker.bake(path, bakes=("thickness",), options=options)
+    save(here, tmp_path / "here.glb")
+    assert started[1] is None
+    assert (tmp_path / "forked.glb").read_bytes() == (tmp_path / "here.glb").read_bytes()
+
+
+def test_region_edges_within_charts_ignore_the_charts_own_edges():
+    """region_edges marks inside texels with an outside neighbour; within_charts, only covered texels count as
+    outside, so a chart's border (uncovered texels, the image's edge) marks nothing."""
+    from baker.texels.sets import TexelSets
+
+    rows, cols = (a.ravel() for a in np.meshgrid(np.arange(1, 7), np.arange(0, 5), indexing="ij"))
+    texels = TexelSets([], np.zeros((len(rows), 3)), np.zeros((len(rows), 3)), np.zeros(len(rows), np.int64),
+                       np.zeros(len(rows), np.int64), rows, cols)
+    from baker.texels.sets import TexelSet
+    from baker.texels.targets import MaterialTarget
+
+    texels.sets = [TexelSet(MaterialTarget(0, 0, 8, [], False), 0, len(rows))]
+    inside = ~((rows == 3) & (cols == 2))  # one covered texel without a prior in the middle
+    edges = texels.region_edges(inside)
+    within = texels.region_edges(inside, within_charts=True)
+    around = (np.abs(rows - 3) <= 1) & (np.abs(cols - 2) <= 1) & inside
+    assert np.array_equal(within, around)
+    border = (rows == 1) | (rows == 6) | (cols == 0) | (cols == 4)
+    assert np.array_equal(edges, (around | border) & inside)

@@ -27,16 +27,17 @@ class ThicknessOptions:
                                          "density, per material)", min=4, max=16384)
     texel_density: float | None = opt(None, "texels per mesh unit (metre) of the thickness texture, sizing each "
                                             "material's texture to a power of two in [16, 8192] (default: 8 texels "
-                                            "along the mean triangle edge, in [64, 1024])", min=1e-9)
+                                            "along the mean triangle edge, in [64, 512])", min=1e-9)
     tolerance: float = opt(0.25, "texels whose first 12 rays agree within +-tolerance (relative) with the thickness "
                                  "interpolated from the per-vertex solution take that value, corrected by "
                                  "their neighbours (--thickness-texel-window); the others trace all "
-                                 "--thickness-rays, as do texels on a chart's edge and texels whose normal turns "
-                                 "more than 10 degrees from the vertices' (a hard edge) (0: every texel traces them "
-                                 "all)", min=0.0, max=1.0)
+                                 "--thickness-rays, as do texels on the edge of a chart of the asset's own UVs, "
+                                 "texels whose normal turns more than 10 degrees from the vertices' (a hard edge) "
+                                 "and texels beside those (0: every texel traces them all)", min=0.0, max=1.0)
     texel_window: int = opt(3, "texels that take the per-vertex value add the mean deviation of the first rays "
                                "from it over the (2 x window + 1)^2 texels around them on the surface, shrunk "
-                               "toward 0 by its significance (0: the per-vertex value alone)", min=0, max=16)
+                               "toward 0 as far as its noise exceeds the texture's spread of corrections (0: the "
+                               "per-vertex value alone)", min=0, max=16)
     texture_bits: int = opt(16, "bits per channel of the thickness PNG", choices=(8, 16))
     # eq. 14.30 and the GDC variant: written into BAKER_thickness for the runtime, not used by the bake
     distortion: float = opt(0.2, "translucency: normal distortion of the light vector (GDC 2011)")

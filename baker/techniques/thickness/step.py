@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import math
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import nullcontext
 
 import numpy as np
 
@@ -17,7 +18,12 @@ from baker import interruptible
 def run(asset: Asset, options: ThicknessOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     # Embree builds the BVHs (GIL released, ~1.6 of 2 cores busy) in a thread while this one welds, computes
     # normals and lays out texels: at 1.1M triangles the build is the largest cost before the first ray
-    with interruptible.thread_pool(1) as builder:
+    # and, for a texture of a mesh without usable UVs, xatlas in a child process (it holds the GIL): the layout is
+    # ready by the time the per-vertex rays are traced
+    from baker.texels.targets import unwraps_started
+
+    with interruptible.thread_pool(1) as builder, unwraps_started(asset, options.texture_size) if options.per_texel \
+            else nullcontext():
         _run(asset, options, seed, progress, builder)
 
 
@@ -87,9 +93,15 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
         meshes = sorted(scenes)
         scene_of = np.searchsorted(meshes, texels.mesh)
         prior = texel_prior(welded, texels, cast, options.rays, vertex_values) if options.tolerance > 0 else None
-        # texels on the edge of the region with a prior (a chart's edge, or where texels have none) trace every
-        # ray (a negative prior: none to stop on); see corrected_by_neighbours
-        region_edge = texels.region_edges(prior >= 0) if prior is not None else np.zeros(len(texels), bool)
+        # texels beside texels with no prior (whose normal turned from the vertices': a crease) and on the edge of
+        # an authored chart trace every ray (a negative prior: none to stop on); see corrected_by_neighbours
+        region_edge = np.zeros(len(texels), bool)
+        if prior is not None:
+            authored = np.zeros(len(texels), bool)
+            for texel_set in texels.sets:
+                authored[texel_set.start: texel_set.stop] = not texel_set.target.unwrapped
+            region_edge = texels.region_edges(prior >= 0, within_charts=True) \
+                | (authored & texels.region_edges(prior >= 0))
         first_means, rays_used = np.full(len(texels), np.nan), np.zeros(len(texels), np.int64)
         values = cast(meshes, texels.positions, texels.normals, f"thickness texels ({texels.describe()})",
                       scene_of=scene_of, prior=None if prior is None else np.where(region_edge, -1.0, prior),
@@ -125,13 +137,15 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
                                       texel_rule=texel_rule if material in textured else None)
 
 
-# The automatic thickness texture stops at 1024^2 (other texture bakes: 2048^2). A texel's thickness is a mean of
-# 64 chords, and that noise, not the texture's resolution, bounds what a renderer reads once the mesh is dense enough
-# to reach the larger size: on the Stanford bunny (69k triangles, benchmarks/unwrap.py) 2048^2 reads 0.022 relative
-# RMS at surface points against 2048 rays, 1024^2 0.024 and every texel tracing all its rays at 1024^2 0.025, while
-# 2048^2 traces 4x the texels (1.16M) and takes 1.7x the whole bake.
-AUTO_TEXTURE_SIZE_RANGE = (64, 1024)
+# The automatic thickness texture stops at 512^2 (other texture bakes: 2048^2). A mesh dense enough to reach more has
+# vertices dense enough for its per-vertex solution, fitted over each one-ring (texel_prior), to carry the shape
+# between texels: on the Stanford bunny (69k triangles, benchmarks/unwrap.py) the texture reads 0.0185 relative RMS
+# at surface points against 2048 rays at 512^2 and 0.0166 at 1024^2 (the fitted per-vertex values alone: 0.0168),
+# while 1024^2 traces 4x the texels (294k) and the texture bake then costs 2.5x the per-vertex one instead of 2.1x.
+AUTO_TEXTURE_SIZE_RANGE = (64, 512)
 PRIOR_MIN_TEXELS_PER_VERTEX = 16  # below this a prior of its own would cost more than a quarter of the texels
+PRIOR_SELF_WEIGHT = 4.0  # a vertex's own value in its ring fit, against 2 per interior neighbour (one per face)
+PRIOR_RING_COS = math.cos(math.radians(20.0))  # a neighbour whose normal turns further lies across a crease
 PRIOR_NORMAL_COS = math.cos(math.radians(10.0))  # a texel's normal within 10 degrees of the vertices' takes a prior
 
 
@@ -145,6 +159,8 @@ def texel_prior(welded: dict, texels, cast, rays: int, vertex_values: dict) -> n
     the vertices miss still get every ray; the others add their neighbours' deviation from it
     (:func:`corrected_by_neighbours`), which also evens out the vertices' own noise: on spot a prior of 4x the
     rays gave the same final error (0.0112 vs 0.0117 at 512^2, 0.0103 vs 0.0104 at 1024^2) at 0.2 s more."""
+    from baker.techniques.thickness.kernel import ring_fit
+
     meshes = sorted(welded)
     if not meshes:
         return None
@@ -160,7 +176,15 @@ def texel_prior(welded: dict, texels, cast, rays: int, vertex_values: dict) -> n
         traced = cast(meshes, positions, normals, "thickness texel prior (vertices)", scene_of=scene_of, rays=rays)
         bounds = np.cumsum([0] + [len(welded[m][1].positions) for m in meshes])
         values = {m: traced[bounds[i]: bounds[i + 1]] for i, m in enumerate(meshes)}
-    prior = texels.interpolate_welded({m: (welded[m][1], values[m]) for m in meshes})
+    # each vertex's value fitted over its one-ring (ring_fit): the vertices' 64-ray noise averaged down, a field
+    # varying linearly across the ring kept, neighbours across a crease (normals 20 degrees apart) left out. Bunny
+    # (benchmarks/unwrap.py): per-vertex values interpolated 0.0261 relative RMS at surface points, fitted 0.0168
+    # (every neighbour: 0.0175, 10 degrees: 0.0180, 30: 0.0172; own value weighted as two neighbours: with every
+    # neighbour 0.0180 as one, 0.0176 as three; a plain one-ring mean 0.0185); the texels' own rays correct the rest
+    fitted = {m: ring_fit(welded[m][1].positions, welded[m][1].faces, welded[m][2], values[m], PRIOR_SELF_WEIGHT,
+                        PRIOR_RING_COS)
+              for m in meshes}
+    prior = texels.interpolate_welded({m: (welded[m][1], fitted[m]) for m in meshes})
     # the vertices traced around their welded (smooth) normals; where a texel's own normal turns away from that
     # (a hard edge: flat normals, or normals split at a crease or a UV seam, as an OBJ without normals gets them:
     # spot's seams, up to 40 degrees) the prior is the mean chord of other rays, off by more than the window can
@@ -190,20 +214,33 @@ def corrected_by_neighbours(texels, values: np.ndarray, prior: np.ndarray, first
     disagree with the prior past the tolerance: a feature the vertices miss) keep their own full estimate and take
     no part in the mean.
 
-    The texels on the edge of the region with a prior (``region_edge``: a chart's edge in the image, or beside
-    texels whose normal turned away from the vertices', :func:`texel_prior`) traced all their rays (the step gives
-    them no prior to stop on) and keep that estimate; their deviation from the prior, of all their rays, joins
-    their neighbours' windows. There the window is one-sided, so its mean is the deviation a few texels further
-    in, and the prior is at its worst: charts are cut along the shape's features, where thickness bends most
-    between vertices (spot at 512^2: prior 0.046 relative RMS on chart-edge texels, 0.015 inside; those texels
-    window-corrected 0.022, where 64 rays give 0.013). A chart's edge matters beyond its share of texels:
-    dilation copies it into the padding, which bilinear filtering and every mip level read."""
+    The texels on the edge of the region with a prior (``region_edge``: beside texels whose normal turned away from
+    the vertices', :func:`texel_prior`, or on the edge of a chart of the asset's own UVs) traced all their rays (the
+    step gives them no prior to stop on) and keep that estimate; their deviation from the prior, of all their rays,
+    joins their neighbours' windows. There the window is one-sided, so its mean is the deviation a few texels
+    further in, and the prior is at its worst: authored charts are cut along the shape's features, where thickness
+    bends most between vertices (spot at 512^2: prior 0.046 relative RMS on chart-edge texels, 0.015 inside); a
+    chart's edge matters beyond its share of texels: dilation copies it into the padding, which bilinear filtering
+    and every mip level read (spot with its chart edges on the prior: p99 over the whole image 0.048, where 64 rays
+    give 0.037). The charts of baker's own unwrap are cut by area, not along features: their edge texels test their
+    first rays like the others, which measured better than all their rays (bunny, 27% of the texels on a chart's
+    edge: 0.0170 relative RMS at surface points against 0.0192, at 15.6 rays per texel instead of 28.8).
+
+    The correction is shrunk toward 0 by an empirical-Bayes estimate (Efron & Morris, "Stein's Estimation Rule and
+    Its Competitors", JASA 1973): over a texture's stopped texels, the spread of the windows' means less their
+    mean squared standard error is the spread of the real deviation; a window keeps that share of its mean. On a
+    coarse mesh whose vertices miss the curvature the correction stays (torus of 24 x 12 sections); on a dense one
+    whose fitted prior is better than the pooled first rays it fades (a texel-by-texel positive-part James-Stein
+    factor let noise through there: bunny 0.0192 against 0.0170)."""
     include = stopped | region_edge
     deviation = np.where(stopped, first_means - prior, np.where(region_edge, values - prior, 0.0))
     correction, error = texels.window_mean(deviation, include, radius)
-    # shrunk toward 0 by its own significance (positive-part James-Stein): where the prior is already better than
-    # the pooled rays' noise (a finely tessellated, smooth mesh) the correction fades instead of adding that noise
-    squared = correction * correction
-    shrink = np.where(squared > 0, np.maximum(0.0, 1.0 - error / np.where(squared > 0, squared, 1.0)), 0.0)
+    # shrunk toward 0 by the share of the windows' spread that is not their noise, per texture (see above)
+    shrink = np.zeros(len(values))
+    usable = stopped & np.isfinite(correction)
+    for material in np.unique(texels.material[usable]):
+        part = usable & (texels.material == material)
+        signal = max(0.0, float(np.mean(correction[part] ** 2) - np.mean(error[part])))
+        shrink[part] = signal / np.maximum(signal + error[part], 1e-300)
     corrected = np.clip(prior + np.nan_to_num(shrink * correction), 0.0, max_distance)
     return np.where(stopped, corrected, values)
