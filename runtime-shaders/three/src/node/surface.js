@@ -234,7 +234,7 @@ export function surfaceNodes(surface, geometry, m) {
 
 	// a build starts with no light summed (a material may be built for several renderers or passes)
 	const begin = () => { sun.length = 0; };
-	return { begin, direct, afterLights, output };
+	return { begin, direct, afterLights, output, key };
 }
 
 const wrapped = new Map();
@@ -277,5 +277,8 @@ export function surfaceNodeMaterial(material, modules) {
 		node[key] = material[key];
 	}
 	node.bakerNodes = surfaceNodes(surface, null, modules);
+	// a node among the material's properties: WebGPURenderer refreshes the uniforms of a material without one only
+	// when the material or the object changes (NodeMaterialObserver.containsNode), not when a switch flips
+	node.bakerKeyLightNode = node.bakerNodes.key;
 	return node;
 }
