@@ -13,35 +13,57 @@
 //
 // options.wgsl holds the WGSL twins (runtime-shaders/baker_<name>.wgsl) under the same keys as options.shaders: the
 // WebGPU backend pastes the WGSL, the WebGL2 backend the GLSL. The geometry techniques (fins, outline, wireframe,
-// fur, hair ribbons, text) are ShaderMaterials that WebGPURenderer cannot draw: on this renderer their meshes are
-// left out (removed from the scene) and listed in gltf.userData.baker.unsupported; their switches stay.
+// fur shells and fins, hair ribbons, MSDF text), ShaderMaterials of the shared stages on WebGLRenderer, become
+// MeshBasicNodeMaterials with positionNode / vertexNode and fragmentNode (./geometry.js).
 import { registerBakerPlugins } from '../index.js';
 import { BakerModules } from './modules.js';
+import { geometryNodeMaterial } from './geometry.js';
 import { surfaceNodeMaterial } from './surface.js';
 
 export { BakerModules, isWgslBuilder, wgslSignature } from './modules.js';
 export { surfaceNodeMaterial, surfaceNodes } from './surface.js';
+export { geometryNodeMaterial, stageOf } from './geometry.js';
 
-/** Every mesh material with a BakerSurface becomes its node material; ShaderMaterial meshes are removed. */
+/**
+ * Every mesh material with a BakerSurface becomes its node material (./surface.js), every ShaderMaterial of a
+ * geometry technique its node material (./geometry.js). A mesh whose material was a ShaderMaterial keeps mapping:
+ * the plugins' switches assign the ShaderMaterial again (MSDF text swaps it with glTF's fallback), and the node
+ * material is what gets drawn. A ShaderMaterial that is none of the shared stages is left out (its mesh removed)
+ * and listed in gltf.userData.baker.unsupported.
+ */
 export function bakerNodeMaterials(gltf, options = {}) {
 	const modules = new BakerModules(options.wgsl || {}, options.shaders || {});
 	const converted = new Map();
 	const unsupported = new Set();
 	const detached = new Set();
+	const nodeOf = (material) => {
+		if (!material || material.isNodeMaterial) return material;
+		if (!converted.has(material)) {
+			converted.set(material, material.isShaderMaterial ? geometryNodeMaterial(material, modules)
+				: material.userData?.bakerSurface ? surfaceNodeMaterial(material, modules) : material);
+		}
+		return converted.get(material);
+	};
 	gltf.scene.traverse((object) => {
 		if (!object.material) return;
 		const list = Array.isArray(object.material) ? object.material : [object.material];
-		const replaced = list.map((material) => {
-			if (material.isShaderMaterial) {
-				unsupported.add(material.name || object.name || 'ShaderMaterial');
-				detached.add(object);
-				return material;
-			}
-			if (!material.userData?.bakerSurface) return material;
-			if (!converted.has(material)) converted.set(material, surfaceNodeMaterial(material, modules));
-			return converted.get(material);
-		});
-		object.material = Array.isArray(object.material) ? replaced : replaced[0];
+		if (list.some((material) => material.isShaderMaterial && !nodeOf(material))) {
+			for (const material of list) if (material.isShaderMaterial && !nodeOf(material)) unsupported.add(material.name || 'ShaderMaterial');
+			detached.add(object);
+			return;
+		}
+		const mapped = (value) => (Array.isArray(value) ? value.map(nodeOf) : nodeOf(value));
+		if (list.some((material) => material.isShaderMaterial)) {
+			// the switches set `material` to the ShaderMaterial again: map it on assignment
+			let current = mapped(object.material);
+			Object.defineProperty(object, 'material', {
+				configurable: true, enumerable: true,
+				get: () => current,
+				set: (value) => { current = mapped(value); },
+			});
+		} else {
+			object.material = mapped(object.material);
+		}
 	});
 	// removed, not hidden: the switches' handlers set `visible` on them
 	for (const object of detached) object.removeFromParent();
