@@ -84,7 +84,7 @@ const STAGE_NODES = {
 		return baker_fin_culled();
 	}
 	var p = baker_fin_position(clip0, clip1, corner, widthPx, viewport);
-	p.z -= 1e-4 * p.w;
+	p.z -= 0.5e-4 * p.w;  // the stage's 1e-4 of GL's z range [-1, 1]: the same depth offset in WebGPU's [0, 1]
 	return p;
 }`, `vec4 baker_fin_vertex_node(vec3 v0, vec3 v1, vec3 v2, vec3 v3, float flags, float corner, vec3 eye, float creaseCos,
 	float classes, vec4 clip0, vec4 clip1, float widthPx, vec2 viewport) {
