@@ -8,8 +8,8 @@ WebGLRenderer page (?engine=three, the onBeforeCompile / ShaderMaterial path) dr
   &backend=webgl2 and on the WebGLRenderer page; every page lists the techniques the asset's extensions imply, the
   same on the three pages, with no console error or warning;
 - the WebGPU frame matches the WebGL2 backend's frame of the same page, same asset, view, lights and caustic time:
-  SSIM of the luma >= SSIM_BACKEND = 0.97 (measured 0.991 (fins) to 1.000);
-- it matches the WebGLRenderer page's frame: SSIM >= SSIM_WEBGL = 0.97 (measured 0.992 to 0.9996), except where
+  SSIM of the luma >= SSIM_BACKEND = 0.97 (measured 0.998 to 1.000);
+- it matches the WebGLRenderer page's frame: SSIM >= SSIM_WEBGL = 0.97 (measured 0.992 (hair) to 0.9996), except where
   blending happens in another space (SSIM_WEBGL_BLENDED = 0.95, measured 0.966 fur, 0.973 wireframe): the fur fins,
   the blended shells and the premultiplied wireframe lines mix with the frame in WebGPURenderer's linear working
   colour and are encoded to sRGB after, where a WebGLRenderer ShaderMaterial writes its values as they are and
@@ -17,7 +17,8 @@ WebGLRenderer page (?engine=three, the onBeforeCompile / ShaderMaterial path) dr
 - the technique changes the picture: with it off (every other technique off too) at least 100 pixels change by more
   than 4/255, and the change the WebGPU page shows there is the WebGL2 backend's: on those pixels, after a Gaussian
   blur of sigma 1.5 px (it forgives the two APIs' sub-pixel placement of pixel-wide lines, as tests/test_babylon.py
-  does), the mean |WebGPU change - WebGL2 change| stays below DELTA_RATIO = 0.35 of the mean WebGL2 change.
+  does), the mean |WebGPU change - WebGL2 change| stays below DELTA_RATIO = 0.35 of the mean WebGL2 change
+  (measured 0.001 (text) to 0.125 (normal blur)).
 
 A page without a WebGPU adapter (Chromium without the flags) says so on the page and in window.__bakerError.
 Failing frames leave their images in .cache/test-artifacts/test_three_webgpu/.
