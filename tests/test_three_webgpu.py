@@ -146,12 +146,6 @@ def _keep(label, images):
     return folder
 
 
-def _benign(warning):
-    # the page loads dist/viewer.js (WebGLRenderer's three.js) and then the WebGPU bundle (its own three.js core):
-    # two copies in one page, by design (the WebGL page does not pay for WebGPURenderer); nothing is shared between them
-    return "Multiple instances of Three.js being imported" in warning
-
-
 def test_three_webgpu_reports_its_backend_and_the_same_techniques(site, frames):
     assert site["assets"] == {
         "spot_all.glb": {"translucency", "skin", "toon", "tam", "fins", "outline", "wireframe", "fur", "curvature",
@@ -161,7 +155,7 @@ def test_three_webgpu_reports_its_backend_and_the_same_techniques(site, frames):
         name = frames["loads"][i][0]
         assert info["ready"] and not info["error"], (engine, info)
         assert not info["errors"], (engine, info)
-        assert not [w for w in info["warnings"] if not _benign(w)], (engine, info)
+        assert not info["warnings"], (engine, info)
         assert info["backend"] == BACKENDS[engine], (engine, info)
         assert set(info["techniques"]) == site["assets"][name], (engine, info)
         assert info["techniques"] == frames["infos"][("webgl", i)]["techniques"], (engine, info)

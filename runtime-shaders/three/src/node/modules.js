@@ -56,12 +56,11 @@ export class BakerModules {
 	}
 
 	fn(key, name) {
-		const module = this.module(key);  // throws on a missing module before the signature is read
+		this.module(key);  // throws on a missing module before its signature is read
 		const { params, result } = wgslSignature(this.wgsl[key], name);
 		const names = params.map(([n]) => n);
 		const wgsl = `fn ${name}_node(${params.map(([n, t]) => `${n}: ${t}`).join(', ')}) -> ${result} {\n\treturn ${name}(${names.join(', ')});\n}`;
 		const glsl = `${GLSL_TYPES[result]} ${name}_node(${params.map(([n, t]) => `${GLSL_TYPES[t]} ${n}`).join(', ')}) {\n\treturn ${name}(${names.join(', ')});\n}`;
-		void module;
 		return this.custom(key, wgsl, glsl);
 	}
 }

@@ -45,7 +45,7 @@ function keyLight() {
  * The per-material TSL of baker's surface techniques from a BakerSurface (its parts and uniforms), for the
  * modules `m` (BakerModules). Returns { direct(lightData), afterLights(builder), output(color) }.
  */
-export function surfaceNodes(surface, geometry, m) {
+export function surfaceNodes(surface, m) {
 	const p = surface.parts;
 	const u = (name, type) => {
 		const spec = Object.values(p).find((part) => part.types?.[name]);
@@ -57,7 +57,9 @@ export function surfaceNodes(surface, geometry, m) {
 	const vertexUv = uv();
 	let normalBlur = null;
 	if (p.normalBlur) {
-		// the three maps at the normal map's UV through the normal map's tangent frame (three's TBN of normalView)
+		// the three maps at the normal map's UV through the derivative tangent frame of the module
+		// (baker_normal_blur_derivative_frame); the WebGL path uses three's normal-map frame, which is the vertex
+		// TANGENT where the asset has one
 		const flip = u('u_bakerNormalBlurFlipY', 'float');
 		const decode = m.fn('normalBlur', 'baker_normal_blur_decode');
 		const map = surface.material.normalMap;
@@ -276,7 +278,7 @@ export function surfaceNodeMaterial(material, modules) {
 		if (key === 'onBeforeCompile' || key === 'customProgramCacheKey' || key === 'onBeforeRender') continue;
 		node[key] = material[key];
 	}
-	node.bakerNodes = surfaceNodes(surface, null, modules);
+	node.bakerNodes = surfaceNodes(surface, modules);
 	// a node among the material's properties: WebGPURenderer refreshes the uniforms of a material without one only
 	// when the material or the object changes (NodeMaterialObserver.containsNode), not when a switch flips
 	node.bakerKeyLightNode = node.bakerNodes.key;
