@@ -87,6 +87,7 @@ export function runThreeViewer({ renderer, load, engine, backend }) {
 			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}${missing}`;
 			window.__bakerTechniques = found;
 			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
+			window.__bakerReadyMs = performance.now();
 			window.__bakerReady = true;
 		} catch (e) {
 			fail(`cannot load ${name}: ${e.message || e}`);
@@ -95,5 +96,10 @@ export function runThreeViewer({ renderer, load, engine, backend }) {
 
 	onDroppedFile((file) => show(URL.createObjectURL(file), file.name));
 	if (params.get('src')) show(params.get('src'), params.get('src'));
-	renderer.setAnimationLoop(() => renderer.render(scene, camera));
+	// for benchmarks/three_webgpu.py: the renderer and scene, and when the first frame with the asset was drawn
+	window.__bakerThree = { renderer, scene, camera };
+	renderer.setAnimationLoop(() => {
+		renderer.render(scene, camera);
+		if (window.__bakerReadyMs !== undefined && window.__bakerFirstFrameMs === undefined) window.__bakerFirstFrameMs = performance.now();
+	});
 }
