@@ -12,7 +12,7 @@ import { MeshPhysicalNodeMaterial, MeshStandardNodeMaterial, Vector3 } from 'thr
 import {
 	BRDF_Lambert, attribute, clamp, dFdx, dFdy, diffuseColor, diffuseContribution, dot, float, fwidth, mix, modelViewMatrix, normalView,
 	normalViewGeometry, normalize, positionView, positionViewDirection, positionWorld, reference, saturate, select,
-	texture, uniform, uv, varying, vec2, vec3, vec4,
+	texture, uniform, uv, varying, vec2, vec3, vec4, Fn, mat3, tangentView, bitangentView,
 } from 'three/tsl';
 
 const TYPES = { float: 'float', int: 'int', vec2: 'vec2', vec3: 'vec3', vec4: 'vec4' };
@@ -57,15 +57,17 @@ export function surfaceNodes(surface, m) {
 	const vertexUv = uv();
 	let normalBlur = null;
 	if (p.normalBlur) {
-		// the three maps at the normal map's UV through the derivative tangent frame of the module
-		// (baker_normal_blur_derivative_frame); the WebGL path uses three's normal-map frame, which is the vertex
-		// TANGENT where the asset has one
+		// the three maps at the normal map's UV through the normal map's tangent frame, as the WebGL path's `tbn`:
+		// the vertex TANGENT where the geometry has one, else the module's derivative frame
+		// (baker_normal_blur_derivative_frame, three's getTangentFrame)
 		const flip = u('u_bakerNormalBlurFlipY', 'float');
 		const decode = m.fn('normalBlur', 'baker_normal_blur_decode');
 		const map = surface.material.normalMap;
 		const mapUv = uv(map?.channel ?? 0);
-		const frame = m.fn('normalBlur', 'baker_normal_blur_derivative_frame')(normalViewGeometry, dFdx(positionView),
+		const derivative = m.fn('normalBlur', 'baker_normal_blur_derivative_frame')(normalViewGeometry, dFdx(positionView),
 			dFdy(positionView), dFdx(mapUv), dFdy(mapUv));
+		const frame = Fn((builder) => (builder.geometry?.hasAttribute('tangent')
+			? mat3(tangentView, bitangentView, normalViewGeometry) : derivative))();
 		const decoded = (name) => normalize(frame.mul(decode(texture(tex(name), mapUv).rgb, flip)));
 		normalBlur = {
 			red: decoded('u_bakerNormalBlurRed'), green: decoded('u_bakerNormalBlurGreen'), blue: decoded('u_bakerNormalBlurBlue'),
