@@ -18,7 +18,7 @@ WebGLRenderer page (?engine=three, the onBeforeCompile / ShaderMaterial path) dr
   than 4/255, and the change the WebGPU page shows there is the WebGL2 backend's: on those pixels, after a Gaussian
   blur of sigma 1.5 px (it forgives the two APIs' sub-pixel placement of pixel-wide lines, as tests/test_babylon.py
   does), the mean |WebGPU change - WebGL2 change| stays below DELTA_RATIO = 0.35 of the mean WebGL2 change
-  (measured 0.001 (text) to 0.125 (normal blur)).
+  (measured 0.001 (text) to 0.14 (the Blender head's normal blur)).
 
 A page without a WebGPU adapter (Chromium without the flags) says so on the page and in window.__bakerError.
 Failing frames leave their images in .cache/test-artifacts/test_three_webgpu/.
