@@ -6,13 +6,10 @@
 // panel shaders and the camera/uniforms the test passes, so the page can be compared with `baker preview`.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { registerBakerPlugins, TECHNIQUES } from '../../../runtime-shaders/three/src/index.js';
+import { registerBakerPlugins } from '../../../runtime-shaders/three/src/index.js';
 import { shaders } from './shaders.js';
-import {
-	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
-	bakerOn, caustics, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
-} from './ui.js';
+import { runThreeViewer } from './three_viewer.js';
+import { bakerOn, caustics, fail, params } from './ui.js';
 
 const view = document.getElementById('view');
 
@@ -31,85 +28,7 @@ async function loadGLB(url) {
 // ------------------------------------------------------------------------------------------------ viewer mode
 async function viewer() {
 	createRenderer();
-	engineSwitch('three');
-	const scene = new THREE.Scene();
-	scene.background = new THREE.Color().setRGB(...BACKGROUND, THREE.SRGBColorSpace);
-	const camera = new THREE.PerspectiveCamera(FOV_DEGREES, 1, 0.01, 1000);
-	const controls = new OrbitControls(camera, renderer.domElement);
-	scene.add(new THREE.HemisphereLight(new THREE.Color().setRGB(...HEMI.sky, THREE.SRGBColorSpace),
-		new THREE.Color().setRGB(...HEMI.groundSrgb, THREE.SRGBColorSpace), HEMI.intensity));
-	const key = new THREE.DirectionalLight(0xffffff, KEY_INTENSITY);
-	scene.add(key, key.target);
-	const fill = new THREE.DirectionalLight(0xffffff, FILL_INTENSITY); // from the upper left of the camera, moves with it
-	fill.position.set(...FILL_CAMERA_POSITION);
-	camera.add(fill);
-	scene.add(camera);
-	let root = null;
-
-	function resize() {
-		renderer.setSize(innerWidth, innerHeight);
-		camera.aspect = innerWidth / innerHeight;
-		camera.updateProjectionMatrix();
-	}
-	addEventListener('resize', resize);
-	resize();
-
-	function frame(object) {
-		const box = new THREE.Box3().setFromObject(object);
-		const sphere = box.getBoundingSphere(new THREE.Sphere());
-		const distance = frameDistance(sphere.radius);
-		camera.position.copy(sphere.center).add(new THREE.Vector3(...FRAME_DIRECTION).multiplyScalar(distance));
-		camera.near = distance / 100;
-		camera.far = distance * 10;
-		camera.updateProjectionMatrix();
-		controls.target.copy(sphere.center);
-		controls.update();
-		return sphere;
-	}
-
-	function setBackLight(on, sphere) {
-		// back light: behind the object as seen from the camera, so translucency shows
-		const dir = new THREE.Vector3().subVectors(camera.position, controls.target).normalize();
-		key.position.copy(sphere.center).addScaledVector(dir, on ? -sphere.radius * 4 : sphere.radius * 4);
-		key.target.position.copy(sphere.center);
-	}
-
-	const off = listParam('off');
-	// the view and lights drawn, world space (towards the light), for a page of the other engine (?view=)
-	function publishView() {
-		scene.updateMatrixWorld(true);
-		const towards = (light) => new THREE.Vector3().setFromMatrixPosition(light.matrixWorld)
-			.sub(new THREE.Vector3().setFromMatrixPosition(light.target.matrixWorld)).normalize().toArray();
-		window.__bakerView = { eye: camera.position.toArray(), target: controls.target.toArray(), near: camera.near,
-			far: camera.far, key: towards(key), fill: towards(fill) };
-	}
-
-	async function show(url, name) {
-		try {
-			const gltf = await loadGLB(url);
-			if (root) scene.remove(root);
-			root = gltf.scene;
-			scene.add(root);
-			const sphere = frame(root);
-			const baker = gltf.userData.baker;
-			const found = baker ? baker.techniques : [];
-			showToggles(baker, found, TECHNIQUES);
-			const back = found.includes('translucency') && !off.has('backlight');
-			setBackLight(back, sphere);
-			if (found.includes('translucency')) addToggle('light from behind', 'backlight', back, (v) => setBackLight(v, sphere));
-			publishView();
-			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}`;
-			window.__bakerTechniques = found;
-			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
-			window.__bakerReady = true;
-		} catch (e) {
-			fail(`cannot load ${name}: ${e.message || e}`);
-		}
-	}
-
-	onDroppedFile((file) => show(URL.createObjectURL(file), file.name));
-	if (params.get('src')) show(params.get('src'), params.get('src'));
-	renderer.setAnimationLoop(() => renderer.render(scene, camera));
+	runThreeViewer({ renderer, load: loadGLB, engine: 'three', backend: 'webgl2' });
 }
 
 // ------------------------------------------------------------------------------------------------ panel mode
@@ -185,7 +104,9 @@ async function panel() {
 	window.__bakerReady = true;
 }
 
-const engine = params.get('engine') === 'babylon' ? 'babylon' : 'three';
-// the Babylon.js page is its own bundle (dist/babylon.js), loaded only when asked for
-const start = params.get('panel') ? panel : engine === 'babylon' ? () => import(new URL('./babylon.js', import.meta.url).href) : viewer;
+const engine = params.get('engine');
+// the Babylon.js and three.js WebGPURenderer pages are bundles of their own (dist/babylon.js, dist/three_webgpu.js),
+// loaded only when asked for
+const start = params.get('panel') ? panel : engine === 'babylon' ? () => import(new URL('./babylon.js', import.meta.url).href)
+	: engine === 'three-webgpu' ? () => import(new URL('./three_webgpu.js', import.meta.url).href) : viewer;
 start().catch((e) => fail(String(e && e.stack || e)));
