@@ -185,7 +185,7 @@ async function panel() {
 	window.__bakerReady = true;
 }
 
-const engine = params.get('engine') === 'babylon' ? 'babylon' : 'three';
+const engine = ['babylon', 'babylon-webgpu'].includes(params.get('engine')) ? 'babylon' : 'three';
 // the Babylon.js page is its own bundle (dist/babylon.js), loaded only when asked for
 const start = params.get('panel') ? panel : engine === 'babylon' ? () => import(new URL('./babylon.js', import.meta.url).href) : viewer;
 start().catch((e) => fail(String(e && e.stack || e)));

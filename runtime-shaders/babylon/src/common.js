@@ -6,7 +6,7 @@ import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
 import { Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 
-import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
+import { RUNTIMES, STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: everything @baker/shared exports
 // is re-exported here (index.js names what the package makes public)
@@ -19,6 +19,32 @@ export const EXT_EDGE_VISIBILITY = 'EXT_mesh_primitive_edge_visibility';
  */
 export function requireShader(shaders, key) {
 	return shaderText(shaders, key, '@baker/babylon').replace(/\/\/[^\n]*/g, '');
+}
+
+/** Babylon's ShaderLanguage values (a material's shaderLanguage: WGSL on WebGPUEngine, GLSL on WebGL). */
+export const GLSL = 0;
+export const WGSL = 1;
+
+/**
+ * The WGSL twin of runtime-shaders module `key` (options.wgsl, the baker_<name>.wgsl files as text), less its //
+ * comments (Babylon's preprocessor reads the WGSL too); throws a message naming the file when it is missing.
+ */
+export function requireWgsl(wgsl, key) {
+	const text = (wgsl || {})[key];
+	if (!text) {
+		const file = RUNTIMES.find((r) => r.modules.key === key)?.modules.wgsl ?? `the WGSL twin of ${key}`;
+		throw new Error(`@baker/babylon: options.wgsl.${key} (runtime-shaders/${file} as text) is missing: the engine draws WGSL (WebGPU)`);
+	}
+	return text.replace(/\/\/[^\n]*/g, '');
+}
+
+/**
+ * The module of a surface part in the shading language of `material` (Babylon's PBRMaterial: WGSL on
+ * WebGPUEngine): { glsl } from extension.shaders, or { wgsl } from extension.options.wgsl.
+ */
+export function partModule(extension, key, material) {
+	return material?.shaderLanguage === WGSL ? { wgsl: requireWgsl(extension.options.wgsl, key) }
+		: { glsl: requireShader(extension.shaders, key) };
 }
 
 // The header of every ShaderMaterial stage: Babylon writes the #version line (WebGL2: GLSL ES 3.00) and converts
@@ -98,6 +124,11 @@ export async function readAccessor(loader, index, { integer = false } = {}) {
 /** GLSL type of an attribute of `size` components. */
 export function glslType(size) {
 	return size === 1 ? 'float' : `vec${size}`;
+}
+
+/** WGSL type of an attribute of `size` components. */
+export function wgslType(size) {
+	return size === 1 ? 'f32' : `vec${size}f`;
 }
 
 /** The first component of a value of `size` components (the scalar a technique reads). */
