@@ -4,8 +4,9 @@
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
-import { Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
+import { Matrix, Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 
+import { STAGES_WGSL_BABYLON } from './stages_wgsl.js';
 import { RUNTIMES, STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: everything @baker/shared exports
@@ -45,6 +46,14 @@ export function requireWgsl(wgsl, key) {
 export function partModule(extension, key, material) {
 	return material?.shaderLanguage === WGSL ? { wgsl: requireWgsl(extension.options.wgsl, key) }
 		: { glsl: requireShader(extension.shaders, key) };
+}
+
+/**
+ * The runtime-shaders module `key` in the language `scene`'s engine draws: the GLSL of extension.shaders, or on
+ * WebGPUEngine the WGSL twin of extension.options.wgsl.
+ */
+export function engineModule(extension, key, scene) {
+	return scene.getEngine().isWebGPU ? requireWgsl(extension.options?.wgsl, key) : requireShader(extension.shaders, key);
 }
 
 // The header of every ShaderMaterial stage: Babylon writes the #version line (WebGL2: GLSL ES 3.00) and converts
@@ -237,6 +246,76 @@ export function bakerShaderMaterial(name, scene, { vertex, fragment, attributes,
 	return material;
 }
 
+// The WGSL preludes (Babylon's WGSL dialect): WGSL has no inverse(), so the eye in object space is a uniform set per
+// mesh at bind; the lights are one uniform per light (no uniform arrays of vec3 in Babylon's leftover block).
+const VERTEX_PRELUDE_WGSL = `
+uniform world: mat4x4f;
+uniform viewProjection: mat4x4f;
+uniform projection: mat4x4f;
+uniform u_eye: vec3f;
+uniform u_objectEye: vec3f;
+uniform u_viewport: vec2f;
+fn baker_clip(p: vec3f) -> vec4f { return uniforms.viewProjection * uniforms.world * vec4f(p, 1.0); }
+fn baker_object_eye() -> vec3f { return uniforms.u_objectEye; }
+fn baker_world3() -> mat3x3f { return mat3x3f(uniforms.world[0].xyz, uniforms.world[1].xyz, uniforms.world[2].xyz); }
+fn baker_light_normal(n: vec3f) -> vec3f { return normalize(baker_world3() * n); }
+fn baker_light_vector(d: vec3f) -> vec3f { return baker_world3() * d; }
+fn baker_to_eye(p: vec3f) -> vec3f { return uniforms.u_eye - (uniforms.world * vec4f(p, 1.0)).xyz; }
+fn baker_projection_y() -> f32 { return uniforms.projection[1][1]; }
+`;
+const LIGHTS_PRELUDE_WGSL = `
+uniform u_lightCount: i32;
+${Array.from({ length: MAX_LIGHTS }, (_, i) => `uniform u_lightDirection${i}: vec3f;\nuniform u_lightColor${i}: vec3f;`).join('\n')}
+uniform u_ambientLight: vec3f;
+const BAKER_MAX_LIGHTS: i32 = ${MAX_LIGHTS};
+fn baker_light_count() -> i32 { return uniforms.u_lightCount; }
+fn baker_light_direction(i: i32) -> vec3f {
+	let all = array<vec3f, ${MAX_LIGHTS}>(${Array.from({ length: MAX_LIGHTS }, (_, i) => `uniforms.u_lightDirection${i}`).join(', ')});
+	return all[i];
+}
+fn baker_light_color(i: i32) -> vec3f {
+	let all = array<vec3f, ${MAX_LIGHTS}>(${Array.from({ length: MAX_LIGHTS }, (_, i) => `uniforms.u_lightColor${i}`).join(', ')});
+	return all[i];
+}
+fn baker_ambient_light() -> vec3f { return uniforms.u_ambientLight; }
+`;
+// vertex data the WGSL preludes declare when a material lists them (the stages declare their own custom ones)
+const PRELUDE_ATTRIBUTES_WGSL = { position: 'vec3f', normal: 'vec3f', uv: 'vec2f' };
+
+/**
+ * bakerShaderMaterial's WGSL twin (ShaderLanguage.WGSL, for WebGPUEngine): the same bindings, the eye also in the
+ * mesh's object space (u_objectEye), the lights one uniform each, only for `lit` stages.
+ */
+function bakerShaderMaterialWgsl(name, scene, { vertex, fragment, attributes, uniforms = [], samplers = [], alpha = false, lit = false }) {
+	const lightUniforms = lit ? ['u_lightCount', 'u_ambientLight', ...Array.from({ length: MAX_LIGHTS }, (_, i) => [`u_lightDirection${i}`, `u_lightColor${i}`]).flat()] : [];
+	const material = new ShaderMaterial(name, scene, { vertexSource: vertex, fragmentSource: fragment }, {
+		attributes, samplers, needAlphaBlending: alpha, shaderLanguage: WGSL,
+		uniforms: ['world', 'projection', 'viewProjection', 'u_eye', 'u_objectEye', 'u_viewport', ...lightUniforms, ...uniforms],
+	});
+	const inverse = new Matrix();
+	material.onBindObservable.add((mesh) => {
+		const engine = scene.getEngine();
+		const effect = material.getEffect();
+		if (!effect) return;
+		const camera = scene.activeCamera;
+		if (camera) {
+			effect.setVector3('u_eye', camera.globalPosition);
+			mesh.getWorldMatrix().invertToRef(inverse);
+			effect.setVector3('u_objectEye', Vector3.TransformCoordinates(camera.globalPosition, inverse));
+		}
+		effect.setFloat2('u_viewport', engine.getRenderWidth(), engine.getRenderHeight());
+		if (!lit) return;
+		const lights = sceneLights(scene);
+		effect.setInt('u_lightCount', lights.count);
+		for (let i = 0; i < MAX_LIGHTS; i++) {
+			effect.setFloat3(`u_lightDirection${i}`, ...lights.directions.slice(3 * i, 3 * i + 3));
+			effect.setFloat3(`u_lightColor${i}`, ...lights.colors.slice(3 * i, 3 * i + 3));
+		}
+		effect.setColor3('u_ambientLight', scene.ambientColor);
+	});
+	return material;
+}
+
 /** The enabled directional lights of a scene, at most MAX_LIGHTS, towards the light, world space. */
 export function sceneLights(scene) {
 	const directions = new Array(MAX_LIGHTS * 3).fill(0);
@@ -286,6 +365,17 @@ vec3 baker_ambient_light() { return u_ambientLight; }
  * with the runtime module `glsl`; `lit`: the fragment reads the scene's directional lights.
  */
 export function stageMaterial(name, scene, { glsl, vertex, fragment, lit = false, ...rest }) {
+	if (scene.getEngine().isWebGPU) {
+		// `glsl` is then the WGSL twin (engineModule); the stages are their WGSL twins (stages_wgsl.js)
+		const declared = (stage) => Object.entries(PRELUDE_ATTRIBUTES_WGSL).filter(([kind]) => rest.attributes?.includes(kind)
+			&& !new RegExp(`attribute\\s+${kind}\\s*:`).test(stage)).map(([kind, type]) => `attribute ${kind}: ${type};`).join('\n');
+		const vertexStage = STAGES_WGSL_BABYLON[vertex];
+		return bakerShaderMaterialWgsl(name, scene, {
+			...rest, lit,
+			vertex: declared(vertexStage) + VERTEX_PRELUDE_WGSL + glsl + vertexStage,
+			fragment: (lit ? LIGHTS_PRELUDE_WGSL + glsl + STAGES_WGSL_BABYLON.lights : glsl) + STAGES_WGSL_BABYLON[fragment],
+		});
+	}
 	return bakerShaderMaterial(name, scene, {
 		...rest,
 		vertex: VERTEX_PRELUDE + glsl + STAGES[vertex],
