@@ -171,6 +171,21 @@ export async function dataTexture(loader, info, { repeat = false, mipmaps = fals
 	return texture;
 }
 
+/**
+ * Levels 1.. of `levels` ([{ data, width, height }], finest first) uploaded over the mip levels of `texture`, a
+ * RawTexture created with generated mips (its mip storage). On WebGPUEngine the generated mips are commands of the
+ * engine's upload encoder, submitted at the end of the frame, after the queue's writes of these levels: they are
+ * submitted first (flushFramebuffer), so the levels kept are the given ones, as on WebGL.
+ */
+export function uploadMipLevels(texture, levels) {
+	const engine = texture.getScene().getEngine();
+	if (engine.isWebGPU) engine.flushFramebuffer();
+	const internal = texture.getInternalTexture();
+	levels.forEach(({ data, width, height }, lod) => {
+		if (lod > 0) engine.updateTextureData(internal, data, 0, 0, width, height, 0, lod, false);
+	});
+}
+
 const WRAPS = { 10497: Constants.TEXTURE_WRAP_ADDRESSMODE, 33071: Constants.TEXTURE_CLAMP_ADDRESSMODE,
 	33648: Constants.TEXTURE_MIRROR_ADDRESSMODE };
 
@@ -196,11 +211,7 @@ export async function coverageMipsTexture(loader, entry) {
 		const scene = loader.babylonScene;
 		const texture = new RawTexture(levels[0].data, width, height, Constants.TEXTUREFORMAT_RGBA, scene, true, false,
 			Constants.TEXTURE_TRILINEAR_SAMPLINGMODE, Constants.TEXTURETYPE_UNSIGNED_BYTE);
-		const engine = scene.getEngine();
-		const internal = texture.getInternalTexture();
-		levels.forEach(({ data, width: w, height: h }, lod) => {
-			if (lod > 0) engine.updateTextureData(internal, data, 0, 0, w, h, 0, lod, false);
-		});
+		uploadMipLevels(texture, levels);
 		texture.name = `coverage mips of texture ${entry.texture}`;
 		texture.gammaSpace = false;
 		const sampler = loader.gltf.samplers?.[loader.gltf.textures?.[entry.texture]?.sampler] || {};

@@ -2,7 +2,7 @@
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { BaseTexture } from '@babylonjs/core/Materials/Textures/baseTexture.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
-import { BAKER_TONAL_ART_MAP, descriptorUniforms, partModule } from './common.js';
+import { BAKER_TONAL_ART_MAP, descriptorUniforms, partModule, uploadMipLevels } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 async function decodeImage(loader, textureIndex) {
@@ -54,18 +54,14 @@ function imageTexels(image) {
 
 /**
  * tamTextures on WebGPUEngine (no GL context to upload level by level): a RawTexture per pair created with its mip
- * storage, then every TAM level uploaded over mip level i (engine.updateTextureData), as coverageMipsTexture does.
+ * storage, then every TAM level uploaded over mip level i (uploadMipLevels), as coverageMipsTexture does.
  */
 function tamRawTextures(scene, images, size) {
-	const engine = scene.getEngine();
 	return [0, 1].map((k) => {
-		const texels = images.map((pair) => imageTexels(pair[k]));
-		const texture = new RawTexture(texels[0], size, size, Constants.TEXTUREFORMAT_RGBA, scene, true, false,
+		const levels = images.map((pair) => ({ data: imageTexels(pair[k]), width: pair[k].width, height: pair[k].height }));
+		const texture = new RawTexture(levels[0].data, size, size, Constants.TEXTUREFORMAT_RGBA, scene, true, false,
 			Constants.TEXTURE_TRILINEAR_SAMPLINGMODE, Constants.TEXTURETYPE_UNSIGNED_BYTE);
-		const internal = texture.getInternalTexture();
-		images.forEach((pair, level) => {
-			if (level > 0) engine.updateTextureData(internal, texels[level], 0, 0, pair[k].width, pair[k].height, 0, level, false);
-		});
+		uploadMipLevels(texture, levels);
 		texture.name = `baker TAM tones ${k ? '3-5' : '0-2'}`;
 		texture.gammaSpace = false;
 		texture.wrapU = texture.wrapV = Constants.TEXTURE_WRAP_ADDRESSMODE;
