@@ -187,3 +187,33 @@ def test_missing_webgpu_adapter_is_reported_not_a_blank_page(site, tmp_path, mon
                    tmp_path / "jobs.json")
     assert not info["ready"] and info["backend"] is None, info
     assert "WebGPU" in info["error"] and "WebGPU" in info["status"], info
+
+
+def test_native_attribute_layout_draws_like_the_blender_layout_on_webgpu(site, frames, tmp_path):
+    """The spot's bakes in ``--attribute-layout native`` (SCALAR / VEC2 custom attributes: WGSL declares each by its
+    accessor's component count) load on WebGPU without errors, with the same techniques, and draw every technique as
+    the default (VEC3) layout does there: mean |difference| (max over RGB, after a Gaussian blur of 1.5 px) below
+    2/255, as tests/test_babylon.py asks of the WebGL2 page."""
+    from scipy import ndimage
+
+    native = "spot_native.glb"
+    save(baker.bake(SPOT, bakes=tuple(registry.bakes()), options=OPTIONS, attribute_layout="native"),
+         site["root"] / native)
+    techniques = techniques_in(gltf_json(site["root"] / native))
+    assert techniques == site["assets"]["spot_all.glb"]
+    loads = _loads(native, techniques)
+    jobs = [{"url": f"{site['url']}/index.html?hud=0&src={native}{query}{TIME}&engine=babylon-webgpu",
+             "width": W, "height": H, "shots": [{"on": on, "off": off, "out": str(tmp_path / f"{key}.png")}
+                                                for key, on, off in shots]} for query, shots in loads]
+    for info in _shoot_webgpu(jobs, tmp_path / "jobs.json"):
+        assert info["ready"] and not info["errors"] and not info["warnings"] and info["backend"] == "webgpu", info
+        assert set(info["techniques"]) == techniques, info
+    blur = lambda image: ndimage.gaussian_filter(image, sigma=(1.5, 1.5, 0))  # noqa: E731
+    failures = []
+    for _, shots in loads:
+        for key, _, _ in shots:
+            padded, compact = frames["images"][("babylon-webgpu", "spot_all.glb", key)], _image(tmp_path / f"{key}.png")
+            mad = float(np.abs(blur(padded) - blur(compact)).max(axis=2).mean())
+            if mad > 2 / 255:
+                failures.append(f"{key}: MAD {mad * 255:.2f}/255 (artifacts: {_keep(f'native-{key}', padded, compact)})")
+    assert not failures, "\n".join(failures)
