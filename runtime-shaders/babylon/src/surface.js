@@ -7,6 +7,8 @@
 // toon ramp of it, and the translucency is added, both on the base colour as @baker/three does; caustics
 // redistribute the directional lights' Lambert light (on the base colour too); hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
 // curvature view replaces it. Each part is gated by a uniform, so a switch costs no recompile.
+// The material's shader language picks the code: GLSL on the WebGL2 Engine (partCode), WGSL on WebGPUEngine
+// (partCodeWgsl: the same points and formulas with the parts' baker_*.wgsl modules).
 import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase.js';
 import { surfaceStages } from '@baker/shared';
 import { GLSL, WGSL, controls, glslType, loadedPrimitives, wgslType } from './common.js';
