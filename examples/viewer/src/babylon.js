@@ -122,7 +122,9 @@ export async function babylonViewer() {
 	async function show(source, name) {
 		try {
 			const options = typeof source === 'string' ? {} : { pluginExtension: '.glb' };
+			const started = performance.now();
 			const result = await ImportMeshAsync(source, scene, options);
+			const loaded = performance.now();
 			const root = result.meshes[0];
 			const baker = bakerControls(root);
 			const found = showToggles(baker, null, TECHNIQUES);
@@ -146,6 +148,9 @@ export async function babylonViewer() {
 			engine.runRenderLoop(() => scene.render());
 			// two frames drawn before the page says it is ready (the screenshot reads the drawing buffer)
 			await new Promise((resolve) => { let n = 0; scene.onAfterRenderObservable.add(() => { if (++n === 2) resolve(); }); });
+			// ms: the load (file, extensions' data) and from then to two frames drawn (materials compiled, pipelines
+			// made): what benchmarks/babylon_backends.py compares per backend
+			window.__bakerTimings = { load: loaded - started, ready: performance.now() - loaded };
 			window.__bakerReady = true;
 		} catch (e) {
 			fail(`cannot load ${name}: ${e.message || e}\n${e.stack || ''}`);
