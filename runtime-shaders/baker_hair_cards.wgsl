@@ -22,12 +22,13 @@ fn baker_hair_cards_flow(flowTexel: vec3f, normal: vec3f, tangent: vec4f) -> vec
 
 // The card's tangent frame where a host has no TANGENT attribute, from screen-space derivatives of the position and
 // the texture coordinates (Schueler's cotangent frame, 2013): xyz across the card (+u), w = +-1 so that
-// cross(N, xyz) x w runs along +v (root to tip).
-fn baker_hair_cards_frame(N: vec3f, dpdx: vec3f, dpdy: vec3f, duvdx: vec2f, duvdy: vec2f) -> vec4f {
-    let dp2perp = cross(dpdy, N);
-    let dp1perp = cross(N, dpdx);
+// cross(N, xyz) x w runs along +v (root to tip). The position's derivatives are named dPdx/dPdy, not after the
+// builtins: Babylon.js's WGSL processor rewrites every `dpdy` in a fragment shader (its y flip).
+fn baker_hair_cards_frame(N: vec3f, dPdx: vec3f, dPdy: vec3f, duvdx: vec2f, duvdy: vec2f) -> vec4f {
+    let dp2perp = cross(dPdy, N);
+    let dp1perp = cross(N, dPdx);
     // the solve carries the sign of the screen's orientation against N (N facing away on a back face)
-    let facing = select(1.0, -1.0, dot(cross(dpdx, dpdy), N) < 0.0);
+    let facing = select(1.0, -1.0, dot(cross(dPdx, dPdy), N) < 0.0);
     let across = (dp2perp * duvdx.x + dp1perp * duvdy.x) * facing;
     let along = (dp2perp * duvdx.y + dp1perp * duvdy.y) * facing;
     let len = length(across);

@@ -1,7 +1,10 @@
 // The viewer on Babylon.js: the same asset, switches and URL parameters as the three.js page (main.js), with the
 // loader extensions of @baker/babylon (runtime-shaders/babylon). ?view=JSON (what the three.js page publishes as
 // window.__bakerView: eye, target, near, far, lights) draws the very view the three.js page drew.
+// ?engine=babylon-webgpu: the same page on Babylon's WebGPUEngine (WGSL materials: @baker/babylon's WGSL parts, from
+// runtime-shaders/*.wgsl); window.__bakerBackend names the backend the engine draws with ('webgpu' or 'webgl2').
 import { Engine } from '@babylonjs/core/Engines/engine.js';
+import { WebGPUEngine } from '@babylonjs/core/Engines/webgpuEngine.js';
 import { Scene } from '@babylonjs/core/scene.js';
 import { ArcRotateCamera } from '@babylonjs/core/Cameras/arcRotateCamera.js';
 import { HemisphericLight } from '@babylonjs/core/Lights/hemisphericLight.js';
@@ -17,19 +20,54 @@ import {
 	bakerOn, caustics, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
 } from './ui.js';
 import { shaders } from './shaders.js';
+import { RUNTIMES } from '@baker/shared';
+
+// the runtime-shaders/ WGSL twins as text, under the options.shaders keys (the descriptors name them; esbuild bundles
+// every file the template can name, as text by the import attribute)
+const wgslStem = (file) => file.replace(/^baker_/, '').replace(/\.wgsl$/, '');
+async function wgslModules() {
+	return Object.fromEntries(await Promise.all(RUNTIMES.filter((r) => r.modules.wgsl).map(async (r) =>
+		[r.modules.key, (await import(`../../../runtime-shaders/baker_${wgslStem(r.modules.wgsl)}.wgsl`, { with: { type: 'text' } })).default])));
+}
+
+/**
+ * The engine of the page: ?engine=babylon-webgpu a WebGPUEngine (null, with the reason on the page and in
+ * window.__bakerError, when the browser has no WebGPU adapter), else the WebGL2 Engine.
+ */
+async function createEngine(canvas, webgpu) {
+	if (!webgpu) {
+		// exact sRGB encoding (three.js's), not Babylon's default pow(1/2.2) approximation
+		return new Engine(canvas, true, { preserveDrawingBuffer: true, stencil: true, useExactSrgbConversions: true }, false);
+	}
+	if (!navigator.gpu || !(await navigator.gpu.requestAdapter())) {
+		fail('WebGPU is not available in this browser (no adapter): open the page with ?engine=babylon for WebGL2');
+		return null;
+	}
+	const engine = new WebGPUEngine(canvas, { antialias: true, stencil: true, useExactSrgbConversions: true,
+		adaptToDeviceRatio: false });
+	await engine.initAsync();
+	return engine;
+}
 
 const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4);
 
 export async function babylonViewer() {
-	engineSwitch('babylon');
+	const webgpu = params.get('engine') === 'babylon-webgpu';
+	engineSwitch(webgpu ? 'babylon-webgpu' : 'babylon');
+	const select = document.getElementById('engine');
+	if (select && ![...select.options].some((o) => o.value === 'babylon-webgpu')) {
+		select.add(new Option('Babylon.js (WebGPU)', 'babylon-webgpu'));
+		select.value = webgpu ? 'babylon-webgpu' : 'babylon';
+	}
 	const view = document.getElementById('view');
 	const canvas = document.createElement('canvas');
 	canvas.style.width = '100%';
 	canvas.style.height = '100%';
 	canvas.style.display = 'block';
 	view.appendChild(canvas);
-	// exact sRGB encoding (three.js's), not Babylon's default pow(1/2.2) approximation
-	const engine = new Engine(canvas, true, { preserveDrawingBuffer: true, stencil: true, useExactSrgbConversions: true }, false);
+	const engine = await createEngine(canvas, webgpu);
+	if (!engine) return;
+	window.__bakerBackend = engine.isWebGPU ? 'webgpu' : 'webgl2'; // what draws, read from the engine
 	engine.setHardwareScalingLevel(1);
 	const scene = new Scene(engine);
 	scene.useRightHandedSystem = true; // glTF's frame, as three.js: no mirroring root, same camera numbers
@@ -51,7 +89,7 @@ export async function babylonViewer() {
 	fill.intensity = FILL_INTENSITY;
 
 	// ?disable=BAKER_fur,...: extensions left to Babylon's loader (which ignores them)
-	if (bakerOn) registerBakerExtensions({ shaders, caustics, disabled: [...listParam('disable')] });
+	if (bakerOn) registerBakerExtensions({ shaders, wgsl: engine.isWebGPU ? await wgslModules() : {}, caustics, disabled: [...listParam('disable')] });
 	else unregisterBakerExtensions();
 
 	const given = params.get('view') ? JSON.parse(params.get('view')) : null;
@@ -84,7 +122,9 @@ export async function babylonViewer() {
 	async function show(source, name) {
 		try {
 			const options = typeof source === 'string' ? {} : { pluginExtension: '.glb' };
+			const started = performance.now();
 			const result = await ImportMeshAsync(source, scene, options);
+			const loaded = performance.now();
 			const root = result.meshes[0];
 			const baker = bakerControls(root);
 			const found = showToggles(baker, null, TECHNIQUES);
@@ -108,6 +148,9 @@ export async function babylonViewer() {
 			engine.runRenderLoop(() => scene.render());
 			// two frames drawn before the page says it is ready (the screenshot reads the drawing buffer)
 			await new Promise((resolve) => { let n = 0; scene.onAfterRenderObservable.add(() => { if (++n === 2) resolve(); }); });
+			// ms: the load (file, extensions' data) and from then to two frames drawn (materials compiled, pipelines
+			// made): what benchmarks/babylon_backends.py compares per backend
+			window.__bakerTimings = { load: loaded - started, ready: performance.now() - loaded };
 			window.__bakerReady = true;
 		} catch (e) {
 			fail(`cannot load ${name}: ${e.message || e}\n${e.stack || ''}`);

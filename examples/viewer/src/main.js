@@ -105,8 +105,9 @@ async function panel() {
 }
 
 const engine = params.get('engine');
-// the Babylon.js and three.js WebGPURenderer pages are bundles of their own (dist/babylon.js, dist/three_webgpu.js),
-// loaded only when asked for
-const start = params.get('panel') ? panel : engine === 'babylon' ? () => import(new URL('./babylon.js', import.meta.url).href)
+// the Babylon.js pages (WebGL2 and WebGPUEngine) and the three.js WebGPURenderer page are bundles of their own
+// (dist/babylon.js, dist/three_webgpu.js), loaded only when asked for
+const start = params.get('panel') ? panel
+	: ['babylon', 'babylon-webgpu'].includes(engine) ? () => import(new URL('./babylon.js', import.meta.url).href)
 	: engine === 'three-webgpu' ? () => import(new URL('./three_webgpu.js', import.meta.url).href) : viewer;
 start().catch((e) => fail(String(e && e.stack || e)));

@@ -1,14 +1,14 @@
 // BAKER_caustics: the baked, looping caustic frames projected in world space along the refracted sun direction and
 // added to the directional (sun) light of the material (RTR4 14.5.3; runtime-shaders/baker_caustics.glsl).
 import { causticsClock, causticsFrame, causticsParameters } from '@baker/shared';
-import { BAKER_CAUSTICS, dataTexture, descriptorUniforms, requireShader } from './common.js';
+import { BAKER_CAUSTICS, dataTexture, descriptorUniforms, partModule } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 /**
  * Loader extension for BAKER_caustics. At every bind the two frames of the current time go to the two samplers and
  * their blend weight to a uniform (options.caustics.time: seconds, or a function of none; default the page clock).
  */
-export const BakerCausticsExtension = surfaceExtension('caustics', BAKER_CAUSTICS, async function (ext) {
+export const BakerCausticsExtension = surfaceExtension('caustics', BAKER_CAUSTICS, async function (ext, mesh, primitive, material) {
 	const params = causticsParameters(ext);
 	if (!params.frameCount) return null;
 	const frames = await Promise.all(ext.frameTextures.map((info) => dataTexture(this.loader, info, { repeat: true, mipmaps: true })));
@@ -17,7 +17,7 @@ export const BakerCausticsExtension = surfaceExtension('caustics', BAKER_CAUSTIC
 	const samplers = { u_bakerCausticsFirst: frames[0], u_bakerCausticsNext: frames[Math.min(1, frames.length - 1)] };
 	const { uniforms } = descriptorUniforms('caustics', ext);
 	return {
-		glsl: requireShader(this.shaders, 'caustics'),
+		...partModule(this, 'caustics', material),
 		samplers,
 		uniforms,
 		textures: frames,

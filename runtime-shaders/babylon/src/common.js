@@ -4,9 +4,10 @@
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
-import { Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
+import { Matrix, Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 
-import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
+import { STAGES_WGSL_BABYLON } from './stages_wgsl.js';
+import { RUNTIMES, STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: everything @baker/shared exports
 // is re-exported here (index.js names what the package makes public)
@@ -19,6 +20,40 @@ export const EXT_EDGE_VISIBILITY = 'EXT_mesh_primitive_edge_visibility';
  */
 export function requireShader(shaders, key) {
 	return shaderText(shaders, key, '@baker/babylon').replace(/\/\/[^\n]*/g, '');
+}
+
+/** Babylon's ShaderLanguage values (a material's shaderLanguage: WGSL on WebGPUEngine, GLSL on WebGL). */
+export const GLSL = 0;
+export const WGSL = 1;
+
+/**
+ * The WGSL twin of runtime-shaders module `key` (options.wgsl, the baker_<name>.wgsl files as text), less its //
+ * comments (Babylon's preprocessor reads the WGSL too); throws a message naming the file when it is missing.
+ */
+export function requireWgsl(wgsl, key) {
+	const text = (wgsl || {})[key];
+	if (!text) {
+		const file = RUNTIMES.find((r) => r.modules.key === key)?.modules.wgsl ?? `the WGSL twin of ${key}`;
+		throw new Error(`@baker/babylon: options.wgsl.${key} (runtime-shaders/${file} as text) is missing: the engine draws WGSL (WebGPU)`);
+	}
+	return text.replace(/\/\/[^\n]*/g, '');
+}
+
+/**
+ * The module of a surface part in the shading language of `material` (Babylon's PBRMaterial: WGSL on
+ * WebGPUEngine): { glsl } from extension.shaders, or { wgsl } from extension.options.wgsl.
+ */
+export function partModule(extension, key, material) {
+	return material?.shaderLanguage === WGSL ? { wgsl: requireWgsl(extension.options.wgsl, key) }
+		: { glsl: requireShader(extension.shaders, key) };
+}
+
+/**
+ * The runtime-shaders module `key` in the language `scene`'s engine draws: the GLSL of extension.shaders, or on
+ * WebGPUEngine the WGSL twin of extension.options.wgsl.
+ */
+export function engineModule(extension, key, scene) {
+	return scene.getEngine().isWebGPU ? requireWgsl(extension.options?.wgsl, key) : requireShader(extension.shaders, key);
 }
 
 // The header of every ShaderMaterial stage: Babylon writes the #version line (WebGL2: GLSL ES 3.00) and converts
@@ -100,6 +135,11 @@ export function glslType(size) {
 	return size === 1 ? 'float' : `vec${size}`;
 }
 
+/** WGSL type of an attribute of `size` components. */
+export function wgslType(size) {
+	return size === 1 ? 'f32' : `vec${size}f`;
+}
+
 /** The first component of a value of `size` components (the scalar a technique reads). */
 export function firstComponent(expression, size) {
 	return size === 1 ? expression : `${expression}.x`;
@@ -131,6 +171,21 @@ export async function dataTexture(loader, info, { repeat = false, mipmaps = fals
 	return texture;
 }
 
+/**
+ * Levels 1.. of `levels` ([{ data, width, height }], finest first) uploaded over the mip levels of `texture`, a
+ * RawTexture created with generated mips (its mip storage). On WebGPUEngine the generated mips are commands of the
+ * engine's upload encoder, submitted at the end of the frame, after the queue's writes of these levels: they are
+ * submitted first (flushFramebuffer), so the levels kept are the given ones, as on WebGL.
+ */
+export function uploadMipLevels(texture, levels) {
+	const engine = texture.getScene().getEngine();
+	if (engine.isWebGPU) engine.flushFramebuffer();
+	const internal = texture.getInternalTexture();
+	levels.forEach(({ data, width, height }, lod) => {
+		if (lod > 0) engine.updateTextureData(internal, data, 0, 0, width, height, 0, lod, false);
+	});
+}
+
 const WRAPS = { 10497: Constants.TEXTURE_WRAP_ADDRESSMODE, 33071: Constants.TEXTURE_CLAMP_ADDRESSMODE,
 	33648: Constants.TEXTURE_MIRROR_ADDRESSMODE };
 
@@ -156,11 +211,7 @@ export async function coverageMipsTexture(loader, entry) {
 		const scene = loader.babylonScene;
 		const texture = new RawTexture(levels[0].data, width, height, Constants.TEXTUREFORMAT_RGBA, scene, true, false,
 			Constants.TEXTURE_TRILINEAR_SAMPLINGMODE, Constants.TEXTURETYPE_UNSIGNED_BYTE);
-		const engine = scene.getEngine();
-		const internal = texture.getInternalTexture();
-		levels.forEach(({ data, width: w, height: h }, lod) => {
-			if (lod > 0) engine.updateTextureData(internal, data, 0, 0, w, h, 0, lod, false);
-		});
+		uploadMipLevels(texture, levels);
 		texture.name = `coverage mips of texture ${entry.texture}`;
 		texture.gammaSpace = false;
 		const sampler = loader.gltf.samplers?.[loader.gltf.textures?.[entry.texture]?.sampler] || {};
@@ -201,6 +252,76 @@ export function bakerShaderMaterial(name, scene, { vertex, fragment, attributes,
 		effect.setInt('u_lightCount', lights.count);
 		effect.setArray3('u_lightDirection', lights.directions);
 		effect.setArray3('u_lightColor', lights.colors);
+		effect.setColor3('u_ambientLight', scene.ambientColor);
+	});
+	return material;
+}
+
+// The WGSL preludes (Babylon's WGSL dialect): WGSL has no inverse(), so the eye in object space is a uniform set per
+// mesh at bind; the lights are one uniform per light (no uniform arrays of vec3 in Babylon's leftover block).
+const VERTEX_PRELUDE_WGSL = `
+uniform world: mat4x4f;
+uniform viewProjection: mat4x4f;
+uniform projection: mat4x4f;
+uniform u_eye: vec3f;
+uniform u_objectEye: vec3f;
+uniform u_viewport: vec2f;
+fn baker_clip(p: vec3f) -> vec4f { return uniforms.viewProjection * uniforms.world * vec4f(p, 1.0); }
+fn baker_object_eye() -> vec3f { return uniforms.u_objectEye; }
+fn baker_world3() -> mat3x3f { return mat3x3f(uniforms.world[0].xyz, uniforms.world[1].xyz, uniforms.world[2].xyz); }
+fn baker_light_normal(n: vec3f) -> vec3f { return normalize(baker_world3() * n); }
+fn baker_light_vector(d: vec3f) -> vec3f { return baker_world3() * d; }
+fn baker_to_eye(p: vec3f) -> vec3f { return uniforms.u_eye - (uniforms.world * vec4f(p, 1.0)).xyz; }
+fn baker_projection_y() -> f32 { return uniforms.projection[1][1]; }
+`;
+const LIGHTS_PRELUDE_WGSL = `
+uniform u_lightCount: i32;
+${Array.from({ length: MAX_LIGHTS }, (_, i) => `uniform u_lightDirection${i}: vec3f;\nuniform u_lightColor${i}: vec3f;`).join('\n')}
+uniform u_ambientLight: vec3f;
+const BAKER_MAX_LIGHTS: i32 = ${MAX_LIGHTS};
+fn baker_light_count() -> i32 { return uniforms.u_lightCount; }
+fn baker_light_direction(i: i32) -> vec3f {
+	let all = array<vec3f, ${MAX_LIGHTS}>(${Array.from({ length: MAX_LIGHTS }, (_, i) => `uniforms.u_lightDirection${i}`).join(', ')});
+	return all[i];
+}
+fn baker_light_color(i: i32) -> vec3f {
+	let all = array<vec3f, ${MAX_LIGHTS}>(${Array.from({ length: MAX_LIGHTS }, (_, i) => `uniforms.u_lightColor${i}`).join(', ')});
+	return all[i];
+}
+fn baker_ambient_light() -> vec3f { return uniforms.u_ambientLight; }
+`;
+// vertex data the WGSL preludes declare when a material lists them (the stages declare their own custom ones)
+const PRELUDE_ATTRIBUTES_WGSL = { position: 'vec3f', normal: 'vec3f', uv: 'vec2f' };
+
+/**
+ * bakerShaderMaterial's WGSL twin (ShaderLanguage.WGSL, for WebGPUEngine): the same bindings, the eye also in the
+ * mesh's object space (u_objectEye), the lights one uniform each, only for `lit` stages.
+ */
+function bakerShaderMaterialWgsl(name, scene, { vertex, fragment, attributes, uniforms = [], samplers = [], alpha = false, lit = false }) {
+	const lightUniforms = lit ? ['u_lightCount', 'u_ambientLight', ...Array.from({ length: MAX_LIGHTS }, (_, i) => [`u_lightDirection${i}`, `u_lightColor${i}`]).flat()] : [];
+	const material = new ShaderMaterial(name, scene, { vertexSource: vertex, fragmentSource: fragment }, {
+		attributes, samplers, needAlphaBlending: alpha, shaderLanguage: WGSL,
+		uniforms: ['world', 'projection', 'viewProjection', 'u_eye', 'u_objectEye', 'u_viewport', ...lightUniforms, ...uniforms],
+	});
+	const inverse = new Matrix();
+	material.onBindObservable.add((mesh) => {
+		const engine = scene.getEngine();
+		const effect = material.getEffect();
+		if (!effect) return;
+		const camera = scene.activeCamera;
+		if (camera) {
+			effect.setVector3('u_eye', camera.globalPosition);
+			mesh.getWorldMatrix().invertToRef(inverse);
+			effect.setVector3('u_objectEye', Vector3.TransformCoordinates(camera.globalPosition, inverse));
+		}
+		effect.setFloat2('u_viewport', engine.getRenderWidth(), engine.getRenderHeight());
+		if (!lit) return;
+		const lights = sceneLights(scene);
+		effect.setInt('u_lightCount', lights.count);
+		for (let i = 0; i < MAX_LIGHTS; i++) {
+			effect.setFloat3(`u_lightDirection${i}`, ...lights.directions.slice(3 * i, 3 * i + 3));
+			effect.setFloat3(`u_lightColor${i}`, ...lights.colors.slice(3 * i, 3 * i + 3));
+		}
 		effect.setColor3('u_ambientLight', scene.ambientColor);
 	});
 	return material;
@@ -255,6 +376,17 @@ vec3 baker_ambient_light() { return u_ambientLight; }
  * with the runtime module `glsl`; `lit`: the fragment reads the scene's directional lights.
  */
 export function stageMaterial(name, scene, { glsl, vertex, fragment, lit = false, ...rest }) {
+	if (scene.getEngine().isWebGPU) {
+		// `glsl` is then the WGSL twin (engineModule); the stages are their WGSL twins (stages_wgsl.js)
+		const declared = (stage) => Object.entries(PRELUDE_ATTRIBUTES_WGSL).filter(([kind]) => rest.attributes?.includes(kind)
+			&& !new RegExp(`attribute\\s+${kind}\\s*:`).test(stage)).map(([kind, type]) => `attribute ${kind}: ${type};`).join('\n');
+		const vertexStage = STAGES_WGSL_BABYLON[vertex];
+		return bakerShaderMaterialWgsl(name, scene, {
+			...rest, lit,
+			vertex: declared(vertexStage) + VERTEX_PRELUDE_WGSL + glsl + vertexStage,
+			fragment: (lit ? LIGHTS_PRELUDE_WGSL + glsl + STAGES_WGSL_BABYLON.lights : glsl) + STAGES_WGSL_BABYLON[fragment],
+		});
+	}
 	return bakerShaderMaterial(name, scene, {
 		...rest,
 		vertex: VERTEX_PRELUDE + glsl + STAGES[vertex],

@@ -3,7 +3,7 @@
 // runtime-shaders/hosts/web/edges_*.glsl and solid.frag.glsl.
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { runtime, wireframeCorners } from '@baker/shared';
-import { BAKER_EDGES, EXT_EDGE_VISIBILITY, GLTF_FRONT, controls, loadedPrimitives, readAccessor, requireShader, stageMaterial } from './common.js';
+import { BAKER_EDGES, EXT_EDGE_VISIBILITY, GLTF_FRONT, controls, loadedPrimitives, readAccessor, engineModule, stageMaterial } from './common.js';
 import { bakerMesh, premultiplied, primitiveAttributes, primitiveIndices } from './geometry.js';
 
 /**
@@ -37,6 +37,7 @@ export class BakerEdgesExtension {
 		this.order = 210;
 		this.loader = loader;
 		this.shaders = options.shaders || {};
+		this.options = options;
 		this.style = { ...runtime('edges').options, ...(options.edges || {}) };
 	}
 	dispose() { this.loader = null; }
@@ -45,7 +46,7 @@ export class BakerEdgesExtension {
 		const loader = this.loader;
 		const scene = loader.babylonScene;
 		const c = controls(loader);
-		const glsl = requireShader(this.shaders, 'edges');
+		const glsl = engineModule(this, 'edges', scene); // WGSL on WebGPUEngine
 		for (const { primitive, mesh, meshIndex } of loadedPrimitives(loader)) {
 			const ext = primitive.extensions?.[BAKER_EDGES];
 			if (!ext || !mesh) continue;

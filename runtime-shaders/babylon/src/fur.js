@@ -1,7 +1,7 @@
 // BAKER_fur: Lengyel et al. 2001 shells (one blended pass per shell texture) and fins; the stages are
 // runtime-shaders/hosts/web/fur_*.glsl.
 import { coverageMipsOf, runtime } from '@baker/shared';
-import { BAKER_EDGES, BAKER_FUR, GLTF_FRONT, controls, coverageMipsTexture, dataTexture, loadedPrimitives, readAccessor, requireShader, stageMaterial } from './common.js';
+import { BAKER_EDGES, BAKER_FUR, GLTF_FRONT, controls, coverageMipsTexture, dataTexture, loadedPrimitives, readAccessor, engineModule, stageMaterial } from './common.js';
 import { bakerMesh, primitiveAttributes, primitiveIndices } from './geometry.js';
 
 /**
@@ -17,6 +17,7 @@ export class BakerFurExtension {
 		this.order = 220;
 		this.loader = loader;
 		this.shaders = options.shaders || {};
+		this.options = options;
 		this.finThreshold = options.fur?.finThreshold ?? runtime('fur').options.finThreshold;
 	}
 	dispose() { this.loader = null; }
@@ -26,7 +27,7 @@ export class BakerFurExtension {
 		const scene = loader.babylonScene;
 		const c = controls(loader);
 		const materials = loader.gltf.materials || [];
-		const glsl = requireShader(this.shaders, 'fur');
+		const glsl = engineModule(this, 'fur', scene); // WGSL on WebGPUEngine
 		const all = loadedPrimitives(loader);
 		for (const { primitive, mesh, meshIndex } of all) {
 			const finOf = primitive.extensions?.[BAKER_FUR]?.finsOf;

@@ -1,7 +1,7 @@
 // BAKER_hair: view-facing ribbons extruded in the vertex shader, Kajiya-Kay shading (RTR4 14.7); the stages are
 // runtime-shaders/hosts/web/hair_ribbon.*.glsl.
 import { runtime } from '@baker/shared';
-import { BAKER_HAIR, controls, loadedPrimitives, readAccessor, requireShader, stageMaterial } from './common.js';
+import { BAKER_HAIR, controls, loadedPrimitives, readAccessor, engineModule, stageMaterial } from './common.js';
 import { bakerMesh } from './geometry.js';
 
 /**
@@ -39,6 +39,7 @@ export class BakerHairExtension {
 		this.order = 230;
 		this.loader = loader;
 		this.shaders = options.shaders || {};
+		this.options = options;
 		this.style = { ...runtime('hair').options, ...(options.hair || {}) };
 	}
 	dispose() { this.loader = null; }
@@ -47,7 +48,7 @@ export class BakerHairExtension {
 		const loader = this.loader;
 		const scene = loader.babylonScene;
 		const c = controls(loader);
-		const glsl = requireShader(this.shaders, 'hair');
+		const glsl = engineModule(this, 'hair', scene); // WGSL on WebGPUEngine
 		for (const { primitive, mesh } of loadedPrimitives(loader)) {
 			const ext = primitive.extensions?.[BAKER_HAIR];
 			if (!ext || ext.ribbonIndices === undefined || !mesh) continue;

@@ -4,7 +4,7 @@
 // loader's own alpha test then keeps the cards' coverage with distance) and shades them Kajiya-Kay along the strands'
 // flow texture, with the data texture's root-to-tip and per-strand random values.
 import { coverageMipsOf } from '@baker/shared';
-import { BAKER_HAIR_CARDS, coverageMipsTexture, dataTexture, requireShader } from './common.js';
+import { BAKER_HAIR_CARDS, coverageMipsTexture, dataTexture, partModule } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 /**
@@ -29,7 +29,7 @@ export const BakerHairCardsExtension = surfaceExtension('cards', BAKER_HAIR_CARD
 	if (!data || !flow) return null;
 	await useCoverageMips(this.loader, ext, primitive, material);
 	return {
-		glsl: requireShader(this.shaders, 'cards'),
+		...partModule(this, 'cards', material),
 		samplers: { u_bakerCardsData: data, u_bakerCardsFlow: flow },
 	};
 });

@@ -8,6 +8,7 @@
 //   const baker = bakerControls(result.meshes[0]);   // the __root__ node
 //   baker.setEnabled('toon', false);                // one switch per technique found (baker.techniques)
 //
+// On WebGPUEngine the same extensions draw WGSL: options.wgsl passes runtime-shaders/baker_*.wgsl as text.
 // The GLSL comes from runtime-shaders/ as text: the extensions inject the very modules the reference renders and
 // @baker/three use, they do not carry a copy. One extension per module (BAKER_<name> -> <name>.js). Surface
 // techniques (translucency, pre-integrated skin, toon ramp, hatching, curvature view, caustics, hair cards) add a MaterialPluginBase to
@@ -89,7 +90,8 @@ function named(extension) {
 /**
  * Register every baker loader extension with Babylon's glTF loader (global registry). `options.shaders` holds the
  * runtime-shaders/ modules as text: { translucency, skin, toon, hatching, edges, fur, hair, text, caustics,
- * normalBlur }. Per technique:
+ * normalBlur }; `options.wgsl` their WGSL twins (baker_*.wgsl) under the same keys, what a WebGPUEngine draws
+ * with (each engine needs only its own language's). Per technique:
  * options.thickness ({ power, scale, distortion, ambient, attenuationDistance, subsurfaceColor } overrides),
  * options.edges ({ color, finWidth, outlineWidth, wireframeWidth, wireframeColor, classes }), options.fur
  * ({ finThreshold }), options.hair ({ specular, exponent }), options.caustics ({ time }: seconds, or a function

@@ -1,6 +1,6 @@
 // BAKER_normal_blur: the diffuse term shaded with per-channel blurred normal maps, the specular term with the
 // material's own bump texture (RTR4 14.6.2; runtime-shaders/baker_normal_blur.glsl).
-import { BAKER_NORMAL_BLUR, dataTexture, requireShader } from './common.js';
+import { BAKER_NORMAL_BLUR, dataTexture, partModule } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 /**
@@ -14,7 +14,7 @@ export const BakerNormalBlurExtension = surfaceExtension('normalBlur', BAKER_NOR
 	const maps = await Promise.all(ext.diffuseNormalTextures.map((info) => dataTexture(this.loader, info, { repeat: true, mipmaps: true })));
 	if (maps.some((t) => !t)) return null;
 	return {
-		glsl: requireShader(this.shaders, 'normalBlur'),
+		...partModule(this, 'normalBlur', material),
 		samplers: { u_bakerNormalBlurRed: maps[0], u_bakerNormalBlurGreen: maps[1], u_bakerNormalBlurBlue: maps[2] },
 		uniforms: {},
 	};

@@ -7,9 +7,11 @@
 // toon ramp of it, and the translucency is added, both on the base colour as @baker/three does; caustics
 // redistribute the directional lights' Lambert light (on the base colour too); hatching multiplies the lit colour (linear, before image processing) by the TAM brightness; the
 // curvature view replaces it. Each part is gated by a uniform, so a switch costs no recompile.
+// The material's shader language picks the code: GLSL on the WebGL2 Engine (partCode), WGSL on WebGPUEngine
+// (partCodeWgsl: the same points and formulas with the parts' baker_*.wgsl modules).
 import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase.js';
 import { surfaceStages } from '@baker/shared';
-import { controls, glslType, loadedPrimitives } from './common.js';
+import { GLSL, WGSL, controls, glslType, loadedPrimitives, wgslType } from './common.js';
 
 const PLUGIN_NAME = 'BakerSurface';
 const PART_DEFINES = ['translucency', 'skin', 'toon', 'tam', 'curvature', 'caustics', 'cards', 'normalBlur'];
@@ -54,6 +56,32 @@ vec3 bakerNormalRed = normalize(bakerTBN * baker_normal_blur_decode(texture(u_ba
 vec3 bakerNormalGreen = normalize(bakerTBN * baker_normal_blur_decode(texture(u_bakerNormalBlurGreen, vBumpUV).rgb, 1.0));
 vec3 bakerNormalBlue = normalize(bakerTBN * baker_normal_blur_decode(texture(u_bakerNormalBlurBlue, vBumpUV).rgb, 1.0));`;
 
+// the WGSL twins of KEY_LIGHT, CARDS_FRAME and NORMAL_BLUR (Babylon's WGSL PBR: the same names, its inputs under
+// fragmentInputs; TBN's normal column normalized likewise)
+const KEY_LIGHT_WGSL = `
+fn baker_key_light(fallback: vec3f) -> vec3f {
+#if defined(DIRLIGHT0)
+	return normalize(-light0.vLightData.xyz);
+#elif defined(DIRLIGHT1)
+	return normalize(-light1.vLightData.xyz);
+#elif defined(DIRLIGHT2)
+	return normalize(-light2.vLightData.xyz);
+#elif defined(DIRLIGHT3)
+	return normalize(-light3.vLightData.xyz);
+#else
+	return fallback;
+#endif
+}`;
+const CARDS_FRAME_WGSL = `
+let bakerCardsData = textureSample(u_bakerCardsData, u_bakerCardsDataSampler, v_bakerUv).rgb;
+let bakerCardsT = baker_hair_cards_flow(textureSample(u_bakerCardsFlow, u_bakerCardsFlowSampler, v_bakerUv).rgb, normalW,
+	baker_hair_cards_frame(normalW, dpdx(vPositionW), dpdy(vPositionW), dpdx(v_bakerUv), dpdy(v_bakerUv)));`;
+const NORMAL_BLUR_WGSL = `
+let bakerTBN = mat3x3f(TBN[0], TBN[1], normalize(TBN[2]));
+let bakerNormalRed = normalize(bakerTBN * baker_normal_blur_decode(textureSample(u_bakerNormalBlurRed, u_bakerNormalBlurRedSampler, fragmentInputs.vBumpUV).rgb, 1.0));
+let bakerNormalGreen = normalize(bakerTBN * baker_normal_blur_decode(textureSample(u_bakerNormalBlurGreen, u_bakerNormalBlurGreenSampler, fragmentInputs.vBumpUV).rgb, 1.0));
+let bakerNormalBlue = normalize(bakerTBN * baker_normal_blur_decode(textureSample(u_bakerNormalBlurBlue, u_bakerNormalBlurBlueSampler, fragmentInputs.vBumpUV).rgb, 1.0));`;
+
 // every texture a part holds (all its frames when it swaps them), not only those bound now
 const partTextures = (p) => p.textures || Object.values(p.samplers || {});
 
@@ -71,7 +99,8 @@ export class BakerSurfacePlugin extends MaterialPluginBase {
 	}
 
 	getClassName() { return 'BakerSurfacePlugin'; }
-	isCompatible(shaderLanguage) { return shaderLanguage === 0; } // GLSL (WebGL2)
+	// GLSL (WebGL2) and WGSL (WebGPUEngine): each part carries its module in the material's language
+	isCompatible(shaderLanguage) { return shaderLanguage === GLSL || shaderLanguage === WGSL; }
 
 	add(name, part) {
 		this.parts[name] = { ...part, on: 1 };
@@ -108,12 +137,14 @@ export class BakerSurfacePlugin extends MaterialPluginBase {
 		for (const p of Object.values(this.parts || {})) samplers.push(...Object.keys(p.samplers || {}));
 	}
 
-	getUniforms() {
+	getUniforms(shaderLanguage = GLSL) {
 		const ubo = [];
 		for (const [name, p] of Object.entries(this.parts || {})) {
 			ubo.push({ name: `u_baker_${name}_on`, size: 1, type: 'float' });
 			for (const [u, { type }] of Object.entries(p.uniforms || {})) ubo.push({ name: u, size: { float: 1, int: 1, vec2: 2, vec3: 3, vec4: 4 }[type], type });
 		}
+		// WGSL: Babylon declares the block's members itself (`uniform name: type;`, read as uniforms.name)
+		if (shaderLanguage === WGSL) return { ubo };
 		const declarations = ubo.map((u) => `uniform ${u.type} ${u.name};`).join('\n');
 		return { ubo, vertex: declarations, fragment: declarations };
 	}
@@ -143,10 +174,141 @@ export class BakerSurfacePlugin extends MaterialPluginBase {
 
 	// Babylon collects the injection points once, when the plugin is added (before any part): every point is
 	// always listed, with empty code where this material's parts need none.
-	getCustomCode(shaderType) {
+	getCustomCode(shaderType, shaderLanguage = GLSL) {
 		const code = Object.fromEntries(POINTS[shaderType].map((point) => [point, '']));
 		if (!this.parts || !Object.keys(this.parts).length) return code;
-		return Object.assign(code, this.partCode(shaderType));
+		return Object.assign(code, shaderLanguage === WGSL ? this.partCodeWgsl(shaderType) : this.partCode(shaderType));
+	}
+
+	// The uniforms of the parts (the on switches included), in uniform-block order
+	uniformNames() {
+		return Object.entries(this.parts).flatMap(([name, p]) => [`u_baker_${name}_on`, ...Object.keys(p.uniforms || {})]);
+	}
+
+	/**
+	 * partCode's WGSL twin, for Babylon's WGSL PBR shaders (WebGPUEngine): the same points, names and formulas, with
+	 * the parts' WGSL modules (runtime-shaders/baker_*.wgsl: a sampler2D argument is a texture and its sampler).
+	 * The parts' uniforms, varyings and vPositionW are aliased by their own names at the start of the lighting, so
+	 * the parts' expressions (the thickness, the curvature, the parameter structs) read the same in both languages.
+	 */
+	partCodeWgsl(shaderType) {
+		const p = this.parts;
+		const attributes = this.attributes();
+		const varyings = attributes.map(([kind, size]) => `varying v_${kind}: ${wgslType(size)};`).join('\n') + '\nvarying v_bakerUv: vec2f;';
+		if (shaderType === 'vertex') {
+			return {
+				CUSTOM_VERTEX_DEFINITIONS: `${attributes.map(([kind, size]) => `attribute ${kind}: ${wgslType(size)};`).join('\n')}
+${varyings}`,
+				CUSTOM_VERTEX_MAIN_END: `${attributes.map(([kind, , , v]) => `vertexOutputs.v_${kind} = ${v ?? `vertexInputs.${kind}`};`).join('\n')}
+#ifdef UV1
+vertexOutputs.v_bakerUv = vertexInputs.uv;
+#else
+vertexOutputs.v_bakerUv = vec2f(0.0);
+#endif`,
+			};
+		}
+		const samplers = Object.values(p).flatMap((x) => Object.keys(x.samplers || {}))
+			.map((s) => `var ${s}Sampler: sampler;\nvar ${s}: texture_2d<f32>;`).join('\n');
+		const modules = [...new Set(Object.values(p).map((x) => x.wgsl).filter(Boolean))].join('\n');
+		const aliases = [
+			...this.uniformNames().map((u) => `let ${u} = uniforms.${u};`),
+			...attributes.map(([kind]) => `let v_${kind} = fragmentInputs.v_${kind};`),
+			'let v_bakerUv = fragmentInputs.v_bakerUv;',
+			'let vPositionW = fragmentInputs.vPositionW;',
+		].join('\n');
+		const diffuse = [];
+		if (p.normalBlur) diffuse.push(`var bakerNdotL = vec3f(dotNL);
+if (u_baker_normalBlur_on > 0.5) {
+	bakerNdotL = baker_normal_blur_ndotl(bakerNormalRed, bakerNormalGreen, bakerNormalBlue, bakerL);
+	f = clamp(bakerNdotL, vec3f(0.0), vec3f(1.0));
+	bakerReplaced = true;
+}`);
+		const skin = (normals) => `baker_skin_diffuse(${p.skin.struct}, u_bakerSkinLut, u_bakerSkinLutSampler, ${normals}, bakerL, bakerSkinK)`;
+		if (p.skin) diffuse.push(`if (u_baker_skin_on > 0.5) {
+	let bakerSkinK = ${p.skin.curvature('geometricNormalW', 'bakerL')};
+	${p.normalBlur ? `if (u_baker_normalBlur_on > 0.5) {
+		f = baker_skin_diffuse_normals(${p.skin.struct}, u_bakerSkinLut, u_bakerSkinLutSampler, bakerNdotL, bakerSkinK);
+	} else {
+		f = ${skin('normalW, normalW')};
+	}` : `f = ${skin('normalW, normalW')};`}
+	bakerReplaced = true;
+}`);
+		if (p.toon) diffuse.push(`if (u_baker_toon_on > 0.5) {
+	// the ramp indexed by the lit shade so far (N.L, or the skin LUT's luminance mapped back to -1..1)
+	var nl = dotNL;
+	${p.skin ? 'if (u_baker_skin_on > 0.5) { nl = 2.0 * dot(f, vec3f(0.2126, 0.7152, 0.0722)) - 1.0; }' : ''}
+	if (u_bakerToonXtoon < 0.5) {
+		f = vec3f(baker_toon_ramp(u_bakerToonRamp, u_bakerToonRampSampler, nl));
+	} else if (u_bakerToonXtoon < 1.5) {
+		f = vec3f(baker_xtoon(u_bakerToonRamp, u_bakerToonRampSampler, nl, baker_xtoon_detail_depth(
+			abs((scene.view * vec4f(vPositionW, 1.0)).z), u_bakerToonDepthRange.x, u_bakerToonDepthRange.y)));
+	} else {
+		f = vec3f(baker_xtoon(u_bakerToonRamp, u_bakerToonRampSampler, nl,
+			baker_xtoon_detail_orientation(normalW, viewDirectionW, u_bakerToonOrientationPower)));
+	}
+	bakerReplaced = true;
+}`);
+		const code = {
+			CUSTOM_FRAGMENT_DEFINITIONS: `${modules}\n${samplers}\n${varyings}\n${KEY_LIGHT_WGSL}`,
+		};
+		const afterLights = surfaceStages(p, 'afterLights', 'wgsl');
+		if (diffuse.length || p.translucency || afterLights || p.cards) {
+			code[LIGHT_POINT] = `info.diffuse=computeDiffuseLighting(preInfo,diffuse$1.rgb);
+{
+	let bakerL = preInfo.L;
+	let dotNL = preInfo.NdotLUnclamped;
+	var f = vec3f(clamp(dotNL, 0.0, 1.0));
+	var bakerReplaced = false;
+	${diffuse.join('\n\t')}
+	if (bakerReplaced) { bakerLambert += (f - vec3f(clamp(dotNL, 0.0, 1.0))) * (preInfo.attenuation / PI) * diffuse$1.rgb; }
+	${p.translucency ? `bakerDirect += u_baker_translucency_on * preInfo.attenuation * diffuse$1.rgb *
+		baker_translucency(${p.translucency.struct}, normalW, viewDirectionW, bakerL, ${p.translucency.thickness});` : ''}
+	${p.cards ? `if (u_baker_cards_on > 0.5) { bakerCards += (preInfo.attenuation / PI) * (baker_hair_cards_shade(
+		albedoOpacityOut.surfaceAlbedo, bakerCardsT, normalW, bakerL, viewDirectionW, diffuse$1.rgb, bakerCardsData.g,
+		bakerCardsData.b, 40.0, 0.1, 0.4) - clamp(dotNL, 0.0, 1.0) * diffuse$1.rgb * albedoOpacityOut.surfaceAlbedo); }` : ''}
+#ifdef DIRLIGHT$1
+	bakerSun += clamp(dotNL, 0.0, 1.0) * (preInfo.attenuation / PI) * diffuse$1.rgb;
+#endif
+}`;
+		}
+		code.CUSTOM_FRAGMENT_BEFORE_LIGHTS = `${aliases}
+var bakerDirect = vec3f(0.0);
+var bakerLambert = vec3f(0.0);
+var bakerSun = vec3f(0.0);
+var bakerCards = vec3f(0.0);` + (p.cards ? CARDS_FRAME_WGSL : '') + (p.normalBlur ? NORMAL_BLUR_WGSL : '');
+		const albedo = p.normalBlur ? 'surfaceAlbedo.rgb' : 'albedoOpacityOut.surfaceAlbedo';
+		code.CUSTOM_FRAGMENT_BEFORE_FINALCOLORCOMPOSITION = 'finalDiffuse += bakerDirect * albedoOpacityOut.surfaceAlbedo * uniforms.vLightingIntensity.x;' +
+			`\nfinalDiffuse += bakerLambert * ${albedo} * uniforms.vLightingIntensity.x;` +
+			'\nfinalDiffuse += bakerCards * uniforms.vLightingIntensity.x;' +
+			(afterLights && `
+{
+let bakerWorldPosition = vPositionW;
+let bakerSunLight = bakerSun * albedoOpacityOut.surfaceAlbedo * uniforms.vLightingIntensity.x;
+var bakerDiffuse = finalDiffuse;
+${afterLights}
+finalDiffuse = bakerDiffuse;
+}`);
+		let outgoing = '';
+		const onOutgoing = surfaceStages(p, 'outgoing', 'wgsl');
+		if (onOutgoing) outgoing += `
+{
+let bakerUv = v_bakerUv;
+let bakerNormal = normalW;
+let bakerKeyLight = baker_key_light(viewDirectionW);
+var bakerColor = finalColor.rgb;
+${onOutgoing}
+finalColor = vec4f(bakerColor, finalColor.a);
+}`;
+		if (p.curvature) outgoing += `
+if (u_baker_curvature_on > 0.5) {
+	// diverging map: blue concave, white flat, red convex; curvature * meanLength, saturating at +-1
+	let k = clamp(${p.curvature.value} / u_bakerCurvatureScale, -1.0, 1.0);
+	var bakerView = select(mix(vec3f(1.0), vec3f(0.05, 0.2, 0.85), -k), mix(vec3f(1.0), vec3f(0.85, 0.1, 0.05), k), k > 0.0);
+	bakerView *= 0.35 + 0.65 * clamp(dot(normalW, baker_key_light(viewDirectionW)), 0.0, 1.0);
+	finalColor = vec4f(bakerView, finalColor.a);
+}`;
+		if (outgoing) code[OUTGOING_POINT] = `${outgoing}\nfinalColor=applyImageProcessing(finalColor);`;
+		return code;
 	}
 
 	partCode(shaderType) {

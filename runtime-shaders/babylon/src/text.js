@@ -1,7 +1,7 @@
 // BAKER_text: a label's glyph quads drawn with the distance-field shader (outline, glow, shadow; RTR4 15.5); the
 // stages are runtime-shaders/hosts/web/text.*.glsl.
 import { textFieldType, textShadowOffset, textStyle as sharedTextStyle } from '@baker/shared';
-import { BAKER_GLYPH_ATLAS, BAKER_TEXT, controls, requireShader, stageMaterial } from './common.js';
+import { BAKER_GLYPH_ATLAS, BAKER_TEXT, controls, engineModule, stageMaterial } from './common.js';
 import { premultiplied } from './geometry.js';
 import { BakerGlyphAtlasExtension, glyphAtlasFont } from './glyph_atlas.js';
 
@@ -20,6 +20,7 @@ export class BakerTextExtension {
 		this.order = 240;
 		this.loader = loader;
 		this.shaders = options.shaders || {};
+		this.options = options;
 	}
 	dispose() { this.loader = null; }
 
@@ -36,7 +37,7 @@ export class BakerTextExtension {
 			const style = textStyle(ext, font);
 			const offset = textShadowOffset(ext, font);
 			const material = premultiplied(stageMaterial('baker MSDF text', scene, {
-				glsl: requireShader(this.shaders, 'text'), vertex: 'text.vert', fragment: 'text.frag',
+				glsl: engineModule(this, 'text', scene), vertex: 'text.vert', fragment: 'text.frag',
 				attributes: ['position', 'uv'], samplers: ['u_atlas'], alpha: true,
 				uniforms: [...STYLE_FIELDS.map((f) => `u_${f}`), 'u_fieldType', 'u_distanceRange', 'u_shadowOffset'],
 			}));

@@ -1,7 +1,8 @@
 // BAKER_tonal_art_map: hatching with the baked tonal art map, packed layout (Praun et al. 2001; RTR4 15.3).
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { BaseTexture } from '@babylonjs/core/Materials/Textures/baseTexture.js';
-import { BAKER_TONAL_ART_MAP, descriptorUniforms, requireShader } from './common.js';
+import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
+import { BAKER_TONAL_ART_MAP, descriptorUniforms, partModule, uploadMipLevels } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 async function decodeImage(loader, textureIndex) {
@@ -20,6 +21,7 @@ export async function tamTextures(loader, ext) {
 	const levels = ext.levels || [];
 	const images = await Promise.all(levels.map((l) => Promise.all((l.textures || []).map((t) => decodeImage(loader, t.index ?? t)))));
 	const engine = loader.babylonScene.getEngine();
+	if (engine.isWebGPU) return tamRawTextures(loader.babylonScene, images, levels[0].size);
 	const gl = engine._gl;
 	return [0, 1].map((k) => {
 		const handle = gl.createTexture();
@@ -42,15 +44,40 @@ export async function tamTextures(loader, ext) {
 	});
 }
 
+// The RGBA8 texels of a decoded image, as stored (no premultiplication, no colour conversion: the PNGs are data)
+function imageTexels(image) {
+	const canvas = new OffscreenCanvas(image.width, image.height);
+	const context = canvas.getContext('2d', { colorSpace: 'srgb', willReadFrequently: true });
+	context.drawImage(image, 0, 0);
+	return new Uint8Array(context.getImageData(0, 0, image.width, image.height).data.buffer);
+}
+
+/**
+ * tamTextures on WebGPUEngine (no GL context to upload level by level): a RawTexture per pair created with its mip
+ * storage, then every TAM level uploaded over mip level i (uploadMipLevels), as coverageMipsTexture does.
+ */
+function tamRawTextures(scene, images, size) {
+	return [0, 1].map((k) => {
+		const levels = images.map((pair) => ({ data: imageTexels(pair[k]), width: pair[k].width, height: pair[k].height }));
+		const texture = new RawTexture(levels[0].data, size, size, Constants.TEXTUREFORMAT_RGBA, scene, true, false,
+			Constants.TEXTURE_TRILINEAR_SAMPLINGMODE, Constants.TEXTURETYPE_UNSIGNED_BYTE);
+		uploadMipLevels(texture, levels);
+		texture.name = `baker TAM tones ${k ? '3-5' : '0-2'}`;
+		texture.gammaSpace = false;
+		texture.wrapU = texture.wrapV = Constants.TEXTURE_WRAP_ADDRESSMODE;
+		return texture;
+	});
+}
+
 /** Loader extension for BAKER_tonal_art_map (packed layout): hatching strokes, tone from the key light. */
-export const BakerTonalArtMapExtension = surfaceExtension('tam', BAKER_TONAL_ART_MAP, async function (ext) {
+export const BakerTonalArtMapExtension = surfaceExtension('tam', BAKER_TONAL_ART_MAP, async function (ext, mesh, primitive, material) {
 	if ((ext.layout ?? 'packed') !== 'packed' || !ext.levels?.length) {
 		console.warn('@baker/babylon: BAKER_tonal_art_map: only the packed layout is drawn by this extension');
 		return null;
 	}
 	const [t012, t345] = await tamTextures(this.loader, ext);
 	return {
-		glsl: requireShader(this.shaders, 'hatching'),
+		...partModule(this, 'hatching', material),
 		samplers: { u_bakerTam012: t012, u_bakerTam345: t345 },
 		...descriptorUniforms('tonal_art_map', ext),
 	};

@@ -1,13 +1,13 @@
 // BAKER_toon_ramp: the per-light Lambert term through the baked ramp or X-Toon map (RTR4 15.1; Barla et al. 2006).
-import { BAKER_TOON_RAMP, dataTexture, descriptorUniforms, requireShader } from './common.js';
+import { BAKER_TOON_RAMP, dataTexture, descriptorUniforms, partModule } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 /** Loader extension for BAKER_toon_ramp. */
-export const BakerToonRampExtension = surfaceExtension('toon', BAKER_TOON_RAMP, async function (ext) {
+export const BakerToonRampExtension = surfaceExtension('toon', BAKER_TOON_RAMP, async function (ext, mesh, primitive, material) {
 	const ramp = await dataTexture(this.loader, ext.rampTexture);
 	if (!ramp) return null;
 	return {
-		glsl: requireShader(this.shaders, 'toon'),
+		...partModule(this, 'toon', material),
 		samplers: { u_bakerToonRamp: ramp },
 		...descriptorUniforms('toon_ramp', ext),
 	};

@@ -4,11 +4,11 @@
 // here: each runtime adds what its engine needs in its own common.js.
 
 import { RUNTIMES } from './techniques.js';
-import { STAGES } from './stages.js';
+import { STAGES, STAGES_WGSL } from './stages.js';
 
 export { RUNTIMES, runtime, runtimeOfSwitch } from './techniques.js';
 export { structExpression, uniformValue, uniformValues } from './values.js';
-export { STAGES } from './stages.js';
+export { STAGES, STAGES_WGSL } from './stages.js';
 
 const extensionOf = (name) => RUNTIMES.find((r) => r.name === name).extension;
 export const BAKER_THICKNESS = extensionOf('thickness');
@@ -47,9 +47,10 @@ export function shaderText(shaders, key, packageName) {
  * (an object keyed by switch name) injected at `point`, in the descriptors' order; '' when there is none. The host
  * wraps them in a block defining the point's names (techniques.js).
  */
-export function surfaceStages(parts, point) {
+export function surfaceStages(parts, point, language = 'glsl') {
+	const stages = language === 'wgsl' ? STAGES_WGSL : STAGES; // 'wgsl': the stages' WGSL twins (hosts/web/*.wgsl)
 	return RUNTIMES.filter((r) => r.surface?.point === point && r.switches.some((s) => parts[s.name]))
-		.map((r) => STAGES[r.surface.stage]).join('\n');
+		.map((r) => stages[r.surface.stage]).join('\n');
 }
 
 // ------------------------------------------------------------------------------------------------ switches

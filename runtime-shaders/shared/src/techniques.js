@@ -8,7 +8,7 @@
 // - extension, on: the glTF extension and the glTF objects it sits on ('material', 'mesh.primitive', 'node', 'glTF');
 // - kind: 'surface' (a part of the loader's own PBR material) or 'geometry' (meshes of its own);
 // - modules: the runtime-shaders/ files, by shading language (`key`: the name under which a host's options.shaders
-//   passes the GLSL as text; `wgsl`: the WGSL twin, none yet);
+//   passes the GLSL as text; `wgsl`: the WGSL twin, under the same key in a WebGPU host's options.wgsl);
 // - switches: the on/off names published in gltf.userData.baker / the root's metadata.baker, in display order
 //   (defaultOff: a debug view, off until asked for);
 // - attributes: custom vertex attributes (`from`: the extension property naming it, else `name` itself);
@@ -34,7 +34,7 @@
 export const RUNTIMES = [
 	{
 		name: 'thickness', extension: 'BAKER_thickness', on: ['material'], kind: 'surface',
-		modules: { glsl: 'baker_translucency.glsl', key: 'translucency', wgsl: null },
+		modules: { glsl: 'baker_translucency.glsl', key: 'translucency', wgsl: 'baker_translucency.wgsl' },
 		switches: [{ name: 'translucency', label: 'translucency' }],
 		attributes: [{ name: 'thickness', from: 'attribute', type: 'float' }],
 		textures: [],
@@ -66,7 +66,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'skin_lut', extension: 'BAKER_skin_lut', on: ['material'], kind: 'surface',
-		modules: { glsl: 'baker_skin.glsl', key: 'skin', wgsl: null },
+		modules: { glsl: 'baker_skin.glsl', key: 'skin', wgsl: 'baker_skin.wgsl' },
 		switches: [{ name: 'skin', label: 'pre-integrated skin' }],
 		// the mean curvature, or BAKER_curvature's principal curvatures and direction (baker's names)
 		attributes: [
@@ -105,7 +105,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'toon_ramp', extension: 'BAKER_toon_ramp', on: ['material'], kind: 'surface',
-		modules: { glsl: 'baker_toon.glsl', key: 'toon', wgsl: null },
+		modules: { glsl: 'baker_toon.glsl', key: 'toon', wgsl: 'baker_toon.wgsl' },
 		switches: [{ name: 'toon', label: 'toon ramp' }],
 		attributes: [],
 		textures: [{ name: 'u_bakerToonRamp', from: 'rampTexture', sampling: 'data' }],
@@ -131,7 +131,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'tonal_art_map', extension: 'BAKER_tonal_art_map', on: ['material'], kind: 'surface',
-		modules: { glsl: 'baker_hatching.glsl', key: 'hatching', wgsl: null },
+		modules: { glsl: 'baker_hatching.glsl', key: 'hatching', wgsl: 'baker_hatching.wgsl' },
 		surface: { stage: 'surface_hatching', point: 'outgoing' },
 		switches: [{ name: 'tam', label: 'hatching (TAM)' }],
 		attributes: [],
@@ -160,7 +160,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'edges', extension: 'BAKER_edges', on: ['mesh.primitive'], kind: 'geometry',
-		modules: { glsl: 'baker_edges.glsl', key: 'edges', wgsl: null },
+		modules: { glsl: 'baker_edges.glsl', key: 'edges', wgsl: 'baker_edges.wgsl' },
 		switches: [
 			{ name: 'fins', label: 'edge fins' },
 			{ name: 'outline', label: 'shell outline' },
@@ -199,7 +199,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'fur', extension: 'BAKER_fur', on: ['material', 'mesh.primitive'], kind: 'geometry',
-		modules: { glsl: 'baker_fur.glsl', key: 'fur', wgsl: null },
+		modules: { glsl: 'baker_fur.glsl', key: 'fur', wgsl: 'baker_fur.wgsl' },
 		switches: [{ name: 'fur', label: 'fur shells + fins' }],
 		attributes: [
 			{ name: '_FIN_V0', type: 'vec3' }, { name: '_FIN_V1', type: 'vec3' }, { name: '_FIN_V2', type: 'vec3' },
@@ -227,7 +227,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'hair', extension: 'BAKER_hair', on: ['mesh.primitive'], kind: 'geometry',
-		modules: { glsl: 'baker_hair.glsl', key: 'hair', wgsl: null },
+		modules: { glsl: 'baker_hair.glsl', key: 'hair', wgsl: 'baker_hair.wgsl' },
 		switches: [{ name: 'hair', label: 'hair ribbons' }],
 		attributes: [
 			{ name: 'tangent', from: 'tangentAttribute', default: '_STRAND_TANGENT', type: 'vec3' },
@@ -253,7 +253,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'text', extension: 'BAKER_text', on: ['node'], kind: 'geometry', uses: ['BAKER_glyph_atlas'],
-		modules: { glsl: 'baker_text.glsl', key: 'text', wgsl: null },
+		modules: { glsl: 'baker_text.glsl', key: 'text', wgsl: 'baker_text.wgsl' },
 		switches: [{ name: 'text', label: 'MSDF text' }],
 		attributes: [],
 		// the atlas of BAKER_glyph_atlas.fonts[font]
@@ -276,7 +276,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'caustics', extension: 'BAKER_caustics', on: ['material'], kind: 'surface',
-		modules: { glsl: 'baker_caustics.glsl', key: 'caustics', wgsl: null },
+		modules: { glsl: 'baker_caustics.glsl', key: 'caustics', wgsl: 'baker_caustics.wgsl' },
 		surface: { stage: 'surface_caustics', point: 'afterLights' },
 		switches: [{ name: 'caustics', label: 'caustics' }],
 		attributes: [],
@@ -309,7 +309,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'hair_cards', extension: 'BAKER_hair_cards', on: ['material', 'mesh.primitive'], kind: 'surface',
-		modules: { glsl: 'baker_hair_cards.glsl', key: 'cards', wgsl: null },
+		modules: { glsl: 'baker_hair_cards.glsl', key: 'cards', wgsl: 'baker_hair_cards.wgsl' },
 		switches: [{ name: 'cards', label: 'hair cards (Kajiya-Kay)' }],
 		attributes: [],
 		textures: [{ name: 'u_bakerCardsData', from: 'dataTexture', sampling: 'data' },
@@ -331,7 +331,7 @@ export const RUNTIMES = [
 	},
 	{
 		name: 'normal_blur', extension: 'BAKER_normal_blur', on: ['material'], kind: 'surface',
-		modules: { glsl: 'baker_normal_blur.glsl', key: 'normalBlur', wgsl: null },
+		modules: { glsl: 'baker_normal_blur.glsl', key: 'normalBlur', wgsl: 'baker_normal_blur.wgsl' },
 		switches: [{ name: 'normalBlur', label: 'blurred diffuse normals' }],
 		attributes: [],
 		textures: [{ name: 'u_bakerNormalBlurRed', from: 'diffuseNormalTextures.0', sampling: 'file' },

@@ -1,0 +1,93 @@
+"""@baker/babylon on Babylon.js's two backends in one headless Chromium: the viewer's Babylon.js page on the WebGL2
+Engine (?engine=babylon, the peer) and on WebGPUEngine (?engine=babylon-webgpu), both drawn by SwiftShader.
+
+    python benchmarks/babylon_backends.py [--repeat 3] [--size 640x480] [--frames 20]
+
+The spot baked with every bake (as tests/test_babylon_webgpu.py bakes it), every technique at its default. Per
+backend, from the page (window.__bakerTimings): the asset's load, then `ready` (the materials' shaders compiled and
+two frames drawn: shader compile and pipeline creation); then the mean frame time over --frames frames, each waited
+for on the device (benchmarks/babylon_backends.mjs). Pages alternate between the backends, --repeat times each; the
+medians are reported with the WebGPU / WebGL2 ratio (ratios are what a shared machine's run means).
+"""
+from __future__ import annotations
+
+import argparse
+import functools
+import http.server
+import json
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+VIEWER = ROOT / "examples" / "viewer"
+sys.path.insert(0, str(ROOT))
+
+OPTIONS = {
+    "thickness": {"rays": 8, "per_texel": False},
+    "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
+    "edges": {"fins": True},
+    "tam": {"size": 64, "levels": 3},
+    "fur": {"shells": 4, "texture_size": 64},
+    "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
+                 "fade_distance": 2.0},
+}
+ENGINES = {"babylon": "WebGL2 Engine (peer)", "babylon-webgpu": "WebGPUEngine"}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--size", default="640x480")
+    parser.add_argument("--frames", type=int, default=20)
+    args = parser.parse_args()
+    width, height = (int(x) for x in args.size.split("x"))
+
+    import baker
+    from baker import registry
+    from baker.pipeline import save
+
+    build = subprocess.run(["npm", "run", "build"], cwd=VIEWER, capture_output=True, text=True)
+    if build.returncode:
+        raise SystemExit(build.stderr)
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        shutil.copy(VIEWER / "index.html", root / "index.html")
+        shutil.copytree(VIEWER / "dist", root / "dist")
+        save(baker.bake(ROOT / "examples" / "spot" / "spot.obj", bakes=tuple(registry.bakes()), options=OPTIONS),
+             root / "spot_all.glb")
+        handler = functools.partial(type("Quiet", (http.server.SimpleHTTPRequestHandler,),
+                                         {"log_message": lambda *a: None}), directory=str(root))
+        server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+        url = f"http://127.0.0.1:{server.server_address[1]}/index.html?hud=0&src=spot_all.glb&time=1.3"
+        jobs = [{"url": f"{url}&engine={engine}", "width": width, "height": height, "frames": args.frames}
+                for _ in range(args.repeat) for engine in ENGINES]
+        (root / "jobs.json").write_text(json.dumps(jobs))
+        run = subprocess.run(["node", str(ROOT / "benchmarks" / "babylon_backends.mjs"), str(root / "jobs.json")],
+                             capture_output=True, text=True, timeout=1800)
+        server.shutdown()
+    if run.returncode:
+        raise SystemExit(run.stderr)
+    results = [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
+    errors = [r for r in results if "error" in r]
+    if errors:
+        raise SystemExit(f"a page failed: {errors[0]}")
+    medians = {engine: {key: statistics.median(r[key] for r in results if r["url"].endswith(f"engine={engine}"))
+                        for key in ("load", "ready", "frame")} for engine in ENGINES}
+    peer = medians["babylon"]
+    print(f"spot, every bake, {width}x{height}, median of {args.repeat} (ms; ratio to the WebGL2 Engine)")
+    print("| backend | load | ready (compile + 2 frames) | frame | ready ratio | frame ratio |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for engine, label in ENGINES.items():
+        m = medians[engine]
+        print(f"| {label} | {m['load']:.0f} | {m['ready']:.0f} | {m['frame']:.1f} | "
+              f"{m['ready'] / peer['ready']:.2f}x | {m['frame'] / peer['frame']:.2f}x |")
+
+
+if __name__ == "__main__":
+    main()
