@@ -157,9 +157,35 @@ def _existing_uv_texels(geoms: list[PrimitiveGeometry], size: int):
     return usable_layout_texels(np.concatenate(uvs), np.concatenate(faces), size=min(size, 1024))
 
 
+def renumber_extension_vertices(doc, prim: dict, vmap: np.ndarray) -> None:
+    """Primitive extensions' accessors of vertex indices (:func:`baker.registry.vertex_index_members`: BAKER_edges'
+    edge list, the edge-visibility extension's silhouette mates) renumbered after a split where new vertex k copies
+    old vertex ``vmap[k]``: each old vertex becomes its first copy (same position, so the same edge), the type's
+    maximum ('no vertex') stays that, in the type the new vertex count needs."""
+    from baker.registry import vertex_index_members
+
+    extensions = prim.get("extensions") or {}
+    members = vertex_index_members()
+    if not any(name in members for name in extensions):
+        return
+    first_copy = np.full(int(vmap.max()) + 1 if len(vmap) else 0, -1, np.int64)
+    first_copy[vmap[::-1]] = np.arange(len(vmap))[::-1]  # reversed: the lowest k wins
+    dtype = np.uint16 if len(vmap) < 0xFFFF else np.uint32
+    for name, ext in extensions.items():
+        for member in members.get(name, ()):
+            if not isinstance(ext.get(member), int):
+                continue
+            old = doc.accessor(ext[member])
+            none = old == np.iinfo(old.dtype).max
+            found = first_copy[np.where(none | (old >= len(first_copy)), 0, old)]
+            new = np.where(none | (found < 0), np.iinfo(dtype).max, found).astype(dtype)
+            ext[member] = doc.add_accessor(new, target=None, name=doc.json["accessors"][ext[member]].get("name"))
+
+
 def reindex_primitive(asset: Asset, mesh: int, primitive: int, vmap: np.ndarray, faces: np.ndarray,
                        uv: np.ndarray, texcoord: int) -> None:
-    """Split the primitive's vertices as xatlas did and add the new UVs as TEXCOORD_<texcoord>."""
+    """Split the primitive's vertices (new vertex k copies old vertex ``vmap[k]``: every attribute, morph target and
+    primitive extension's vertex indices follow) and add the new UVs as TEXCOORD_<texcoord>."""
     doc = asset.doc
     prim = asset.meshes()[mesh]["primitives"][primitive]
 
@@ -183,5 +209,6 @@ def reindex_primitive(asset: Asset, mesh: int, primitive: int, vmap: np.ndarray,
     prim["attributes"][f"TEXCOORD_{texcoord}"] = new_uv
     index_type = np.uint16 if len(vmap) < 65535 else np.uint32
     prim["indices"] = doc.add_accessor(faces.reshape(-1).astype(index_type), target=TARGET_ELEMENT_ARRAY_BUFFER)
+    renumber_extension_vertices(doc, prim, vmap)
     if prim.get("mode", 4) != 4:
         prim["mode"] = 4  # strips and fans came back from xatlas as a triangle list
