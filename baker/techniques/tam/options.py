@@ -1,7 +1,7 @@
 """Options of the tam technique: one frozen dataclass feeds the CLI flags, recipe keys and the Python API."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from baker.options import opt
 
@@ -27,8 +27,8 @@ class TamOptions:
                               min=0.5, max=16.0)
     stroke_length: tuple = opt((0.3, 0.6), "min,max stroke length as a fraction of the tile width", min=0.0, max=1.0)
     angle: float | None = opt(None, "main stroke direction in degrees, from the texture's +u axis towards +v (down "
-                                    "the image) (default: 0 with --tam-strokes field, so strokes run along the "
-                                    "field's direction; 30 with uv, across UV charts of arbitrary direction)")
+                                    "the image) (default: 0 on a material baked with --tam-strokes field, so "
+                                    "strokes run along the field; else 30, across UV charts of any direction)")
     angle_jitter: float = opt(6.0, "random deviation of each stroke's direction, +- degrees", min=0.0, max=90.0)
     curvature: float = opt(0.04, "largest bend of a stroke: sagitta as a fraction of its length (0 = straight)",
                            min=0.0, max=0.5)
@@ -52,5 +52,10 @@ class TamOptions:
 
     @property
     def stroke_angle(self) -> float:
-        """The main stroke direction in degrees: ``angle``, or the default of the ``strokes`` mode."""
-        return float(self.angle) if self.angle is not None else DEFAULT_ANGLE[self.strokes]
+        """The main stroke direction in degrees: ``angle``, or 30 (the standalone map's and ``uv``'s default; the
+        bake resolves ``field``'s 0 with :meth:`for_bake`)."""
+        return float(self.angle) if self.angle is not None else DEFAULT_ANGLE["uv"]
+
+    def for_bake(self) -> "TamOptions":
+        """The options a bake generates its map with: ``angle`` resolved by the ``strokes`` mode."""
+        return self if self.angle is not None else replace(self, angle=DEFAULT_ANGLE[self.strokes])

@@ -69,6 +69,7 @@ def run(asset: Asset, options: TamOptions, seed: int = 0, progress: Progress = Q
     except ValueError as exc:
         raise BakerError(asset.source, str(exc)) from None
     doc = asset.doc
+    options = options.for_bake()
     with progress.task("tonal art map", 1) as advance:
         tam = generate_tam(options, seed=seed)
         advance(1)
