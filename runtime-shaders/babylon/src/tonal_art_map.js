@@ -1,7 +1,7 @@
 // BAKER_tonal_art_map: hatching with the baked tonal art map, packed layout (Praun et al. 2001; RTR4 15.3).
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { BaseTexture } from '@babylonjs/core/Materials/Textures/baseTexture.js';
-import { BAKER_TONAL_ART_MAP, descriptorUniforms, requireShader } from './common.js';
+import { BAKER_TONAL_ART_MAP, descriptorUniforms, loadedPrimitives, requireShader, setAttribute } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 async function decodeImage(loader, textureIndex) {
@@ -43,14 +43,25 @@ export async function tamTextures(loader, ext) {
 }
 
 /** Loader extension for BAKER_tonal_art_map (packed layout): hatching strokes, tone from the key light. */
-export const BakerTonalArtMapExtension = surfaceExtension('tam', BAKER_TONAL_ART_MAP, async function (ext) {
+export const BakerTonalArtMapExtension = surfaceExtension('tam', BAKER_TONAL_ART_MAP, async function (ext, mesh, primitive) {
 	if ((ext.layout ?? 'packed') !== 'packed' || !ext.levels?.length) {
 		console.warn('@baker/babylon: BAKER_tonal_art_map: only the packed layout is drawn by this extension');
 		return null;
 	}
+	// the UV set it tiles over: TEXCOORD_0 is the surface's own `uv`; another (baker's stroke parameterization) goes
+	// on every mesh drawn with the material as vertex data `bakerTamUv`, carried to the stage as BAKER_TAM_UV
+	const texCoord = ext.texCoord ?? 0;
+	if (texCoord) {
+		const name = `TEXCOORD_${texCoord}`;
+		for (const other of loadedPrimitives(this.loader)) {
+			if (other.primitive.material === primitive.material && other.mesh.material === mesh.material &&
+				!(await setAttribute(this.loader, other.mesh, other.primitive, name, 'bakerTamUv'))) return null;
+		}
+	}
 	const [t012, t345] = await tamTextures(this.loader, ext);
 	return {
-		glsl: requireShader(this.shaders, 'hatching'),
+		glsl: (texCoord ? '#define BAKER_TAM_UV v_bakerTamUv\n' : '') + requireShader(this.shaders, 'hatching'),
+		attributes: texCoord ? [['bakerTamUv', 2]] : [],
 		samplers: { u_bakerTam012: t012, u_bakerTam345: t345 },
 		...descriptorUniforms('tonal_art_map', ext),
 	};
