@@ -208,3 +208,36 @@ def test_preview_hatching_strokes_follow_the_field_in_the_picture(tmp_path):
     print("stroke orientation error (deg RMS)", errors)  # measured: field 6.3, uv 27.4
     assert errors["field"] < 12.0
     assert errors["uv"] > 2.0 * errors["field"]
+
+
+def test_usd_reads_the_stroke_primvar(torus_glb, tmp_path):
+    """USD: the stroke set is primvar st1 (per corner the glTF's values), the TAM's textures read it through their
+    primvar reader, texCoordPrimvar names it and the direction attribute is primvars:baker:hatching_direction."""
+    from pxr import Usd, UsdGeom, UsdShade
+
+    out = tmp_path / "torus.usda"
+    save(baker.bake(str(torus_glb), bakes=[]), out)
+    stage = Usd.Stage.Open(str(out))
+    mesh = next(UsdGeom.Mesh(p) for p in stage.Traverse() if p.GetTypeName() == "Mesh")
+    primvars = UsdGeom.PrimvarsAPI(mesh.GetPrim())
+    st1 = np.asarray(primvars.GetPrimvar("st1").Get(), np.float64)
+    corners = np.asarray(mesh.GetFaceVertexIndicesAttr().Get(), np.int64).reshape(-1, 3)
+    glb = Glb(torus_glb)
+    ext, faces, _, _, _, _, prim = stroke_charts(glb)
+    written = glb.accessor(prim["attributes"]["TEXCOORD_1"]).astype(np.float64)
+    # USD's t axis points up where glTF's v points down: t = 1 - v
+    assert np.allclose(np.sort(st1[corners].reshape(-1, 2), axis=0),
+                       np.sort(np.stack([written[faces][..., 0], 1.0 - written[faces][..., 1]], -1).reshape(-1, 2),
+                               axis=0), atol=1e-5)
+    direction = primvars.GetPrimvar("baker:hatching_direction")
+    assert direction and len(direction.Get()) == len(st1)
+    material = next(p for p in stage.Traverse() if p.GetTypeName() == "Material")
+    assert material.GetAttribute("baker:tonal_art_map:texCoordPrimvar").Get() == "st1"
+    assert material.GetAttribute("baker:tonal_art_map:strokes:directionAttribute").Get() == \
+        "primvars:baker:hatching_direction"
+    readers = set()
+    for shader in (UsdShade.Shader(p) for p in stage.Traverse() if p.GetTypeName() == "Shader"):
+        if shader.GetIdAttr().Get() == "UsdUVTexture" and "tam" in str(shader.GetInput("file").Get()).lower():
+            source = shader.GetInput("st").GetConnectedSources()[0][0].source
+            readers.add(UsdShade.Shader(source.GetPrim()).GetInput("varname").Get())
+    assert readers == {"st1"}
