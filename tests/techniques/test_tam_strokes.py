@@ -241,3 +241,60 @@ def test_usd_reads_the_stroke_primvar(torus_glb, tmp_path):
             source = shader.GetInput("st").GetConnectedSources()[0][0].source
             readers.add(UsdShade.Shader(source.GetPrim()).GetInput("varname").Get())
     assert readers == {"st1"}
+
+
+def combed_sphere(tmp_path, attribute: str | None, components: int = 3):
+    """An icosphere (umbilic everywhere: no principal direction) as an Asset, with an artist's combing along the
+    latitudes (around +z) as vertex attribute ``attribute``."""
+    from baker import readers
+
+    source = tmp_path / "sphere.glb"
+    trimesh.creation.icosphere(subdivisions=4).export(str(source))
+    asset = readers.read(source)
+    if attribute:
+        prim = asset.doc.json["meshes"][0]["primitives"][0]
+        positions = asset.doc.accessor(prim["attributes"]["POSITION"]).astype(np.float64)
+        latitude = np.cross([0.0, 0.0, 1.0], positions)
+        prim["attributes"][attribute] = asset.doc.add_accessor(latitude[:, :components].astype(np.float32))
+    return asset
+
+
+def latitude_error(path: Path) -> float:
+    glb = Glb(path)
+    _, faces, signed, _, u_axis, normal, prim = stroke_charts(glb)
+    assert signed.min() > 0
+    positions = glb.accessor(prim["attributes"]["POSITION"]).astype(np.float64)
+    centroid = positions[faces].mean(axis=1)
+    belt = np.abs(centroid[:, 2]) < 0.7  # away from the poles, where the combing itself turns
+    error = cross_degrees(u_axis, np.cross([0.0, 0.0, 1.0], centroid), normal)
+    return float(np.sqrt(np.mean(error[belt] ** 2)))
+
+
+def test_an_artists_combing_attribute_is_honoured(tmp_path):
+    options = {"tam": {"size": 32, "levels": 1}}
+    combed, plain = tmp_path / "combed.glb", tmp_path / "plain.glb"
+    save(baker.bake(combed_sphere(tmp_path, "_HATCHING_COMBING"), bakes=["tam"], options=options), combed)
+    save(baker.bake(combed_sphere(tmp_path, None), bakes=["tam"], options=options), plain)
+    strokes = Glb(combed).json["materials"][0]["extensions"]["BAKER_tonal_art_map"]["strokes"]
+    assert strokes["field"] == "principalCurvatureAndCombing"
+    with_combing, without = latitude_error(combed), latitude_error(plain)
+    print("u axis vs the combing (deg RMS): combed", with_combing, "not combed", without)
+    assert with_combing < 5.0 and without > 3 * with_combing
+    # another attribute name, through the option
+    renamed = tmp_path / "renamed.glb"
+    save(baker.bake(combed_sphere(tmp_path, "_MY_COMB"), bakes=["tam"],
+                    options={"tam": {**options["tam"], "combing": "_MY_COMB"}}), renamed)
+    assert latitude_error(renamed) == pytest.approx(with_combing)
+
+
+def test_a_combing_attribute_of_the_wrong_width_is_one_line_exit_2(tmp_path, capsys):
+    from baker.cli import main
+
+    asset = combed_sphere(tmp_path, "_HATCHING_COMBING", components=2)
+    source = tmp_path / "bad.glb"
+    save(asset, source)
+    assert main(["bake", str(source), "--bakes", "tam", "--tam-size", "32", "--tam-levels", "1", "-o",
+                 str(tmp_path / "out.glb"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert "_HATCHING_COMBING" in err and "needs 3" in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1

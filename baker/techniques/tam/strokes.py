@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from baker.errors import BakerError
 from baker.geometry.asset import Asset
 from baker.gltf.vertex_attributes import add_vertex_attribute, unpadded
 from baker.techniques.tam.extension import DIRECTION_ATTRIBUTE
@@ -56,7 +57,11 @@ def welded_attribute(asset: Asset, m: int, mesh, prims: list[int], name: str, wi
         attributes = asset.meshes()[m]["primitives"][p]["attributes"]
         if name not in attributes:
             return None
-        values.append(unpadded(doc.accessor(attributes[name]), width).astype(np.float64))
+        data = doc.accessor(attributes[name])
+        if (data.shape[1] if data.ndim == 2 else 1) < width:
+            raise BakerError(asset.source, f"tam: vertex attribute {name} of mesh {m} primitive {p} has "
+                                           f"{data.shape[1] if data.ndim == 2 else 1} components, needs {width}")
+        values.append(unpadded(data, width).astype(np.float64))
     values = np.concatenate(values) if len(values) > 1 else values[0]
     first = np.full(len(mesh.positions), -1, np.int64)
     first[mesh.inverse[::-1]] = np.arange(len(mesh.inverse))[::-1]
