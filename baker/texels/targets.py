@@ -158,14 +158,13 @@ def _existing_uv_texels(geoms: list[PrimitiveGeometry], size: int):
 
 
 def renumber_extension_vertices(doc, prim: dict, vmap: np.ndarray) -> None:
-    """Primitive extensions' accessors of vertex indices (:func:`baker.registry.vertex_index_members`: BAKER_edges'
-    edge list, the edge-visibility extension's silhouette mates) renumbered after a split where new vertex k copies
-    old vertex ``vmap[k]``: each old vertex becomes its first copy (same position, so the same edge), the type's
-    maximum ('no vertex') stays that, in the type the new vertex count needs."""
-    from baker.registry import vertex_index_members
-
+    """Primitive extensions' accessors of vertex indices (``doc.vertex_index_members``, which the pipeline fills from
+    :func:`baker.registry.vertex_index_members`: BAKER_edges' edge list, the edge-visibility extension's silhouette
+    mates) renumbered after a split where new vertex k copies old vertex ``vmap[k]``: each old vertex becomes its
+    first copy (same position, so the same edge), the type's maximum ('no vertex') stays that, in the type the new
+    vertex count needs."""
     extensions = prim.get("extensions") or {}
-    members = vertex_index_members()
+    members = doc.vertex_index_members
     if not any(name in members for name in extensions):
         return
     first_copy = np.full(int(vmap.max()) + 1 if len(vmap) else 0, -1, np.int64)
