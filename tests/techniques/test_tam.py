@@ -359,11 +359,13 @@ def test_validator_catches_broken_tam(baked, tmp_path):
     prim = doc.json["meshes"][0]["primitives"][0]
     del prim["attributes"][f"TEXCOORD_{ext['texCoord']}"]
     ext["texCoord"] = 7
+    del prim["attributes"][ext["strokes"]["directionAttribute"]]
+    ext["strokes"]["fallbackFaces"] = 10 ** 6
     broken = tmp_path / "broken.gltf"
     doc.save(broken)
     codes = {m["code"] for m in validate_file(broken, khronos=False)["issues"]["messages"] if m["severity"] == 0}
     assert {"BAKER_TAM_TONES_NOT_INCREASING", "BAKER_TAM_LEVEL_SIZE", "BAKER_TAM_TEXCOORD_MISSING",
-            "BAKER_SCHEMA"} <= codes
+            "BAKER_TAM_DIRECTION_MISSING", "BAKER_TAM_FALLBACK_COUNT", "BAKER_SCHEMA"} <= codes
 
 
 def test_usd_carries_the_parameters(baked, tmp_path):
