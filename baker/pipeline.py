@@ -46,6 +46,10 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
     resolved = {name: resolve_options(name, options.get(name)) for name in order}
     memory.check_bake(asset, order, resolved, max_memory)
     asset.doc.attribute_layout = layout
+    asset.doc.vertex_index_members = registry.vertex_index_members()
+    from baker.validate import referenced_accessors
+
+    asset.doc.accessor_references = referenced_accessors
     techniques = registry.bakes()
     for name in order:
         techniques[name].bake(asset, resolved[name], seed=seed, progress=progress or QUIET)

@@ -40,8 +40,9 @@ def bakes() -> dict[str, Technique]:
 
 
 def bake_order(names) -> list[str]:
-    """``names`` with every technique after those it ``requires`` (when both are asked for), ties in name order:
-    a deterministic order whatever order the user listed them in."""
+    """``names`` with every technique after those it ``requires`` (when both are asked for), and those that split
+    vertices (``Technique.splits_vertices``) after those that do not, ties in name order: a deterministic order
+    whatever order the user listed them in."""
     known = bakes()
     unknown = [n for n in names if n not in known]
     if unknown:
@@ -50,6 +51,7 @@ def bake_order(names) -> list[str]:
     done, order = set(), []
     while len(order) < len(wanted):
         ready = [n for n in wanted if n not in done and all(r in done or r not in wanted for r in known[n].requires)]
+        ready.sort(key=lambda n: known[n].splits_vertices)  # stable: ties stay in name order
         if not ready:
             raise RuntimeError(f"techniques {', '.join(n for n in wanted if n not in done)} require each other")
         order.append(ready[0])
@@ -61,6 +63,16 @@ def bake_order(names) -> list[str]:
 def extensions() -> dict:
     """Every extension object by its glTF name (imports the extension modules)."""
     return {ext.NAME: ext for t in techniques().values() for ext in t.extension_objects()}
+
+
+def vertex_index_members() -> dict:
+    """Primitive extension name -> the members of it that are accessors of vertex indices (each extension
+    module's ``VERTEX_INDEX_MEMBERS``, {extension name: members}): what a bake that splits a primitive's vertices
+    must renumber."""
+    members = {}
+    for ext in extensions().values():
+        members.update(getattr(ext, "VERTEX_INDEX_MEMBERS", {}))
+    return members
 
 
 def usd_primitive_hooks() -> dict:

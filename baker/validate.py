@@ -401,7 +401,67 @@ def extension_references(gltf: dict, found: dict) -> set:
                 for key, collection in (("source", "images"), ("sampler", "samplers")):
                     if isinstance(textures[i].get(key), int):
                         pointers.add(f"/{collection}/{textures[i][key]}")
+    # a material extension's texCoord (BAKER_tonal_art_map's stroke set) makes that TEXCOORD set of the primitives
+    # drawn with the material used
+    sets = {}
+    for name, places in found.items():
+        for parts, value in places:
+            if len(parts) == 2 and parts[0] == "materials":
+                sets.setdefault(parts[1], set()).update(_texcoords(value))
+    for m, mesh in enumerate(gltf.get("meshes") if isinstance(gltf.get("meshes"), list) else []):
+        for p, prim in enumerate(mesh.get("primitives") or [] if isinstance(mesh, dict) else []):
+            if isinstance(prim, dict) and prim.get("material") in sets:
+                pointers.update(f"/meshes/{m}/primitives/{p}/attributes/TEXCOORD_{n}" for n in sets[prim["material"]])
     return pointers
+
+
+def _texcoords(value) -> set:
+    """Every integer ``texCoord`` in an extension object."""
+    if isinstance(value, dict):
+        out = {value["texCoord"]} if isinstance(value.get("texCoord"), int) else set()
+        for key, item in value.items():
+            if key != "texCoord":
+                out |= _texcoords(item)
+        return out
+    if isinstance(value, list):
+        return set().union(*(_texcoords(item) for item in value)) if value else set()
+    return set()
+
+
+ACCESSOR_FREE_PLACES = ("materials", "textures", "images", "samplers", "cameras", "asset")
+
+
+def referenced_accessors(gltf: dict) -> set | None:
+    """Indices of every accessor something in ``gltf`` refers to: the core's (primitive attributes, indices and
+    morph targets, skins, animation samplers) and those of the extensions baker knows (their schemas, as
+    :func:`extension_references` reads them); None when an extension baker does not know sits where accessors are
+    referenced (a mesh, primitive, node, scene or the root), so nobody can say. What may drop or reuse an accessor
+    nothing uses (:func:`baker.texels.targets.reindex_primitive`) asks this."""
+    used = set()
+    for mesh in gltf.get("meshes") or []:
+        for prim in mesh.get("primitives") or []:
+            used.update(v for v in (prim.get("attributes") or {}).values() if isinstance(v, int))
+            if isinstance(prim.get("indices"), int):
+                used.add(prim["indices"])
+            for target in prim.get("targets") or []:
+                used.update(v for v in target.values() if isinstance(v, int))
+    for skin in gltf.get("skins") or []:
+        if isinstance(skin.get("inverseBindMatrices"), int):
+            used.add(skin["inverseBindMatrices"])
+    for animation in gltf.get("animations") or []:
+        for sampler in animation.get("samplers") or []:
+            used.update(sampler.get(k) for k in ("input", "output") if isinstance(sampler.get(k), int))
+    known = {ext for ext, _ in schema_registry()} | set(semantic_checks()) | set(_also_checked())
+    found: dict = {}
+    for parts, name, value in _walk_extensions(gltf):
+        if name in known:
+            found.setdefault(name, []).append((parts, value))
+        elif not parts or parts[0] not in ACCESSOR_FREE_PLACES:
+            return None
+    for ptr in extension_references(gltf, found):
+        if ptr.startswith("/accessors/"):
+            used.add(int(ptr.rsplit("/", 1)[1]))
+    return used
 
 
 def _merge_khronos(report: dict, issues: Issues, validated: set, referenced: set = frozenset()) -> None:

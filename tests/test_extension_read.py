@@ -94,7 +94,9 @@ def test_tam(baked):
     assert got.layout == "packed" and got.tones == tuple(ext["tones"]) and got.scale == ext["scale"]
     assert [lv.size for lv in got.levels] == [lv["size"] for lv in ext["levels"]] and len(got.levels) == 2
     assert [lv.textures for lv in got.levels] == [tuple(t["index"] for t in lv["textures"]) for lv in ext["levels"]]
-    assert got.texcoord == 0 and got.style == ext["style"] and got.parameters["seed"] == ext["seed"]
+    assert got.texcoord == ext["texCoord"] == 1  # the stroke set, after the mesh's own TEXCOORD_0
+    assert got.style == ext["style"] and got.parameters["seed"] == ext["seed"] and "strokes" not in got.parameters
+    assert got.strokes == ext["strokes"] and got.strokes["directionAttribute"] == "_HATCHING_DIRECTION"
 
 
 def test_fur(baked):

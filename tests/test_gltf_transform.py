@@ -287,6 +287,15 @@ def test_every_extension_survives_the_pipeline(assets, tmp_path):
             assert vol_after["thicknessFactor"] == pytest.approx(vol_before["thicknessFactor"])
             assert _texture(after, vol_after["thicknessTexture"]["index"]) == \
                 _texture(before, vol_before["thicknessTexture"]["index"])
+            # the TAM's stroke parameterization (a UV set of its own, issue 38): the same set, per triangle corner
+            tam_before = mat_before["extensions"]["BAKER_tonal_art_map"]
+            tam_after = mat_after["extensions"]["BAKER_tonal_art_map"]
+            assert tam_before["texCoord"] == tam_after["texCoord"] == 1 and tam_after["strokes"] == tam_before["strokes"]
+            corners = []
+            for doc in (before, after):
+                prim = doc.json["meshes"][0]["primitives"][0]
+                corners.append(doc.accessor(prim["attributes"]["TEXCOORD_1"])[doc.accessor(prim["indices"])])
+            assert np.array_equal(*corners)
     expected = {"BAKER_thickness", "BAKER_curvature", "BAKER_skin_lut", "BAKER_edges", EDGE_VISIBILITY,
                 "BAKER_tonal_art_map", "BAKER_toon_ramp", "BAKER_fur", "BAKER_hair", "BAKER_caustics",
                 "BAKER_hair_cards", "BAKER_normal_blur"}

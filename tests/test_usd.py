@@ -377,7 +377,8 @@ def test_every_bake_on_spot_gives_clean_usd(tmp_path):
     # factors and other non-index fields stay attributes; the UV set and attribute names become USD names
     assert prim.GetAttribute("baker:thickness:thicknessFactor").Get() == pytest.approx(
         material["extensions"]["BAKER_thickness"]["thicknessFactor"])
-    assert prim.GetAttribute("baker:tonal_art_map:texCoordPrimvar").Get() == "st"
+    # the TAM reads its stroke parameterization, the set after spot's own UVs
+    assert prim.GetAttribute("baker:tonal_art_map:texCoordPrimvar").Get() == "st1"
     assert prim.GetAttribute("baker:thickness:attribute").Get() == "primvars:baker:thickness"
     mesh = _only_mesh(stage)
     assert UsdGeom.PrimvarsAPI(mesh.GetPrim()).GetPrimvar("baker:thickness")

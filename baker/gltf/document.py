@@ -65,6 +65,13 @@ class GltfDocument:
     allow_outside: object = field(default=None, repr=False, compare=False)
     # how extension writers lay out custom vertex attributes (baker.gltf.vertex_attributes), set by the bake
     attribute_layout: AttributeLayout = field(default_factory=AttributeLayout, repr=False, compare=False)
+    # primitive extension name -> its members that are accessors of vertex indices, renumbered when a bake splits
+    # the vertices (baker.texels.targets.renumber_extension_vertices); the pipeline sets it from the registry
+    vertex_index_members: dict = field(default_factory=dict, repr=False, compare=False)
+    # gltf JSON -> the accessor indices something refers to, or None when that cannot be known
+    # (baker.validate.referenced_accessors, set by the pipeline): lets a re-indexing bake reuse the slots of the
+    # accessors it replaced instead of leaving them unused in the file; None: it leaves them
+    accessor_references: object = field(default=None, repr=False, compare=False)
 
     # ------------------------------------------------------------------ reading
     @classmethod

@@ -205,11 +205,42 @@ def _existing_uv_texels(geoms: list[PrimitiveGeometry], size: int):
     return usable_layout_texels(np.concatenate(uvs), np.concatenate(faces), size=min(size, 1024))
 
 
+def renumber_extension_vertices(doc, prim: dict, vmap: np.ndarray) -> list:
+    """Primitive extensions' accessors of vertex indices (``doc.vertex_index_members``, which the pipeline fills from
+    :func:`baker.registry.vertex_index_members`: BAKER_edges' edge list, the edge-visibility extension's silhouette
+    mates) renumbered after a split where new vertex k copies old vertex ``vmap[k]``: each old vertex becomes its
+    first copy (same position, so the same edge), the type's maximum ('no vertex') stays that, in the type the new
+    vertex count needs. Returns (old accessor, new accessor) pairs."""
+    extensions = prim.get("extensions") or {}
+    members = doc.vertex_index_members
+    replaced = []
+    if not any(name in members for name in extensions):
+        return replaced
+    first_copy = np.full(int(vmap.max()) + 1 if len(vmap) else 0, -1, np.int64)
+    first_copy[vmap[::-1]] = np.arange(len(vmap))[::-1]  # reversed: the lowest k wins
+    dtype = np.uint16 if len(vmap) < 0xFFFF else np.uint32
+    for name, ext in extensions.items():
+        for member in members.get(name, ()):
+            if not isinstance(ext.get(member), int):
+                continue
+            old = doc.accessor(ext[member])
+            none = old == np.iinfo(old.dtype).max
+            found = first_copy[np.where(none | (old >= len(first_copy)), 0, old)]
+            new = np.where(none | (found < 0), np.iinfo(dtype).max, found).astype(dtype)
+            old_index = ext[member]
+            ext[member] = doc.add_accessor(new, target=None, name=doc.json["accessors"][ext[member]].get("name"))
+            replaced.append((old_index, ext[member]))
+    return replaced
+
+
 def reindex_primitive(asset: Asset, mesh: int, primitive: int, vmap: np.ndarray, faces: np.ndarray,
                        uv: np.ndarray, texcoord: int) -> None:
-    """Split the primitive's vertices as xatlas did and add the new UVs as TEXCOORD_<texcoord>."""
+    """Split the primitive's vertices (new vertex k copies old vertex ``vmap[k]``: every attribute, morph target and
+    primitive extension's vertex indices follow) and add the new UVs as TEXCOORD_<texcoord>."""
     doc = asset.doc
     prim = asset.meshes()[mesh]["primitives"][primitive]
+    replaced = []  # (old accessor, the new one in its place)
+    first_new = len(doc.json.get("accessors") or [])
 
     def copy_attributes(attributes: dict) -> dict:
         out = {}
@@ -218,6 +249,7 @@ def reindex_primitive(asset: Asset, mesh: int, primitive: int, vmap: np.ndarray,
             data = doc.accessor(acc)[vmap]
             out[key] = doc.add_accessor(data, normalized=bool(info.get("normalized")),
                                         min_max=key == "POSITION" or "min" in info)
+            replaced.append((acc, out[key]))
         return out
 
     prim["attributes"] = copy_attributes(prim["attributes"])
@@ -230,6 +262,108 @@ def reindex_primitive(asset: Asset, mesh: int, primitive: int, vmap: np.ndarray,
         prim["attributes"].setdefault(f"TEXCOORD_{k}", new_uv)
     prim["attributes"][f"TEXCOORD_{texcoord}"] = new_uv
     index_type = np.uint16 if len(vmap) < 65535 else np.uint32
+    old_indices = prim.get("indices")
     prim["indices"] = doc.add_accessor(faces.reshape(-1).astype(index_type), target=TARGET_ELEMENT_ARRAY_BUFFER)
+    if isinstance(old_indices, int):
+        replaced.append((old_indices, prim["indices"]))
+    replaced += renumber_extension_vertices(doc, prim, vmap)
+    reclaim_accessors(asset, mesh, primitive, replaced, first_new)
     if prim.get("mode", 4) != 4:
         prim["mode"] = 4  # strips and fans came back from xatlas as a triangle list
+
+
+def reclaim_accessors(asset: Asset, mesh: int, primitive: int, replaced: list, first_new: int) -> None:
+    """After a re-index, put each new accessor in the slot of the one it replaced when nothing refers to that one
+    any more (``doc.accessor_references``; nothing is reclaimed when it is unset or cannot tell), and drop the
+    replaced data's buffer views and bytes: the file holds the split primitive once, not beside its old arrays. The
+    accessors this re-index appended are the tail of the list from ``first_new``; those left there close up. The
+    primitive's decoded
+    geometry is dropped from the asset's cache (its accessor indices may be the old ones again)."""
+    doc = asset.doc
+    gltf = doc.json
+    accessors = gltf["accessors"]
+    tail = first_new
+    new_ids = list(range(tail, len(accessors)))
+    if doc.accessor_references is None or not replaced or any(new < tail for _, new in replaced):
+        return
+    used = doc.accessor_references(gltf)
+    if used is None:
+        return
+    final, taken = {}, set()
+    for old, new in replaced:
+        if old < tail and old not in used and old not in taken and new not in final:
+            final[new] = old
+            taken.add(old)
+    if not final:
+        return
+    views = [accessors[old].get("bufferView") for old in taken]
+    for new, old in final.items():
+        accessors[old] = accessors[new]
+    rest = [n for n in new_ids if n not in final]
+    final.update({n: tail + i for i, n in enumerate(rest)})
+    accessors[tail:] = [accessors[n] for n in rest]
+    prim = asset.meshes()[mesh]["primitives"][primitive]
+    for attributes in [prim["attributes"], *prim.get("targets", [])]:
+        for key, acc in attributes.items():
+            attributes[key] = final.get(acc, acc)
+    prim["indices"] = final.get(prim["indices"], prim["indices"])
+    for name, ext in (prim.get("extensions") or {}).items():
+        for member in doc.vertex_index_members.get(name, ()):
+            if isinstance(ext.get(member), int):
+                ext[member] = final.get(ext[member], ext[member])
+    for view in sorted({v for v in views if isinstance(v, int)}, reverse=True):
+        drop_buffer_view(doc, view)
+    for key in [k for k in asset.cache if k[0] == "primitive" and k[1][:2] == (mesh, primitive)
+                or k[0] == "welded" and any(part[:2] == (mesh, primitive) for part in k[1])]:
+        del asset.cache[key]
+
+
+def drop_buffer_view(doc, view: int) -> None:
+    """Remove buffer view ``view`` and its bytes when nothing refers to it (no accessor, sparse accessor or image,
+    no extension with a ``bufferView``) and no other view overlaps them; later views move down (by a multiple of
+    4 bytes: alignment kept) and the references renumber. Otherwise leave it."""
+    gltf = doc.json
+    views = gltf.get("bufferViews") or []
+    if not 0 <= view < len(views) or views[view].get("buffer", 0) != 0 or '"bufferView"' in _extensions_text(gltf):
+        return
+    holders = [a for a in gltf.get("accessors") or []] + [i for i in gltf.get("images") or []]
+    sparse = [part for a in gltf.get("accessors") or [] for part in
+              ((a.get("sparse") or {}).get("indices") or {}, (a.get("sparse") or {}).get("values") or {})]
+    if any(h.get("bufferView") == view for h in holders + sparse):
+        return
+    start = views[view].get("byteOffset", 0)
+    end = start + views[view]["byteLength"]
+    end += (-(end - start)) % 4
+    if any(i != view and v.get("buffer", 0) == 0 and v.get("byteOffset", 0) < end and
+           v.get("byteOffset", 0) + v["byteLength"] > start for i, v in enumerate(views)):
+        return
+    end = min(end, len(doc.bin))
+    del doc.bin[start:end]
+    for v in views:
+        if v.get("buffer", 0) == 0 and v.get("byteOffset", 0) >= end:
+            v["byteOffset"] = v["byteOffset"] - (end - start)
+    del views[view]
+    for h in holders + sparse:
+        if isinstance(h.get("bufferView"), int) and h["bufferView"] > view:
+            h["bufferView"] -= 1
+
+
+def _extensions_text(gltf: dict) -> str:
+    """Every ``extensions`` object of the document as JSON text (to look for buffer view references in them)."""
+    import json
+
+    found = []
+
+    def walk(node):
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if key == "extensions" and isinstance(value, dict):
+                    found.append(value)
+                else:
+                    walk(value)
+        elif isinstance(node, list):
+            for value in node:
+                walk(value)
+
+    walk({k: v for k, v in gltf.items() if k not in ("accessors", "bufferViews")})
+    return json.dumps(found, default=str)

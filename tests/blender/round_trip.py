@@ -37,6 +37,7 @@ for obj in bpy.data.objects:
             row[name + "_positions"] = [co[list(pair)].tolist() for pair in pairs[values]]
         row["edges"] = count
         row["attributes"] = {a.name: a.data_type for a in mesh.attributes if a.name.startswith("_")}
+        row["uv_layers"] = [layer.name for layer in mesh.uv_layers]
     if obj.type == "CURVES":
         row["curves"] = len(obj.data.curves)
         row["points"] = len(obj.data.points)
@@ -46,7 +47,9 @@ for mat in bpy.data.materials:
     tree = mat.node_tree
     groups = sorted(n.node_tree.name for n in tree.nodes if n.type == "GROUP") if tree else []
     mixes = {n.name: n.inputs["Fac"].default_value for n in tree.nodes if n.type == "MIX_SHADER"} if tree else {}
-    report["materials"][mat.name] = {"groups": groups, "mixes": mixes, "payload": "baker_gltf" in mat}
+    uv_maps = {n.name: n.uv_map for n in tree.nodes if n.type == "UVMAP"} if tree else {}
+    report["materials"][mat.name] = {"groups": groups, "mixes": mixes, "payload": "baker_gltf" in mat,
+                                     "uv_maps": uv_maps}
 bpy.ops.export_scene.gltf(filepath=target, export_format="GLB")
 with open(report_path, "w") as f:
     json.dump(report, f, indent=1)

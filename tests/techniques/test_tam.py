@@ -21,6 +21,7 @@ import trimesh
 from jsonschema import Draft202012Validator
 
 import baker
+from baker import readers
 from baker.techniques.tam.options import TamOptions
 from baker.techniques.tam.kernel import generate_tam, rasterize_stroke, tone_targets
 from baker.cli import main as cli
@@ -288,12 +289,13 @@ def test_bad_options_exit_2(tmp_path, capsys, flags):
 # ---------------------------------------------------------------------------------------------------------- glTF
 @pytest.fixture(scope="module")
 def baked(tmp_path_factory):
-    """An icosphere without UVs (unwrapped by the bake) baked with tam + toon, written, and read back."""
+    """An icosphere without UVs (unwrapped by the bake) baked with tam + toon, written, and read back; the angle of
+    the standalone map (a stroke-parameterized bake defaults to 0), so the images compare."""
     folder = tmp_path_factory.mktemp("baked")
     source = folder / "sphere.glb"
     trimesh.creation.icosphere(subdivisions=3, radius=1.0).export(str(source))
     asset = baker.bake(str(source), bakes=["tam", "toon"], seed=5,
-                       options={"tam": {"style": "cross-hatching"}, "toon": {"bands": 4, "softness": 0.2}})
+                       options={"tam": {"style": "cross-hatching", "angle": 30.0}, "toon": {"bands": 4, "softness": 0.2}})
     out = folder / "sphere_tam.glb"
     save(asset, out)
     return out
@@ -330,7 +332,22 @@ def test_spot_baked_with_volume_tam_validates(tmp_path):
     assert report["issues"]["numErrors"] == 0, report["issues"]["messages"]
     assert_khronos_clean(out)
     ext = GltfDocument.load(out).json["materials"][0]["extensions"]["BAKER_tonal_art_map"]
-    assert ext["texCoord"] == 0 and [lv["size"] for lv in ext["levels"]] == [64, 32, 16]
+    # spot's own UVs stay TEXCOORD_0; the stroke parameterization is the next set
+    assert ext["texCoord"] == 1 and [lv["size"] for lv in ext["levels"]] == [64, 32, 16]
+    assert ext["strokes"]["directionAttribute"] == "_HATCHING_DIRECTION" and ext["scale"] == 64.0
+
+
+def test_strokes_uv_keeps_the_meshs_own_uvs(tmp_path):
+    out = tmp_path / "spot.glb"
+    plain = readers.read(SPOT).doc
+    save(baker.bake(str(SPOT), bakes=["tam"], options={"tam": {"size": 32, "levels": 1, "strokes": "uv"}}), out)
+    doc = GltfDocument.load(out)
+    ext = doc.json["materials"][0]["extensions"]["BAKER_tonal_art_map"]
+    assert ext["texCoord"] == 0 and "strokes" not in ext and ext["angle"] == pytest.approx(math.radians(30.0))
+    prim, before = doc.json["meshes"][0]["primitives"][0], plain.json["meshes"][0]["primitives"][0]
+    assert set(prim["attributes"]) == set(before["attributes"])  # no new set, no direction, no split
+    assert doc.json["accessors"][prim["attributes"]["POSITION"]]["count"] == \
+        plain.json["accessors"][before["attributes"]["POSITION"]]["count"]
 
 
 def test_validator_catches_broken_tam(baked, tmp_path):
@@ -342,11 +359,13 @@ def test_validator_catches_broken_tam(baked, tmp_path):
     prim = doc.json["meshes"][0]["primitives"][0]
     del prim["attributes"][f"TEXCOORD_{ext['texCoord']}"]
     ext["texCoord"] = 7
+    del prim["attributes"][ext["strokes"]["directionAttribute"]]
+    ext["strokes"]["fallbackFaces"] = 10 ** 6
     broken = tmp_path / "broken.gltf"
     doc.save(broken)
     codes = {m["code"] for m in validate_file(broken, khronos=False)["issues"]["messages"] if m["severity"] == 0}
     assert {"BAKER_TAM_TONES_NOT_INCREASING", "BAKER_TAM_LEVEL_SIZE", "BAKER_TAM_TEXCOORD_MISSING",
-            "BAKER_SCHEMA"} <= codes
+            "BAKER_TAM_DIRECTION_MISSING", "BAKER_TAM_FALLBACK_COUNT", "BAKER_SCHEMA"} <= codes
 
 
 def test_usd_carries_the_parameters(baked, tmp_path):

@@ -32,6 +32,9 @@ NAME = "BAKER_edges"
 EXT_VISIBILITY = "EXT_mesh_primitive_edge_visibility"
 # other extensions this module's ``check`` validates, with their accessor-valued properties (for baker validate)
 ALSO_CHECKS = {EXT_VISIBILITY: ("visibility", "silhouetteMates")}
+# primitive extension -> its accessors of vertex indices (the maximum of their type: no vertex), renumbered when a
+# bake splits the vertices (baker.registry.vertex_index_members)
+VERTEX_INDEX_MEMBERS = {NAME: ("edges", "oppositeVertices"), EXT_VISIBILITY: ("silhouetteMates",)}
 OUTLINE_NORMAL = "_OUTLINE_NORMAL"
 FIN_ATTRIBUTES = ("_FIN_V0", "_FIN_V1", "_FIN_V2", "_FIN_V3", "_FIN_CORNER", "_FIN_FLAGS")
 # name -> the data's width (baker.registry); the fur fins share the _FIN_ names

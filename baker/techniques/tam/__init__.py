@@ -10,4 +10,6 @@ TECHNIQUE = Technique(
     extensions=("baker.techniques.tam.extension",),
     panels="baker.techniques.tam.panel:PANELS",
     commands=('baker.techniques.tam.command',),
+    requires=('curvature',),  # reads its principal directions when both are baked
+    splits_vertices=True,  # the stroke TEXCOORD set (--tam-strokes field)
 )

@@ -33,6 +33,9 @@ if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
     from baker.techniques.tam.kernel import TonalArtMap
 
 NAME = "BAKER_tonal_art_map"
+# the stroke chart's u axis per vertex (unit, mesh space), written with the stroke TEXCOORD set (issue 38)
+DIRECTION_ATTRIBUTE = "_HATCHING_DIRECTION"
+VERTEX_ATTRIBUTES = {DIRECTION_ATTRIBUTE: 3}  # name -> the data's width (baker.registry)
 LEVEL_ORDER = "finestFirst"
 # the level images of one mip chain: REPEAT (the TAM tiles), trilinear across the custom levels
 TAM_SAMPLER = {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}
@@ -58,7 +61,7 @@ def tam_parameters(tam: TonalArtMap) -> dict:
         "levelOrder": LEVEL_ORDER,
         "strokeWidth": float(o.stroke_width),
         "strokeLength": [float(v) for v in o.stroke_length],
-        "angle": math.radians(o.angle),
+        "angle": math.radians(o.stroke_angle),
         "angleJitter": math.radians(o.angle_jitter),
         "curvature": float(o.curvature),
         "candidates": int(o.candidates),
@@ -90,9 +93,11 @@ def write_tam_textures(doc: GltfDocument, tam: TonalArtMap) -> list[list[int]]:
 
 
 def write_tam(doc: GltfDocument, material: int, tam: TonalArtMap, textures: list, *, scale: float,
-              texcoord: int = 0) -> dict:
+              texcoord: int = 0, strokes: dict | None = None) -> dict:
     """Write ``BAKER_tonal_art_map`` on ``material``, pointing at ``textures`` (from :func:`write_tam_textures`;
-    materials sharing one TAM share them). Returns the extension object."""
+    materials sharing one TAM share them). ``strokes``: the stroke parameterization's record when ``texcoord``
+    is its set (``texelsPerUnit``, ``field``, ``patches``, ``fallbackFaces``, ``singularities``). Returns the
+    extension object."""
     ext = tam_parameters(tam)
     levels = []
     for size, indices in zip(tam.sizes, textures):
@@ -103,6 +108,8 @@ def write_tam(doc: GltfDocument, material: int, tam: TonalArtMap, textures: list
     ext["levels"] = levels
     ext["scale"] = float(scale)
     ext["texCoord"] = int(texcoord)
+    if strokes is not None:
+        ext["strokes"] = {"directionAttribute": DIRECTION_ATTRIBUTE, **strokes}
     return doc.set_material_extension(material, NAME, ext)
 
 
@@ -201,10 +208,32 @@ def check(doc: GltfDocument, places: list, issues) -> None:
         users = list(primitives_using(gltf, material))
         if not users:
             issues.info("BAKER_TAM_UNUSED", "no triangle primitive uses this material", ptr)
+        strokes = ext.get("strokes") if isinstance(ext.get("strokes"), dict) else None
+        direction = strokes.get("directionAttribute") if strokes else None
+        faces = 0
         for m, p, prim in users:
-            if f"TEXCOORD_{texcoord}" not in (prim.get("attributes") or {}):
+            attributes = prim.get("attributes") or {}
+            if f"TEXCOORD_{texcoord}" not in attributes:
                 issues.error("BAKER_TAM_TEXCOORD_MISSING", f"the TAM reads TEXCOORD_{texcoord} but this primitive has "
                              "none", pointer("meshes", m, "primitives", p, "attributes"))
+            if isinstance(direction, str) and direction not in attributes:
+                issues.error("BAKER_TAM_DIRECTION_MISSING", f"strokes.directionAttribute names {direction} but this "
+                             "primitive has none", pointer("meshes", m, "primitives", p, "attributes"))
+            faces += triangle_count(gltf, prim)
+        if strokes and users and isinstance(strokes.get("fallbackFaces"), int) and strokes["fallbackFaces"] > faces:
+            issues.error("BAKER_TAM_FALLBACK_COUNT", f"{strokes['fallbackFaces']} fallback faces of {faces} "
+                         "triangles", ptr + "/strokes/fallbackFaces")
+
+
+def triangle_count(gltf: dict, prim: dict) -> int:
+    """Triangles of a primitive from its accessor counts (indices, else POSITION), as the mode makes them."""
+    accessors = gltf.get("accessors") or []
+    source = prim.get("indices", (prim.get("attributes") or {}).get("POSITION"))
+    count = accessors[source].get("count", 0) if isinstance(source, int) and 0 <= source < len(accessors) else 0
+    if not isinstance(count, int):
+        return 0
+    mode = prim.get("mode", 4)
+    return count // 3 if mode == 4 else max(count - 2, 0)
 
 
 # ---------------------------------------------------------------------------------------------------------- reading back
@@ -229,6 +258,7 @@ class TamMaterial:
     style: str | None = None
     level_order: str = LEVEL_ORDER
     parameters: dict | None = None  # the stroke parameters (tam_parameters: angles in radians)
+    strokes: dict | None = None  # the stroke parameterization's record when ``texcoord`` is its set (issue 38)
 
 
 def read(doc: GltfDocument, material: int) -> TamMaterial | None:
@@ -238,8 +268,8 @@ def read(doc: GltfDocument, material: int) -> TamMaterial | None:
         return None
     levels = tuple(TamLevel(int(lv["size"]), tuple(int(t["index"]) for t in lv["textures"]) if "textures" in lv
                             else (int(lv["texture"]["index"]),)) for lv in ext["levels"])
-    skip = {"layout", "tones", "levels", "scale", "texCoord", "style", "levelOrder"}
+    skip = {"layout", "tones", "levels", "scale", "texCoord", "style", "levelOrder", "strokes"}
     return TamMaterial(layout=ext.get("layout", "packed"), tones=tuple(float(t) for t in ext["tones"]),
                        levels=levels, scale=float(ext["scale"]), texcoord=int(ext.get("texCoord", 0)),
                        style=ext.get("style"), level_order=ext.get("levelOrder", LEVEL_ORDER),
-                       parameters={k: v for k, v in ext.items() if k not in skip})
+                       parameters={k: v for k, v in ext.items() if k not in skip}, strokes=ext.get("strokes"))

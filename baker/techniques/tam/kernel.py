@@ -368,7 +368,7 @@ def generate_tam(options: TamOptions = TamOptions(), seed: int = 0) -> TonalArtM
     style = STYLES.index(options.style)
     width = float(options.stroke_width)
     len_lo, len_hi = (float(v) for v in options.stroke_length)
-    angle = math.radians(options.angle)
+    angle = math.radians(options.stroke_angle)
     jitter = math.radians(options.angle_jitter)
     cross_angle = math.radians(options.cross_angle)
     out = np.empty((4096, 5), np.float64)  # the stroke table; doubled whenever a fill runs out of rows

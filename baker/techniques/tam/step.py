@@ -1,9 +1,18 @@
 """Wire the TAM generator to an Asset: one TAM, attached to every material as ``BAKER_tonal_art_map``.
 
-The TAM tiles, so any UV set works, overlapping or not: a material whose primitives all have ``TEXCOORD_0`` uses
-it; otherwise its primitives are unwrapped with xatlas into a new set (as the texture bakes do). The tiling rate
-``scale`` (finest-level texels per UV unit) defaults to one tile across about 1/6 of the mesh's bounding-box
-diagonal, measured through the UV set's own texel density (world area / UV area). The standalone ``baker tam -o
+``--tam-strokes field`` (the default): the TAM is applied through a new TEXCOORD set of lapped, field-aligned
+patches (:mod:`baker.techniques.tam.strokes`), at a uniform ``scale`` finest-level texels per mesh unit (default:
+one tile across about 1/6 of the covered primitives' bounding-box diagonal); the set counts tiles, so the
+extension's ``scale`` is the finest size. Splitting vertices, tam runs after every bake that does not
+(``Technique.splits_vertices``).
+
+``--tam-strokes uv``: the TAM tiles, so any UV set works, overlapping or not: a material whose primitives all have
+``TEXCOORD_0`` uses it; otherwise its primitives are unwrapped with xatlas into a new set (as the texture bakes
+do). The tiling rate ``scale`` (finest-level texels per UV unit) defaults to one tile across about 1/6 of the
+mesh's bounding-box diagonal, measured through the UV set's own texel density (world area / UV area).
+
+Either way a material without ``TEXCOORD_0`` gets the shared unwrap first, so the stroke set lands at the same
+index whether or not a texture bake ran. The standalone ``baker tam -o
 DIR`` (:func:`run_tam`) writes the TAM to a folder instead.
 """
 from __future__ import annotations
@@ -46,30 +55,57 @@ def auto_scale(geoms: list, texcoord: int, size: int) -> float:
     return float(tiles * size)
 
 
+def strokes_density(asset: Asset, groups: dict, size: int) -> float:
+    """Finest-level texels per mesh unit so that one tile spans ~1/TILES_PER_DIAGONAL of the bounding diagonal of
+    the primitives ``groups`` covers (``--tam-strokes field`` without ``--tam-scale``)."""
+    points = np.concatenate([asset.primitive(m, p).positions for members in groups.values() for m, p in members])
+    diagonal = float(np.linalg.norm(points.max(0) - points.min(0)))
+    return size * TILES_PER_DIAGONAL / diagonal if diagonal > 0 else float(size)
+
+
 def run(asset: Asset, options: TamOptions, seed: int = 0, progress: Progress = QUIET) -> None:
     try:
         check_options(options)
     except ValueError as exc:
         raise BakerError(asset.source, str(exc)) from None
     doc = asset.doc
+    options = options.for_bake()
     with progress.task("tonal art map", 1) as advance:
         tam = generate_tam(options, seed=seed)
         advance(1)
-    textures = None
+    groups = {}
     for material, members in asset.material_groups().items():
-        geoms = [asset.primitive(m, p) for m, p in members]
-        keep = [i for i, g in enumerate(geoms) if len(g.faces)]
-        if not keep:
+        members = [(m, p) for m, p in members if len(asset.primitive(m, p).faces)]
+        if not members:
             continue
-        members, geoms = [members[i] for i in keep], [geoms[i] for i in keep]
-        if all(0 in g.texcoords for g in geoms):
-            texcoord = 0
-        else:  # no UVs to tile along: unwrap, as the texture bakes do
-            texcoord, _ = unwrap_material(asset, material, members, seed)
-            geoms = [asset.primitive(m, p) for m, p in members]
+        if not all(0 in asset.primitive(m, p).texcoords for m, p in members):
+            # no UVs to tile along (uv) or to keep as TEXCOORD_0 beside the strokes (field): the layout the texture
+            # bakes, fur and tam share, made once per asset whichever runs first, so the stroke set's index does
+            # not depend on which other bakes ran
+            unwrap_material(asset, material, members, seed)
+        groups[material] = members
+    if not groups:
+        return
+    textures = ext.write_tam_textures(doc, tam)
+    if options.strokes == "field":
+        from baker.techniques.tam.strokes import bake_strokes
+
+        density = options.scale if options.scale is not None else strokes_density(asset, groups, options.size)
+        with progress.task("tam strokes", 1) as advance:
+            made = bake_strokes(asset, groups, density, options.size, options.combing)
+            advance(1)
+        for material, strokes in made.items():
+            record = {"texelsPerUnit": float(density), "field": strokes.field,
+                      "patches": len(strokes.patches), "fallbackFaces": strokes.fallback_faces,
+                      "singularities": strokes.singular_faces}
+            # the coordinates count tiles: one finest level of texels per coordinate unit
+            ext.write_tam(doc, material, tam, textures, scale=float(options.size), texcoord=strokes.texcoord,
+                          strokes=record)
+        return
+    for material, members in groups.items():
+        geoms = [asset.primitive(m, p) for m, p in members]
+        texcoord = 0 if all(0 in g.texcoords for g in geoms) else unwrap_material(asset, material, members, seed)[0]
         scale = options.scale if options.scale is not None else auto_scale(geoms, texcoord, options.size)
-        if textures is None:
-            textures = ext.write_tam_textures(doc, tam)
         ext.write_tam(doc, material, tam, textures, scale=scale, texcoord=texcoord)
 
 

@@ -293,6 +293,7 @@ finalDiffuse = bakerDiffuse;
 		if (onOutgoing) outgoing += `
 {
 let bakerUv = v_bakerUv;
+let bakerTamUv = ${p.tam?.tamUv ?? 'v_bakerUv'};
 let bakerNormal = normalW;
 let bakerKeyLight = baker_key_light(viewDirectionW);
 var bakerColor = finalColor.rgb;

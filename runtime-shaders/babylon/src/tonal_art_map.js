@@ -2,7 +2,7 @@
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { BaseTexture } from '@babylonjs/core/Materials/Textures/baseTexture.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
-import { BAKER_TONAL_ART_MAP, descriptorUniforms, partModule, uploadMipLevels } from './common.js';
+import { BAKER_TONAL_ART_MAP, descriptorUniforms, loadedPrimitives, partModule, setAttribute, uploadMipLevels } from './common.js';
 import { surfaceExtension } from './surface.js';
 
 async function decodeImage(loader, textureIndex) {
@@ -75,9 +75,23 @@ export const BakerTonalArtMapExtension = surfaceExtension('tam', BAKER_TONAL_ART
 		console.warn('@baker/babylon: BAKER_tonal_art_map: only the packed layout is drawn by this extension');
 		return null;
 	}
+	// the UV set it tiles over: TEXCOORD_0 is the surface's own `uv`; another (baker's stroke parameterization) goes
+	// on every mesh drawn with the material as vertex data `bakerTamUv`, carried to the stage as BAKER_TAM_UV
+	const texCoord = ext.texCoord ?? 0;
+	if (texCoord) {
+		const name = `TEXCOORD_${texCoord}`;
+		for (const other of loadedPrimitives(this.loader)) {
+			if (other.primitive.material === primitive.material && other.mesh.material === mesh.material &&
+				!(await setAttribute(this.loader, other.mesh, other.primitive, name, 'bakerTamUv'))) return null;
+		}
+	}
 	const [t012, t345] = await tamTextures(this.loader, ext);
+	const module = partModule(this, 'hatching', material);
 	return {
-		...partModule(this, 'hatching', material),
+		...(module.glsl ? { glsl: (texCoord ? '#define BAKER_TAM_UV v_bakerTamUv\n' : '') + module.glsl } : module),
+		attributes: texCoord ? [['bakerTamUv', 2]] : [],
+		// the varying the WGSL stage reads as bakerTamUv (WGSL has no preprocessor for the GLSL stage's define)
+		tamUv: texCoord ? 'v_bakerTamUv' : null,
 		samplers: { u_bakerTam012: t012, u_bakerTam345: t345 },
 		...descriptorUniforms('tonal_art_map', ext),
 	};

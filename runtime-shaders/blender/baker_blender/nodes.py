@@ -119,6 +119,14 @@ def diffuse_normals_group():
     return group
 
 
+def uv_map_names(mat) -> list:
+    """The UV maps of the first mesh using ``mat``, in TEXCOORD order (the glTF importer adds TEXCOORD_n as the
+    n-th UV map)."""
+    users = [obj for obj in bpy.data.objects
+             if obj.type == "MESH" and any(m is not None and m.name == mat.name for m in obj.data.materials)]
+    return [layer.name for layer in users[0].data.uv_layers] if users else []
+
+
 def add_diffuse_normals(mat, blur: dict, textures: dict, location) -> None:
     """The three diffuse maps (Non-Color) through tangent-space Normal Map nodes on the normal texture's UV set into
     ``BAKER Diffuse Normals``, mixed in after the surface at factor 0 (raise it to see the blurred diffuse)."""
@@ -136,9 +144,7 @@ def add_diffuse_normals(mat, blur: dict, textures: dict, location) -> None:
         else:
             node.inputs["Base Color"].default_value = base.default_value
     texcoord = int(blur["diffuseNormalTextures"][0].get("texCoord", 0))
-    users = [obj for obj in bpy.data.objects
-             if obj.type == "MESH" and any(m is not None and m.name == mat.name for m in obj.data.materials)]
-    uv_maps = [layer.name for layer in users[0].data.uv_layers] if users else []
+    uv_maps = uv_map_names(mat)
     for i, (info, socket) in enumerate(zip(blur["diffuseNormalTextures"], ("Normal Red", "Normal Green", "Normal Blue"))):
         image = image_node(tree, textures, info, (x - 500, y - 260 * i))
         if image is None:
@@ -512,11 +518,22 @@ def add_material_groups(mat, exts: dict, textures: dict) -> None:
         emission.location = (x + 300, y)
         first = next((im for im in images if im is not None), None)
         if first is not None:
-            coords = tree.nodes.new("ShaderNodeTexCoord")
+            # the UV map of TEXCOORD_<texCoord> by name (baker's stroke parameterization is a set of its own), in
+            # tile units: uv * scale / levels[0].size, as baker_tam_coord
+            coords = tree.nodes.new("ShaderNodeUVMap")
+            coords.name = coords.label = "BAKER Hatching UV"
             coords.location = (x - 400, y - 200)
+            uv_maps = uv_map_names(mat)
+            texcoord = int(tam.get("texCoord", 0))
+            if texcoord < len(uv_maps):
+                coords.uv_map = uv_maps[texcoord]
+            size = float(tam["levels"][0].get("size", 0) or 0)
+            tile = float(tam.get("scale", size)) / size if size > 0 else 1.0
+            vector = coords.outputs["UV"] if tile == 1.0 else vector_scale(tree, coords.outputs["UV"], tile)
             for im in images:
                 if im is not None:
-                    tree.links.new(coords.outputs["UV"], im.inputs["Vector"])
+                    im.extension = "REPEAT"
+                    tree.links.new(vector, im.inputs["Vector"])
             tree.links.new(first.outputs["Color"], emission.inputs["Color"])
         mix_in(mat, "hatching", emission.outputs[0], (x + 500, y))
         mat["baker_tam_tones"] = tones

@@ -62,7 +62,7 @@ export class BakerSurface {
 		const varyings = attributes.map(([name, type]) => `varying ${type} vBaker${name};`).join('\n') +
 			(world ? '\nvarying vec3 vBakerWorldPosition;' : '');
 		shader.vertexShader = shader.vertexShader
-			.replace('#include <common>', `#include <common>\n${attributes.map(([n, t]) => `attribute ${t} ${n};`).join('\n')}
+			.replace('#include <common>', `#include <common>\n${attributes.map(declareAttribute).join('\n')}
 ${varyings}\nvarying vec2 vBakerUv;`)
 			.replace('#include <begin_vertex>', `#include <begin_vertex>\n${attributes.map(([n, , v]) => `vBaker${n} = ${v ?? n};`).join('\n')}
 vBakerUv = uv;`)
@@ -148,6 +148,12 @@ ${shared}`;
 			.replace('#include <lights_fragment_end>', `#include <lights_fragment_end>\n${lights}`)
 			.replace('#include <opaque_fragment>', `${outgoing}\n#include <opaque_fragment>`);
 	}
+}
+
+// a part's vertex attribute; three declares uv1..uv3 itself when a map reads them (USE_UV<n>)
+function declareAttribute([name, type]) {
+	const declaration = `attribute ${type} ${name};`;
+	return /^uv[1-3]$/.test(name) ? `#ifndef USE_${name.toUpperCase()}\n${declaration}\n#endif` : declaration;
 }
 
 // the world position of the vertex (after skinning and morphs), for techniques projected in world space

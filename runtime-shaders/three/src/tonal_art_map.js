@@ -25,6 +25,12 @@ export async function tamTextures(parser, ext) {
 	});
 }
 
+/** The three.js attribute GLTFLoader gives TEXCOORD_<n> (n > 0), or null for TEXCOORD_0 (the surface's `uv`). */
+export function tamUvAttribute(texCoord) {
+	if (!texCoord) return null;
+	return texCoord <= 3 ? `uv${texCoord}` : `texcoord_${texCoord}`;
+}
+
 /** GLTFLoader plugin for BAKER_tonal_art_map (packed layout): hatching strokes, tone from the key light. */
 export const BakerTonalArtMapPlugin = surfacePlugin('tam', async function (ext) {
 	if ((ext.layout ?? 'packed') !== 'packed' || !ext.levels?.length) {
@@ -33,8 +39,13 @@ export const BakerTonalArtMapPlugin = surfacePlugin('tam', async function (ext) 
 	}
 	const [t012, t345] = await tamTextures(this.parser, ext);
 	const { uniforms, types } = descriptorUniforms('tonal_art_map', ext);
+	// the UV set it tiles over: TEXCOORD_0 is the surface's own `uv`; another (baker's stroke parameterization) is the
+	// attribute GLTFLoader names uv1..uv3 (texcoord_<n> beyond), carried to the stage as BAKER_TAM_UV
+	const set = tamUvAttribute(ext.texCoord ?? 0);
 	return {
-		glsl: requireShader(this.shaders, 'hatching'),
+		glsl: (set ? `#define BAKER_TAM_UV vBaker${set}\n` : '') + requireShader(this.shaders, 'hatching'),
+		attributes: set ? [[set, 'vec2']] : [],
+		uvAttribute: set, // the node material (./node/surface.js) reads the set directly
 		uniforms: { ...uniforms, u_bakerTam012: { value: t012 }, u_bakerTam345: { value: t345 } },
 		types: { ...types, u_bakerTam012: 'sampler2D', u_bakerTam345: 'sampler2D' },
 	};

@@ -204,7 +204,9 @@ export function surfaceNodes(surface, m) {
 		let out = color;
 		if (p.tam) {
 			const finest = u('u_bakerTamFinestSize');
-			const tile = m.fn('hatching', 'baker_tam_coord')(vertexUv, u('u_bakerTamScale'), finest);
+			// baker's stroke parameterization when the TAM names one (texCoord > 0), else TEXCOORD_0
+			const tamUv = p.tam.uvAttribute ? attribute(p.tam.uvAttribute, 'vec2') : vertexUv;
+			const tile = m.fn('hatching', 'baker_tam_coord')(tamUv, u('u_bakerTamScale'), finest);
 			const lod = m.fn('hatching', 'baker_tam_lod')(dFdx(tile), dFdy(tile), finest, u('u_bakerTamLevels'));
 			const darkness = m.fn('hatching', 'baker_hatching_darkness')(normalView, key, 1.0);
 			const weights = (which) => m.custom('hatching',
