@@ -409,7 +409,8 @@ def extension_references(gltf: dict, found: dict) -> set:
             if len(parts) == 2 and parts[0] == "materials":
                 sets.setdefault(parts[1], set()).update(_texcoords(value))
     for m, mesh in enumerate(gltf.get("meshes") if isinstance(gltf.get("meshes"), list) else []):
-        for p, prim in enumerate(mesh.get("primitives") or [] if isinstance(mesh, dict) else []):
+        primitives = mesh.get("primitives") if isinstance(mesh, dict) else None
+        for p, prim in enumerate(primitives if isinstance(primitives, list) else []):  # a type error is reported
             if isinstance(prim, dict) and prim.get("material") in sets:
                 pointers.update(f"/meshes/{m}/primitives/{p}/attributes/TEXCOORD_{n}" for n in sets[prim["material"]])
     return pointers

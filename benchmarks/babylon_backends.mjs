@@ -3,17 +3,11 @@
 // (window.__bakerTimings: load, ready = materials compiled and two frames drawn) and the mean time of `frames`
 // frames each waited for on the device (WebGL2: a 1-pixel readPixels; WebGPU: queue.onSubmittedWorkDone()).
 //   node benchmarks/babylon_backends.mjs JOBS.json     JOBS: [{url, width, height, frames}]; one JSON line per job
-import { createRequire } from 'node:module';
 import { readFileSync } from 'node:fs';
+import { launchChromium } from '../examples/viewer/test/chromium.mjs';
 
-const require = createRequire(new URL('../examples/viewer/package.json', import.meta.url));
-const { chromium } = require('playwright-core');
 const jobs = JSON.parse(readFileSync(process.argv[2], 'utf8'));
-const browser = await chromium.launch({
-	executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-	args: ['--headless', '--no-sandbox', '--no-first-run', '--disable-background-networking', '--disable-component-update',
-		'--disable-sync', '--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-vulkan=swiftshader', '--use-angle=swiftshader'],
-});
+const browser = await launchChromium({ webgpu: true });
 try {
 	for (const job of jobs) {
 		const page = await browser.newPage({ viewport: { width: job.width, height: job.height }, deviceScaleFactor: 1 });

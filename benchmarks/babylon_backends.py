@@ -12,30 +12,21 @@ medians are reported with the WebGPU / WebGL2 ratio (ratios are what a shared ma
 from __future__ import annotations
 
 import argparse
-import functools
-import http.server
 import json
 import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
-import threading
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 VIEWER = ROOT / "examples" / "viewer"
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "tests"))
 
-OPTIONS = {
-    "thickness": {"rays": 8, "per_texel": False},
-    "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
-    "edges": {"fins": True},
-    "tam": {"size": 64, "levels": 3},
-    "fur": {"shells": 4, "texture_size": 64},
-    "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
-                 "fade_distance": 2.0},
-}
+from browser import SPOT, SPOT_PAGE_OPTIONS, serve  # noqa: E402
+
 ENGINES = {"babylon": "WebGL2 Engine (peer)", "babylon-webgpu": "WebGPUEngine"}
 
 
@@ -58,13 +49,9 @@ def main() -> None:
         root = Path(tmp)
         shutil.copy(VIEWER / "index.html", root / "index.html")
         shutil.copytree(VIEWER / "dist", root / "dist")
-        save(baker.bake(ROOT / "examples" / "spot" / "spot.obj", bakes=tuple(registry.bakes()), options=OPTIONS),
-             root / "spot_all.glb")
-        handler = functools.partial(type("Quiet", (http.server.SimpleHTTPRequestHandler,),
-                                         {"log_message": lambda *a: None}), directory=str(root))
-        server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-        threading.Thread(target=server.serve_forever, daemon=True).start()
-        url = f"http://127.0.0.1:{server.server_address[1]}/index.html?hud=0&src=spot_all.glb&time=1.3"
+        save(baker.bake(SPOT, bakes=tuple(registry.bakes()), options=SPOT_PAGE_OPTIONS), root / "spot_all.glb")
+        server, base = serve(root)
+        url = f"{base}/index.html?hud=0&src=spot_all.glb&time=1.3"
         jobs = [{"url": f"{url}&engine={engine}", "width": width, "height": height, "frames": args.frames}
                 for _ in range(args.repeat) for engine in ENGINES]
         (root / "jobs.json").write_text(json.dumps(jobs))

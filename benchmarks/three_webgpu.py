@@ -26,17 +26,8 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 import baker  # noqa: E402
 from baker.pipeline import save  # noqa: E402
-from browser import SPOT, VIEWER, build_viewer, serve  # noqa: E402
+from browser import SPOT_PAGE_OPTIONS, SPOT, VIEWER, build_viewer, serve  # noqa: E402
 
-OPTIONS = {
-    "thickness": {"rays": 8, "per_texel": False},
-    "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
-    "edges": {"fins": True},
-    "tam": {"size": 64, "levels": 3},
-    "fur": {"shells": 4, "texture_size": 64},
-    "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
-                 "fade_distance": 2.0},
-}
 PAGES = {"WebGLRenderer (GLSL, onBeforeCompile)": "", "WebGPURenderer, WebGPU (TSL + WGSL)": "&engine=three-webgpu",
          "WebGPURenderer, WebGL2 backend (TSL + GLSL)": "&engine=three-webgpu&backend=webgl2"}
 
@@ -52,7 +43,7 @@ def main():
         root = Path(folder)
         build_viewer(root, ("viewer.js", "three_webgpu.js"))
         asset = baker.bake(SPOT, bakes=("thickness", "curvature", "skin", "edges", "tam", "toon", "fur", "caustics"),
-                           options=OPTIONS)
+                           options=SPOT_PAGE_OPTIONS)
         save(asset, root / "spot_all.glb")
         server, url = serve(root)
         try:

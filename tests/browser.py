@@ -27,6 +27,20 @@ VIEWER = ROOT / "examples" / "viewer"
 SPOT = ROOT / "examples" / "spot" / "spot.obj"
 FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
 BACKGROUND_RGB = (0x29, 0x2B, 0x30)  # the viewer's clear colour, 8-bit sRGB
+# the spot with every bake of a surface or geometry technique on one mesh, small enough for a software renderer: the
+# asset of the engine-comparison tests and the page benchmarks
+SPOT_PAGE_OPTIONS = {
+    "thickness": {"rays": 8, "per_texel": False},
+    # a 5 mm cow (mesh unit = 5 mm): curvatures where the skin LUT departs from Lambert (at 1 m it changes no pixel;
+    # at 20 mm only 32 pixels of the dielectric spot since mesh files get a non-metallic material)
+    "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
+    "edges": {"fins": True},
+    "tam": {"size": 64, "levels": 3},
+    "fur": {"shells": 4, "texture_size": 64},
+    # the spot (y -0.74 to 0.95) under 2.5 m of water, within the fade: the caustics show on all of it
+    "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
+                 "fade_distance": 2.0},
+}
 DEFAULT_OFF = {"curvature", "wireframe"}  # debug views, off until asked for (both plugins)
 
 
@@ -68,11 +82,13 @@ def serve(root):
     return server, f"http://127.0.0.1:{server.server_address[1]}"
 
 
-def shoot(jobs, spec):
-    """Run the screenshot driver on `jobs` (written to the file `spec`): one info dict per job."""
+def shoot(jobs, spec, webgpu: bool = False, timeout: float = 600):
+    """Run the screenshot driver on `jobs` (written to the file `spec`): one info dict per job. webgpu: in a browser
+    with a WebGPU adapter (examples/viewer/test/chromium.mjs), for the ?engine=*-webgpu pages."""
     spec.write_text(json.dumps(jobs))
+    env = {**os.environ, "BAKER_WEBGPU": "1" if webgpu else "0"}
     result = subprocess.run(["node", str(VIEWER / "test" / "screenshots.mjs"), str(spec)],
-                            capture_output=True, text=True, timeout=600, cwd=VIEWER)
+                            capture_output=True, text=True, timeout=timeout, cwd=VIEWER, env=env)
     assert result.returncode == 0, result.stderr
     infos = [json.loads(line) for line in result.stdout.strip().splitlines() if line.startswith("{")]
     assert len(infos) == len(jobs), result.stdout

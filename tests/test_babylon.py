@@ -2,7 +2,9 @@
 a `baker text` label and a `baker hair` groom load in the viewer's Babylon.js page (examples/viewer, ?engine=babylon)
 with no console errors or WebGL warnings, report the same techniques as the three.js page, and draw each technique
 like the three.js plugin does with the same camera and lights (the Babylon.js page takes the three.js page's view).
-With the extensions switched off (?baker=0) the assets render as plain glTF PBR in both engines, alike.
+With the extensions switched off (?baker=0) the assets render as plain glTF PBR in both engines, alike. All of this
+twice: on the WebGL2 pages (three.js WebGLRenderer, Babylon.js Engine) and on the WebGPU pages (?engine=three-webgpu:
+WebGPURenderer; ?engine=babylon-webgpu: WebGPUEngine) in a Chromium with a WebGPU adapter, with the same bounds.
 
 How frames are compared (both 400 x 300, sRGB; measured on this machine, SwiftShader):
 - the frame: mean absolute difference (max over RGB) over the pixels either engine covers, after a Gaussian blur of
@@ -34,7 +36,7 @@ import baker
 from baker import registry
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, CARD_DISTANCES, ROOT, SPOT, assert_cards_alpha_tested, assert_caustics_move,
+from browser import (SPOT_PAGE_OPTIONS, BACKGROUND_RGB, CARD_DISTANCES, ROOT, SPOT, assert_cards_alpha_tested, assert_caustics_move,
                      build_viewer, bump_detail, gltf_json, require_tools, serve, shoot, techniques_in,
                      terminator_redness, write_blender_head, write_blurred_sphere, write_caustic_floor,
                      write_hair_cards, write_label_and_groom, write_small_suzanne)
@@ -49,20 +51,11 @@ DELTA_RATIO = 0.35
 BLUR = 1.5
 
 
-OPTIONS = {
-    "thickness": {"rays": 8, "per_texel": False},
-    # a 5 mm cow (mesh unit = 5 mm): curvatures where the skin LUT departs from Lambert (at 1 m it changes no pixel;
-    # at 20 mm only 32 pixels of the dielectric spot since mesh files get a non-metallic material)
-    "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
-    "edges": {"fins": True},
-    "tam": {"size": 64, "levels": 3},
-    "fur": {"shells": 4, "texture_size": 64},
-    # the spot (y -0.74 to 0.95) under 2.5 m of water, within the fade: the caustics show on all of it
-    "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
-                 "fade_distance": 2.0},
-}
 # both pages hold the caustic animation at this time of its loop (?time=), so their frames compare
 TIME = "&time=1.3"
+# the two engines' pages per backend: WebGL2 (WebGLRenderer, Babylon's Engine) and WebGPU (three.js's
+# WebGPURenderer, Babylon's WebGPUEngine: issue 37's three.js-vs-Babylon comparison, in a browser with an adapter)
+BACKENDS = {"webgl2": ("", "&engine=babylon"), "webgpu": ("&engine=three-webgpu", "&engine=babylon-webgpu")}
 
 
 @pytest.fixture(scope="module")
@@ -70,14 +63,14 @@ def site(tmp_path_factory):
     """The built viewer (both engines' bundles) and the three assets, served on the loopback."""
     require_tools("babylon", ("playwright-core", "three", "@babylonjs/core", "@babylonjs/loaders"))
     root = tmp_path_factory.mktemp("babylon-site")
-    build_viewer(root, ("viewer.js", "babylon.js"))
+    build_viewer(root, ("viewer.js", "babylon.js", "three_webgpu.js"))
     bakes = tuple(registry.bakes())  # every bake there is
-    asset = baker.bake(SPOT, bakes=bakes, options=OPTIONS)
+    asset = baker.bake(SPOT, bakes=bakes, options=SPOT_PAGE_OPTIONS)
     save(asset, root / "spot_all.glb")
     write_label_and_groom(root)
     assets = {name: techniques_in(gltf_json(root / name)) for name in ("spot_all.glb", "label.glb", "hair.glb")}
     server, url = serve(root)
-    yield {"url": url, "assets": assets, "bakes": bakes, "root": root, "options": OPTIONS}
+    yield {"url": url, "assets": assets, "bakes": bakes, "root": root, "options": SPOT_PAGE_OPTIONS}
     server.shutdown()
 
 
@@ -130,11 +123,14 @@ def _loads(url, techniques):
     return loads
 
 
-@pytest.fixture(scope="module")
-def frames(site, tmp_path_factory):
+@pytest.fixture(scope="module", params=list(BACKENDS))
+def frames(site, tmp_path_factory, request):
     """Every load on the three.js page (a shot per technique alone, every technique off, the defaults, and ?baker=0),
-    then the same on the Babylon.js page with the three.js page's view (camera and light directions) of that load."""
-    out = tmp_path_factory.mktemp("babylon-frames")
+    then the same on the Babylon.js page with the three.js page's view (camera and light directions) of that load;
+    on both engines' WebGL2 pages, then on both engines' WebGPU pages."""
+    backend = request.param
+    three_page, babylon_page = BACKENDS[backend]
+    out = tmp_path_factory.mktemp(f"babylon-frames-{backend}")
     loads, baselines = [], {}
     for name, techniques in site["assets"].items():
         for query, baseline, shots in _loads(name, techniques):
@@ -145,17 +141,19 @@ def frames(site, tmp_path_factory):
     def jobs(engine, views=None):
         out_jobs = []
         for i, (name, url, shots) in enumerate(loads):
-            if views is not None:
-                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            url += three_page if views is None else f"{babylon_page}&view={urllib.parse.quote(json.dumps(views[i]))}"
             out_jobs.append({"url": url, "width": W, "height": H, "shots": [
                 {"on": on, "off": off, "out": str(out / f"{engine}-{name}-{key}.png")} for key, on, off in shots]})
         return out_jobs
 
-    three = shoot(jobs("three"), out / "three.json")
-    babylon = shoot(jobs("babylon", [info["view"] for info in three]), out / "babylon.json")
+    webgpu = backend == "webgpu"
+    three = shoot(jobs("three"), out / "three.json", webgpu=webgpu, timeout=1200)
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), out / "babylon.json", webgpu=webgpu,
+                    timeout=1200)
     images = {(engine, name, key): _image(out / f"{engine}-{name}-{key}.png")
               for engine in ("three", "babylon") for name, _, shots in loads for key, _, _ in shots}
-    return {"three": three, "babylon": babylon, "images": images, "loads": loads, "baselines": baselines}
+    return {"three": three, "babylon": babylon, "images": images, "loads": loads, "baselines": baselines,
+            "backend": backend}
 
 
 def test_babylon_loads_every_asset_without_errors(site, frames):
@@ -167,6 +165,7 @@ def test_babylon_loads_every_asset_without_errors(site, frames):
     for engine in ("three", "babylon"):
         for (name, url, _), info in zip(frames["loads"], frames[engine]):
             assert info["ready"] and not info["errors"] and not info["warnings"], (engine, info)
+            assert info["backend"] == frames["backend"], (engine, info)
             if "baker=0" in url:
                 assert info["techniques"] == [] and "no baked data found" in info["status"], (engine, info)
             else:
@@ -174,7 +173,7 @@ def test_babylon_loads_every_asset_without_errors(site, frames):
 
 
 def test_babylon_draws_each_technique_like_three(site, frames):
-    images = frames["images"]
+    images, backend = frames["images"], frames["backend"]
     failures, measured = [], {}
     for name, _, shots in frames["loads"]:
         for key, _, _ in shots:
@@ -198,8 +197,9 @@ def test_babylon_draws_each_technique_like_three(site, frames):
                     problem.append(f"change error {ratio:.2f} of the three.js change")
                 measured[(name, key)] = (round(mad * 255, 2), round(ssim, 3), round(ratio, 2))
             if problem:
-                failures.append(f"{name} {key}: {', '.join(problem)} (artifacts: {_keep(f'{name}-{key}', three, babylon)})")
-    print("measured (frame MAD x255, SSIM, change error):", measured)
+                failures.append(f"{name} {key}: {', '.join(problem)} "
+                                f"(artifacts: {_keep(f'{backend}-{name}-{key}', three, babylon)})")
+    print(backend, "measured (frame MAD x255, SSIM, change error):", measured)
     assert not failures, "\n".join(failures)
     assert {key for (_, key) in measured} == set().union(*site["assets"].values())
 

@@ -1,6 +1,6 @@
 """@baker/babylon on Babylon.js's WebGPUEngine (examples/viewer/?engine=babylon-webgpu) against the same page on its
 WebGL2 Engine (?engine=babylon), in one headless Chromium with a WebGPU adapter (SwiftShader on Vulkan:
-BAKER_WEBGPU=1 gives the driver the four flags; its WebGL2 pages draw through ANGLE's SwiftShader).
+shoot(webgpu=True) gives the driver the four flags; its WebGL2 pages draw through ANGLE's SwiftShader).
 
 The assets: the spot baked with every bake (translucency, skin, toon, hatching, fins, outline, wireframe, fur,
 caustics, curvature view), a `baker text` label (MSDF text), a `baker hair` groom (ribbons), hair cards and a
@@ -24,7 +24,7 @@ import baker
 from baker import registry
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, ROOT, SPOT, build_viewer, gltf_json, require_tools, serve, shoot,
+from browser import (SPOT_PAGE_OPTIONS, BACKGROUND_RGB, ROOT, SPOT, build_viewer, gltf_json, require_tools, serve, shoot,
                      techniques_in, write_blurred_sphere, write_hair_cards, write_label_and_groom)
 
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_babylon_webgpu"
@@ -36,15 +36,6 @@ TOLERANCE: dict[str, tuple[float, str]] = {}
 CHANGED = 4 / 255  # a pixel the technique changed
 CHANGED_PIXELS = 100
 
-OPTIONS = {
-    "thickness": {"rays": 8, "per_texel": False},
-    "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
-    "edges": {"fins": True},
-    "tam": {"size": 64, "levels": 3},
-    "fur": {"shells": 4, "texture_size": 64},
-    "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
-                 "fade_distance": 2.0},
-}
 TIME = "&time=1.3"  # the caustic animation held at one time of its loop, so the two backends' frames compare
 BACK_LIT = {"translucency"}  # lit from behind (the viewer's default with translucency), the others from the front
 ENGINES = ("babylon", "babylon-webgpu")
@@ -56,7 +47,7 @@ def site(tmp_path_factory):
     require_tools("babylon-webgpu", ("playwright-core", "@babylonjs/core", "@babylonjs/loaders"))
     root = tmp_path_factory.mktemp("babylon-webgpu-site")
     build_viewer(root, ("viewer.js", "babylon.js"))
-    save(baker.bake(SPOT, bakes=tuple(registry.bakes()), options=OPTIONS), root / "spot_all.glb")
+    save(baker.bake(SPOT, bakes=tuple(registry.bakes()), options=SPOT_PAGE_OPTIONS), root / "spot_all.glb")
     write_label_and_groom(root)
     names = ["spot_all.glb", "label.glb", "hair.glb", write_hair_cards(root), write_blurred_sphere(root)]
     assets = {name: techniques_in(gltf_json(root / name)) for name in names}
@@ -78,13 +69,6 @@ def _loads(name, techniques):
     if front:
         loads.append(("&off=backlight" if back else "", [("none-front", [], every)] + [alone(t) for t in front]))
     return loads
-
-
-def _shoot_webgpu(jobs, spec):
-    """tests/browser.py's shoot in a browser with a WebGPU adapter (the driver's BAKER_WEBGPU flags)."""
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("BAKER_WEBGPU", "1")
-        return shoot(jobs, spec)
 
 
 def _image(path):
@@ -113,7 +97,7 @@ def frames(site, tmp_path_factory):
         jobs.append({"url": f"{site['url']}/index.html?hud=0&src={name}&baker=0{TIME}&engine=babylon-webgpu",
                      "width": W, "height": H, "out": str(out / f"plain-{name}.png")})
         keys.append(("plain", name, ""))
-    infos = dict(zip(keys, _shoot_webgpu(jobs, out / "jobs.json")))
+    infos = dict(zip(keys, shoot(jobs, out / "jobs.json", webgpu=True)))
     images = {(engine, name, key): _image(out / f"{engine}-{name}-{key}.png")
               for engine in ENGINES for name, _, shots in loads for key, _, _ in shots}
     images.update({("plain", name, "plain"): _image(out / f"plain-{name}.png") for name in site["assets"]})
@@ -179,10 +163,9 @@ def test_extensions_off_on_webgpu_is_standard_pbr_and_differs(site, frames):
         assert any((np.abs(frame - plain).max(axis=2) > CHANGED).sum() >= CHANGED_PIXELS for frame in on), name
 
 
-def test_missing_webgpu_adapter_is_reported_not_a_blank_page(site, tmp_path, monkeypatch):
+def test_missing_webgpu_adapter_is_reported_not_a_blank_page(site, tmp_path):
     """A browser without the WebGPU flags (the driver's default: no adapter) says so on the page and in
     window.__bakerError; the page is never reported ready."""
-    monkeypatch.delenv("BAKER_WEBGPU", raising=False)
     [info] = shoot([{"url": f"{site['url']}/index.html?src=label.glb&engine=babylon-webgpu", "width": W, "height": H}],
                    tmp_path / "jobs.json")
     assert not info["ready"] and info["backend"] is None, info
@@ -197,7 +180,7 @@ def test_native_attribute_layout_draws_like_the_blender_layout_on_webgpu(site, f
     from scipy import ndimage
 
     native = "spot_native.glb"
-    save(baker.bake(SPOT, bakes=tuple(registry.bakes()), options=OPTIONS, attribute_layout="native"),
+    save(baker.bake(SPOT, bakes=tuple(registry.bakes()), options=SPOT_PAGE_OPTIONS, attribute_layout="native"),
          site["root"] / native)
     techniques = techniques_in(gltf_json(site["root"] / native))
     assert techniques == site["assets"]["spot_all.glb"]
@@ -205,7 +188,7 @@ def test_native_attribute_layout_draws_like_the_blender_layout_on_webgpu(site, f
     jobs = [{"url": f"{site['url']}/index.html?hud=0&src={native}{query}{TIME}&engine=babylon-webgpu",
              "width": W, "height": H, "shots": [{"on": on, "off": off, "out": str(tmp_path / f"{key}.png")}
                                                 for key, on, off in shots]} for query, shots in loads]
-    for info in _shoot_webgpu(jobs, tmp_path / "jobs.json"):
+    for info in shoot(jobs, tmp_path / "jobs.json", webgpu=True):
         assert info["ready"] and not info["errors"] and not info["warnings"] and info["backend"] == "webgpu", info
         assert set(info["techniques"]) == techniques, info
     blur = lambda image: ndimage.gaussian_filter(image, sigma=(1.5, 1.5, 0))  # noqa: E731

@@ -1,6 +1,6 @@
 """@baker/three on three.js's WebGPURenderer (runtime-shaders/three/src/node) in headless Chromium with WebGPU
 (SwiftShader on Vulkan: --enable-unsafe-webgpu --enable-features=Vulkan --use-vulkan=swiftshader
---use-angle=swiftshader, examples/viewer/test/webgpu_screenshots.mjs). The viewer's ?engine=three-webgpu page draws
+--use-angle=swiftshader, examples/viewer/test/screenshots.mjs with BAKER_WEBGPU=1). The viewer's ?engine=three-webgpu page draws
 every technique; the same page with &backend=webgl2 draws it on WebGPURenderer's WebGL2 backend, and the
 WebGLRenderer page (?engine=three, the onBeforeCompile / ShaderMaterial path) draws it as before. Per technique:
 
@@ -25,8 +25,6 @@ Failing frames leave their images in .cache/test-artifacts/test_three_webgpu/.
 """
 from __future__ import annotations
 
-import json
-import subprocess
 
 import numpy as np
 import pytest
@@ -36,7 +34,7 @@ from skimage.metrics import structural_similarity
 import baker
 from baker.gltf.images import read_image, write_image
 from baker.pipeline import save
-from browser import (ROOT, SPOT, VIEWER, build_viewer, gltf_json, require_tools, serve, shoot, techniques_in,
+from browser import (SPOT_PAGE_OPTIONS, ROOT, SPOT, VIEWER, build_viewer, gltf_json, require_tools, serve, shoot, techniques_in,
                      write_blender_head, write_blurred_sphere, write_hair_cards, write_label_and_groom)
 
 ARTIFACTS = ROOT / ".cache" / "test-artifacts" / "test_three_webgpu"
@@ -50,16 +48,6 @@ BLUR = 1.5
 TIME = "&time=1.3"  # the caustic animation held at one time on every page
 ENGINES = {"webgpu": "&engine=three-webgpu", "gl2": "&engine=three-webgpu&backend=webgl2", "webgl": ""}
 BACKENDS = {"webgpu": "webgpu", "gl2": "webgl2", "webgl": "webgl2"}
-# the spot with every bake of a surface or geometry technique on one mesh, small (test_babylon.py's options)
-OPTIONS = {
-    "thickness": {"rays": 8, "per_texel": False},
-    "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
-    "edges": {"fins": True},
-    "tam": {"size": 64, "levels": 3},
-    "fur": {"shells": 4, "texture_size": 64},
-    "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
-                 "fade_distance": 2.0},
-}
 BACK_LIT = {"translucency"}  # lit from behind (the viewer's default for it), the others from the front
 # the techniques whose frames are compared, where not all of an asset's: the Blender head (a real asset with vertex
 # TANGENTs: the blurred normals through its tangent frame) is in metres, where the skin LUT changes no pixel
@@ -73,7 +61,7 @@ def site(tmp_path_factory):
     root = tmp_path_factory.mktemp("three-webgpu-site")
     build_viewer(root, ("viewer.js", "three_webgpu.js"))
     asset = baker.bake(SPOT, bakes=("thickness", "curvature", "skin", "edges", "tam", "toon", "fur", "caustics"),
-                       options=OPTIONS)
+                       options=SPOT_PAGE_OPTIONS)
     save(asset, root / "spot_all.glb")
     write_label_and_groom(root)
     write_hair_cards(root)
@@ -102,17 +90,6 @@ def _loads(assets):
     return loads
 
 
-def _webgpu_shoot(jobs, spec):
-    """examples/viewer/test/webgpu_screenshots.mjs on `jobs`: one info dict per job."""
-    spec.write_text(json.dumps(jobs))
-    result = subprocess.run(["node", str(VIEWER / "test" / "webgpu_screenshots.mjs"), str(spec)], capture_output=True,
-                            text=True, timeout=1200, cwd=VIEWER)
-    assert result.returncode == 0, result.stderr
-    infos = [json.loads(line) for line in result.stdout.strip().splitlines() if line.startswith("{")]
-    assert len(infos) == len(jobs), result.stdout
-    return infos
-
-
 @pytest.fixture(scope="module")
 def frames(site, tmp_path_factory):
     """Every load on the three pages (WebGPU, its WebGL2 backend, WebGLRenderer) in one Chromium with WebGPU."""
@@ -125,7 +102,7 @@ def frames(site, tmp_path_factory):
                          "height": H, "shots": [{"on": on, "off": off, "out": str(out / f"{engine}-{i}-{t}.png")}
                                                 for t, on, off in shots]})
             keys.append((engine, i))
-    infos = dict(zip(keys, _webgpu_shoot(jobs, out / "jobs.json")))
+    infos = dict(zip(keys, shoot(jobs, out / "jobs.json", webgpu=True, timeout=1200)))
     images = {(engine, i, t): read_image(out / f"{engine}-{i}-{t}.png")[..., :3].astype(np.float32) / 255.0
               for engine in ENGINES for i, (_, _, shots) in enumerate(loads) for t, _, _ in shots}
     return {"loads": loads, "infos": infos, "images": images}

@@ -171,7 +171,8 @@ def baked_sphere(tmp_path_factory):
     mesh.visual = trimesh.visual.TextureVisuals(uv=uv)
     source = folder / "sphere.glb"
     mesh.export(str(source), include_normals=True)
-    asset = baker.bake(str(source), bakes=["tam"], seed=1, options={"tam": {"scale": TILES * 256}})
+    # the sphere's own planar UVs (--tam-strokes uv): their stretch towards the rim spans the TAM's levels
+    asset = baker.bake(str(source), bakes=["tam"], seed=1, options={"tam": {"scale": TILES * 256, "strokes": "uv"}})
     out = folder / "sphere_tam.glb"
     save(asset, out)
 

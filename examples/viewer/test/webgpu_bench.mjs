@@ -1,19 +1,14 @@
-// Shader compile and frame time of the three.js pages per backend, in one headless Chromium with WebGPU (the four
-// flags of webgpu_screenshots.mjs). Used by benchmarks/three_webgpu.py:
+// Shader compile and frame time of the three.js pages per backend, in one headless Chromium with WebGPU
+// (./chromium.mjs). Used by benchmarks/three_webgpu.py:
 //   node test/webgpu_bench.mjs JOBS.json   JOBS.json: [{"url", "width", "height", "frames"}, ...]
 // Prints one JSON line per job: {url, backend, loadMs (navigation to asset ready), firstFrameMs (the render call of
 // the first frame with the asset: shader generation, program linking or pipeline creation, the draw's submission),
 // frameMs (mean of `frames` frames after it, each waited for on the GPU)}.
 import { readFileSync } from 'node:fs';
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 
 const jobs = JSON.parse(readFileSync(process.argv[2], 'utf8'));
-const browser = await chromium.launch({
-	executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-	args: ['--headless', '--no-sandbox', '--disable-quic', '--no-first-run', '--disable-background-networking',
-		'--disable-component-update', '--disable-sync', '--enable-unsafe-webgpu', '--enable-features=Vulkan',
-		'--use-vulkan=swiftshader', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
+const browser = await launchChromium({ webgpu: true });
 try {
 	for (const job of jobs) {
 		const page = await browser.newPage({ viewport: { width: job.width || 320, height: job.height || 240 }, deviceScaleFactor: 1 });

@@ -1,6 +1,7 @@
 // Shared by the loader extensions of @baker/babylon: the extension names, the techniques (switches) and the
 // per-load registry of their on/off handlers, and what several extensions use (primitive -> mesh lookup, a generic
 // accessor reader for custom attributes, data textures, scene lights for ShaderMaterials). Import from index.js.
+import { Buffer } from '@babylonjs/core/Buffers/buffer.js';
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
@@ -154,8 +155,38 @@ export async function setAttribute(loader, mesh, primitive, name, kind) {
 	if (index === undefined) return 0;
 	const { data, size, count } = await readAccessor(loader, index);
 	if (count !== mesh.getTotalVertices()) throw new Error(`${name}: ${count} values for ${mesh.getTotalVertices()} vertices`);
-	mesh.setVerticesData(kind, data, false, size);
+	setPackedVerticesData(mesh, kind, data, size);
 	return size;
+}
+
+// baker's vertex data of each mesh, interleaved in one Buffer: WebGPU guarantees only 8 vertex buffers per pipeline
+// (maxVertexBuffers), and Babylon's WebGPUEngine binds one per Buffer, merging the attributes that follow each other
+// in one; the spot with every surface bake has 6 baker attributes beside position, normal and uv
+const PACKED = new WeakMap(); // mesh -> { parts: Map(kind -> { data, size }), buffer }
+
+function setPackedVerticesData(mesh, kind, data, size) {
+	let packed = PACKED.get(mesh);
+	if (!packed) PACKED.set(mesh, packed = { parts: new Map(), buffer: null });
+	packed.parts.set(kind, { data, size });
+	const count = mesh.getTotalVertices();
+	let stride = 0;
+	for (const part of packed.parts.values()) stride += part.size;
+	const interleaved = new Float32Array(count * stride);
+	let offset = 0;
+	for (const part of packed.parts.values()) {
+		for (let i = 0; i < count; i++) {
+			for (let k = 0; k < part.size; k++) interleaved[i * stride + offset + k] = part.data[i * part.size + k];
+		}
+		offset += part.size;
+	}
+	const buffer = new Buffer(mesh.getEngine(), interleaved, false, stride);
+	offset = 0;
+	for (const [name, part] of packed.parts) {
+		mesh.setVerticesBuffer(buffer.createVertexBuffer(name, offset, part.size));
+		offset += part.size;
+	}
+	packed.buffer?.dispose();
+	packed.buffer = buffer;
 }
 
 /** A glTF texture (textureInfo or index) as a Babylon texture holding data: linear, clamped unless `repeat`. */
