@@ -277,25 +277,39 @@ def test_native_attribute_layout_draws_like_the_blender_layout(site, tmp_path):
     assert not failures, "\n".join(failures)
 
 
-def test_babylon_draws_moving_caustics_like_three(site, tmp_path):
-    """The caustic floor (tests/browser.py) on the Babylon.js page with the three.js page's view: the caustic network
-    shows and moves between two times of the loop (assert_caustics_move), and its change from the floor without it
-    is the three.js plugin's within DELTA_RATIO."""
-    name = write_caustic_floor(site["root"])
-    shots = {"early": "&time=0.5", "late": "&time=2.5", "off": "&time=0.5&off=caustics"}
-    base = f"{site['url']}/index.html?hud=0&src={name}"
+def shoot_engines(backend, base, shots, tmp_path):
+    """The page `base` with each of `shots` ({key: query}) on the three.js page of `backend`, then on its Babylon.js
+    page with the three.js page's view of the same shot: (three.js infos, Babylon.js infos); frames in
+    tmp_path/{three,babylon}-{key}.png."""
+    three_page, babylon_page = BACKENDS[backend]
+    webgpu = backend == "webgpu"
 
     def jobs(engine, views=None):
         out = []
         for i, (key, query) in enumerate(shots.items()):
-            url = base + query
-            if views is not None:
-                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
+            url = base + query + (three_page if views is None else
+                                  f"{babylon_page}&view={urllib.parse.quote(json.dumps(views[i]))}")
             out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
         return out
 
-    three = shoot(jobs("three"), tmp_path / "three.json")
-    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    three = shoot(jobs("three"), tmp_path / "three.json", webgpu=webgpu, timeout=1200)
+    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json", webgpu=webgpu,
+                    timeout=1200)
+    for info in three + babylon:
+        assert info["backend"] == backend, info
+    return three, babylon
+
+
+@pytest.mark.parametrize("backend", list(BACKENDS))
+def test_babylon_draws_moving_caustics_like_three(site, tmp_path, backend):
+    """The caustic floor (tests/browser.py) on the Babylon.js page with the three.js page's view: the caustic network
+    shows and moves between two times of the loop (assert_caustics_move), and its change from the floor without it
+    is the three.js plugin's within DELTA_RATIO; on the WebGL2 and on the WebGPU pages."""
+    name = write_caustic_floor(site["root"])
+    shots = {"early": "&time=0.5", "late": "&time=2.5", "off": "&time=0.5&off=caustics"}
+    base = f"{site['url']}/index.html?hud=0&src={name}"
+
+    three, babylon = shoot_engines(backend, base, shots, tmp_path)
     for info in three + babylon:
         assert info["ready"] and not info["errors"] and not info["warnings"], info
         assert info["techniques"] == ["caustics"], info
@@ -307,31 +321,23 @@ def test_babylon_draws_moving_caustics_like_three(site, tmp_path):
         changed = np.abs(change_three).max(axis=2) > 2 / 255
         ratio = float(np.abs(change_babylon - change_three).max(axis=2)[changed].mean()
                       / np.abs(change_three).max(axis=2)[changed].mean())
-        print("caustics change error", key, round(ratio, 3))
+        print(backend, "caustics change error", key, round(ratio, 3))
         if ratio > DELTA_RATIO:
             raise AssertionError(f"{key}: change error {ratio:.2f} (artifacts: "
-                                 f"{_keep(f'caustics-{key}', images[('three', key)], images[('babylon', key)])})")
+                                 f"{_keep(f'caustics-{backend}-{key}', images[('three', key)], images[('babylon', key)])})")
 
 
-def test_babylon_draws_alpha_tested_hair_cards_like_three(site, tmp_path):
+@pytest.mark.parametrize("backend", list(BACKENDS))
+def test_babylon_draws_alpha_tested_hair_cards_like_three(site, tmp_path, backend):
     """The hair cards (tests/browser.py) on the Babylon.js page with the three.js page's views at three distances:
-    alpha-tested and shaded (assert_cards_alpha_tested), and the pixels the alpha test keeps are three.js's."""
+    alpha-tested and shaded (assert_cards_alpha_tested), and the pixels the alpha test keeps are three.js's; on the
+    WebGL2 and on the WebGPU pages."""
     name = write_hair_cards(site["root"])
     shots = {**{key: f"&distance={d}" for key, d in zip(("near", "middle", "far"), CARD_DISTANCES)},
              "off": "&off=cards"}
     base = f"{site['url']}/index.html?hud=0&src={name}"
 
-    def jobs(engine, views=None):
-        out = []
-        for i, (key, query) in enumerate(shots.items()):
-            url = base + query
-            if views is not None:
-                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
-            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
-        return out
-
-    three = shoot(jobs("three"), tmp_path / "three.json")
-    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    three, babylon = shoot_engines(backend, base, shots, tmp_path)
     for info in three + babylon:
         assert info["ready"] and not info["errors"] and not info["warnings"], info
         assert info["techniques"] == ["cards"], info
@@ -340,10 +346,10 @@ def test_babylon_draws_alpha_tested_hair_cards_like_three(site, tmp_path):
     background = np.array(BACKGROUND_RGB) / 255.0
     drawn = {e: np.abs(images[(e, "near")] - background).max(axis=2) > 0.03 for e in ("three", "babylon")}
     iou = (drawn["three"] & drawn["babylon"]).sum() / (drawn["three"] | drawn["babylon"]).sum()
-    print("cards coverage IoU three/babylon", round(float(iou), 3))
+    print(backend, "cards coverage IoU three/babylon", round(float(iou), 3))
     if iou < 0.8:
         raise AssertionError(f"coverage IoU {iou:.2f} (artifacts: "
-                             f"{_keep('cards', images[('three', 'near')], images[('babylon', 'near')])})")
+                             f"{_keep(f'cards-{backend}', images[('three', 'near')], images[('babylon', 'near')])})")
 
 
 def test_babylon_shades_diffuse_with_the_blurred_normals_like_three(site, tmp_path):
