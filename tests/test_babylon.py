@@ -292,9 +292,10 @@ def shoot_engines(backend, base, shots, tmp_path):
             out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
         return out
 
-    three = shoot(jobs("three"), tmp_path / "three.json", webgpu=webgpu, timeout=1200)
+    timeout = 1200 if webgpu else 600  # SwiftShader's WebGPU compiles pipelines slower
+    three = shoot(jobs("three"), tmp_path / "three.json", webgpu=webgpu, timeout=timeout)
     babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json", webgpu=webgpu,
-                    timeout=1200)
+                    timeout=timeout)
     for info in three + babylon:
         assert info["backend"] == backend, info
     return three, babylon
@@ -360,17 +361,7 @@ def test_babylon_shades_diffuse_with_the_blurred_normals_like_three(site, tmp_pa
     shots = {"on": "", "off": "&off=normalBlur"}
     base = f"{site['url']}/index.html?hud=0&src={name}"
 
-    def jobs(engine, views=None):
-        out = []
-        for i, (key, query) in enumerate(shots.items()):
-            url = base + query
-            if views is not None:
-                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
-            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
-        return out
-
-    three = shoot(jobs("three"), tmp_path / "three.json")
-    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    three, babylon = shoot_engines("webgl2", base, shots, tmp_path)
     for info in three + babylon:
         assert info["ready"] and not info["errors"] and not info["warnings"], info
         assert info["techniques"] == ["normalBlur"], info
@@ -417,17 +408,7 @@ def test_babylon_softens_the_blender_heads_diffuse(site, tmp_path):
     shots = {"on": "", "off": "&off=normalBlur"}
     base = f"{site['url']}/index.html?hud=0&src={name}"
 
-    def jobs(engine, views=None):
-        out = []
-        for i, (key, query) in enumerate(shots.items()):
-            url = base + query
-            if views is not None:
-                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
-            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
-        return out
-
-    three = shoot(jobs("three"), tmp_path / "three.json")
-    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    three, babylon = shoot_engines("webgl2", base, shots, tmp_path)
     for info in three + babylon:
         assert info["ready"] and not info["errors"] and not info["warnings"], info
         assert set(info["techniques"]) == {"normalBlur", "skin", "curvature"}, info
@@ -449,17 +430,7 @@ def test_skin_reddens_the_terminator_of_a_15mm_suzanne_in_both_engines(site, tmp
     shots = {"on": "", "off": "&off=skin"}
     base = f"{site['url']}/index.html?hud=0&src={name}"
 
-    def jobs(engine, views=None):
-        out = []
-        for i, (key, query) in enumerate(shots.items()):
-            url = base + query
-            if views is not None:
-                url += f"&engine=babylon&view={urllib.parse.quote(json.dumps(views[i]))}"
-            out.append({"url": url, "out": str(tmp_path / f"{engine}-{key}.png"), "width": W, "height": H})
-        return out
-
-    three = shoot(jobs("three"), tmp_path / "three.json")
-    babylon = shoot(jobs("babylon", [info["view"] for info in three]), tmp_path / "babylon.json")
+    three, babylon = shoot_engines("webgl2", base, shots, tmp_path)
     for info in three + babylon:
         assert info["ready"] and not info["errors"] and not info["warnings"], info
         assert set(info["techniques"]) == {"skin", "curvature"}, info

@@ -5,7 +5,7 @@
 // so one browser shoots both backends. Otherwise WebGL2 only, on ANGLE's SwiftShader.
 import { chromium } from 'playwright-core';
 
-export const WEBGPU_ARGS = ['--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-vulkan=swiftshader',
+const WEBGPU_ARGS = ['--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-vulkan=swiftshader',
 	'--use-angle=swiftshader', '--enable-unsafe-swiftshader'];
 const WEBGL_ARGS = ['--disable-gpu', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'];
 
