@@ -32,9 +32,9 @@ deterministic: no randomness, ties broken by face index.
 """
 from __future__ import annotations
 
-import heapq
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from baker.techniques.tam.direction_field import ROSY
@@ -153,66 +153,105 @@ def period_jumps(pairs, theta, face_normal, t1, t2):
     return (k.astype(np.int64) % 4), np.abs(difference - k * QUARTER)
 
 
-def grow_patches(pool, seeds, neighbours, face_normal, cone_cos, max_turn):
-    """Lapped patches over the ``pool`` faces (Praun et al. 2000, section 3): each seed not yet taken starts a
-    patch that grows nearest-first while the conditions of the module docstring hold. Returns (patch id per face,
-    -1 outside the pool; chosen quarter turn per face)."""
-    n = len(pool)
-    patch = [-1] * n
-    choice = [0] * n
-    in_pool = pool.tolist()
-    normal = face_normal.tolist()
+@numba.njit(cache=True, nogil=True, inline="always")
+def _before(d1, f1, d2, f2):
+    """Heap order: nearest first, ties by face index."""
+    return d1 < d2 or (d1 == d2 and f1 < f2)
+
+
+@numba.njit(cache=True, nogil=True)
+def _grow(pool, seeds, first, neighbour, jump, turn, step, normal, cone_cos, max_turn, patch, choice):
+    """The growing loop of :func:`grow_patches`; ``first``/``neighbour``/``jump``/``turn``/``step`` are the face
+    adjacency in CSR form. Fills ``patch`` and ``choice``; returns the number of patches."""
+    heap_distance = np.empty(len(pool) + 1)
+    heap_face = np.empty(len(pool) + 1, np.int64)
     count = 0
     for seed in seeds:
-        if not in_pool[seed] or patch[seed] >= 0:
+        if not pool[seed] or patch[seed] >= 0:
             continue
         pid = count
         count += 1
         patch[seed] = pid
-        sx, sy, sz = normal[seed]
-        heap = [(0.0, seed)]
-        while heap:
-            distance, f = heapq.heappop(heap)
-            for g, k, turn, step in neighbours[f]:
-                if patch[g] >= 0 or not in_pool[g] or turn > max_turn:
+        size = 1
+        heap_distance[0], heap_face[0] = 0.0, seed
+        while size:
+            distance, f = heap_distance[0], heap_face[0]
+            size -= 1
+            if size:  # the last element sifts down from the root
+                d, g = heap_distance[size], heap_face[size]
+                i = 0
+                while True:
+                    child = 2 * i + 1
+                    if child >= size:
+                        break
+                    if child + 1 < size and _before(heap_distance[child + 1], heap_face[child + 1],
+                                                    heap_distance[child], heap_face[child]):
+                        child += 1
+                    if not _before(heap_distance[child], heap_face[child], d, g):
+                        break
+                    heap_distance[i], heap_face[i] = heap_distance[child], heap_face[child]
+                    i = child
+                heap_distance[i], heap_face[i] = d, g
+            for e in range(first[f], first[f + 1]):
+                g = neighbour[e]
+                if patch[g] >= 0 or not pool[g] or turn[e] > max_turn:
                     continue
-                nx, ny, nz = normal[g]
-                if nx * sx + ny * sy + nz * sz < cone_cos:
+                if (normal[g, 0] * normal[seed, 0] + normal[g, 1] * normal[seed, 1]
+                        + normal[g, 2] * normal[seed, 2]) < cone_cos:
                     continue
-                c = (choice[f] + k) % 4
+                c = (choice[f] + jump[e]) % 4
                 agrees = True
-                for h, k_hg, turn_hg, _ in neighbours[g]:
-                    # neighbours[g] lists (h, k_gh): h continues g's c as c + k_gh, so g's c = h's - k_gh
-                    if patch[h] == pid and ((choice[h] - k_hg) % 4 != c or turn_hg > max_turn):
+                for e_g in range(first[g], first[g + 1]):
+                    # (h, k_gh): h continues g's c as c + k_gh, so g's c = h's - k_gh
+                    h = neighbour[e_g]
+                    if patch[h] == pid and ((choice[h] - jump[e_g]) % 4 != c or turn[e_g] > max_turn):
                         agrees = False
                         break
                 if not agrees:
                     continue
                 patch[g] = pid
                 choice[g] = c
-                heapq.heappush(heap, (distance + step, g))
-    absorb_small_patches(patch, choice, neighbours, max_turn)
-    return np.array(patch, np.int64), np.array(choice, np.int64)
+                # push (distance + step, g): sift up
+                d = distance + step[e]
+                i = size
+                size += 1
+                while i > 0:
+                    parent = (i - 1) // 2
+                    if not _before(d, g, heap_distance[parent], heap_face[parent]):
+                        break
+                    heap_distance[i], heap_face[i] = heap_distance[parent], heap_face[parent]
+                    i = parent
+                heap_distance[i], heap_face[i] = d, g
+    return count
 
 
-def absorb_small_patches(patch, choice, neighbours, max_turn, small=4, passes=4):
-    """Greedy growth leaves slivers between patches whose cones closed on them; a face of a patch of fewer than
-    ``small`` faces joins a neighbouring larger patch whose field it continues consistently (the cone is waived:
-    the solve and its check still decide whether it keeps the face). In place; face order, so deterministic."""
-    size = {}
-    for p in patch:
-        size[p] = size.get(p, 0) + 1
+@numba.njit(cache=True, nogil=True)
+def _absorb_small_patches(patch, choice, count, first, neighbour, jump, turn, max_turn, small, passes):
+    """See :func:`grow_patches`: a face of a patch of fewer than ``small`` faces joins a neighbouring larger patch
+    whose field it continues consistently; then the ids are renumbered densely in order of first face."""
+    size = np.zeros(max(count, 1), np.int64)
+    for f in range(len(patch)):
+        if patch[f] >= 0:
+            size[patch[f]] += 1
     for _ in range(passes):
         moved = False
-        for f, p in enumerate(patch):
+        for f in range(len(patch)):
+            p = patch[f]
             if p < 0 or size[p] >= small:
                 continue
-            for g, k_fg, turn, _ in neighbours[f]:
+            for e in range(first[f], first[f + 1]):
+                g = neighbour[e]
                 q = patch[g]
-                if q < 0 or q == p or size[q] < small or turn > max_turn:
+                if q < 0 or q == p or size[q] < small or turn[e] > max_turn:
                     continue
-                c = (choice[g] - k_fg) % 4
-                if all(patch[h] != q or ((choice[h] - k) % 4 == c and t <= max_turn) for h, k, t, _ in neighbours[f]):
+                c = (choice[g] - jump[e]) % 4
+                consistent = True
+                for e_f in range(first[f], first[f + 1]):
+                    h = neighbour[e_f]
+                    if patch[h] == q and ((choice[h] - jump[e_f]) % 4 != c or turn[e_f] > max_turn):
+                        consistent = False
+                        break
+                if consistent:
                     size[p] -= 1
                     size[q] += 1
                     patch[f], choice[f] = q, c
@@ -220,11 +259,44 @@ def absorb_small_patches(patch, choice, neighbours, max_turn, small=4, passes=4)
                     break
         if not moved:
             break
-    # renumber densely in order of first face, so ids stay deterministic and contiguous
-    remap = {}
-    for f, p in enumerate(patch):
-        if p >= 0:
-            patch[f] = remap.setdefault(p, len(remap))
+    remap = np.full(max(count, 1), -1, np.int64)
+    used = 0
+    for f in range(len(patch)):
+        if patch[f] >= 0:
+            if remap[patch[f]] < 0:
+                remap[patch[f]] = used
+                used += 1
+            patch[f] = remap[patch[f]]
+
+
+def grow_patches(pool, seeds, adjacency, face_normal, cone_cos, max_turn, small=4, passes=4):
+    """Lapped patches over the ``pool`` faces (Praun et al. 2000, section 3): each seed not yet taken starts a
+    patch that grows nearest-first (Dijkstra over centroid steps, ties by face index) while the conditions of the
+    module docstring hold. ``adjacency``: (first, neighbour, jump, turn, step), the directed face pairs of
+    :func:`face_adjacency` grouped by their first face. Greedy growth leaves slivers between patches whose cones
+    closed on them; afterwards a face of a patch of fewer than ``small`` faces joins a neighbouring larger patch
+    whose field it continues consistently (the cone is waived: the solve and its check still decide whether it
+    keeps the face), ``passes`` times in face order. Returns (patch id per face, -1 outside the pool, numbered in
+    order of first face; chosen quarter turn per face)."""
+    first, neighbour, jump, turn, step = adjacency
+    n = len(pool)
+    patch = np.full(n, -1, np.int64)
+    choice = np.zeros(n, np.int64)
+    count = _grow(np.ascontiguousarray(pool, np.bool_), np.ascontiguousarray(seeds, np.int64), first, neighbour,
+                  jump, turn, step, np.ascontiguousarray(face_normal, np.float64), float(cone_cos), float(max_turn),
+                  patch, choice)
+    _absorb_small_patches(patch, choice, count, first, neighbour, jump, turn, float(max_turn), int(small),
+                          int(passes))
+    return patch, choice
+
+
+def adjacency_arrays(pairs, jump, turn, step, n_faces: int):
+    """The directed face pairs as CSR arrays grouped by their first face, each face's pairs in ``pairs`` order."""
+    order = np.argsort(pairs[:, 0], kind="stable")
+    first = np.zeros(n_faces + 1, np.int64)
+    np.cumsum(np.bincount(pairs[:, 0], minlength=n_faces), out=first[1:])
+    return (first, np.ascontiguousarray(pairs[order, 1], np.int64), np.ascontiguousarray(jump[order], np.int64),
+            np.ascontiguousarray(turn[order], np.float64), np.ascontiguousarray(step[order], np.float64))
 
 
 def split_components(patch: np.ndarray, pairs: np.ndarray) -> np.ndarray:
@@ -344,12 +416,9 @@ def stroke_parameterization(positions: np.ndarray, faces: np.ndarray, normals: n
     jump, turn = period_jumps(pairs, theta, face_normal, t1, t2)
     centroid = positions[faces].mean(axis=1)
     step = np.linalg.norm(centroid[pairs[:, 0]] - centroid[pairs[:, 1]], axis=1)
-    neighbours = [[] for _ in range(n_faces)]
-    for f, g, k, t, s in zip(pairs[:, 0].tolist(), pairs[:, 1].tolist(), jump.tolist(), turn.tolist(),
-                             step.tolist()):
-        neighbours[f].append((g, k, t, s))
+    adjacency = adjacency_arrays(pairs, jump, turn, step, n_faces)
     seeds = np.lexsort((np.arange(n_faces), -confidence))  # most confident first, ties by index
-    seeds = seeds[usable[seeds]].tolist()
+    seeds = seeds[usable[seeds]]
 
     local = local_coordinates(positions, faces, t1, t2)
     gradients = gradient_rows(local, np.where(usable, double_area, 1.0))
@@ -372,7 +441,7 @@ def stroke_parameterization(positions: np.ndarray, faces: np.ndarray, normals: n
         else:
             # later rounds grow narrower patches: the faces a wide patch could not hold get smaller ones
             cone_cos = float(np.cos(np.radians(cone_degrees) / used_rounds))
-            patch, choice = grow_patches(pool, seeds, neighbours, face_normal, cone_cos, max_turn)
+            patch, choice = grow_patches(pool, seeds, adjacency, face_normal, cone_cos, max_turn)
             # absorbing slivers can cut a small patch in two; one pinned vertex per connected piece keeps the
             # solve non-singular
             patch = split_components(patch, pairs)
