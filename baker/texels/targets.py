@@ -150,21 +150,22 @@ def _unwrap_key(asset: Asset, geoms: list[PrimitiveGeometry]) -> tuple:
 
 
 @contextmanager
-def unwraps_started(asset: Asset, size: int | None = None):
+def unwraps_started(asset: Asset, size: int | None = None, materials: list[int] | None = None):
     """Start, in child processes (:class:`~baker.texels.texture_space.UnwrapInChild`), the unwraps a texture bake
     of ``size`` (None: automatic) will ask :func:`unwrap_material` for: the materials whose primitives have no
-    usable TEXCOORD_0 (the test :func:`material_targets` makes) and at least
+    usable TEXCOORD_0 (the test :func:`material_targets` makes; or the given ``materials``) and at least
     :data:`~baker.texels.texture_space.UNWRAP_IN_CHILD_FROM_FACES` triangles. The bake meanwhile builds its BVHs
     and traces its per-vertex rays; :func:`unwrap_material` takes the child's layout, the same one it would compute
     itself. Children not asked for by the end of the block (the bake failed, or was interrupted) are killed."""
     started = []
     try:
         for material, members in asset.material_groups().items():
-            if ("unwrap", material) in asset.cache or ("unwrap started", material) in asset.cache:
+            if ("unwrap", material) in asset.cache or ("unwrap started", material) in asset.cache \
+                    or (materials is not None and material not in materials):
                 continue
             geoms = [g for g in (asset.primitive(m, p) for m, p in members) if len(g.faces)]
             if not geoms or sum(len(g.faces) for g in geoms) < UNWRAP_IN_CHILD_FROM_FACES \
-                    or _existing_uv_texels(geoms, size or 256) is not None:
+                    or (materials is None and _existing_uv_texels(geoms, size or 256) is not None):
                 continue
             geoms, _, resolution = _unwrap_inputs(asset, [(g.mesh, g.primitive) for g in geoms])
             child = UnwrapInChild([(g.positions, g.faces) for g in geoms], resolution)

@@ -108,48 +108,75 @@ def vertex_stroke_directions(result, normals: np.ndarray) -> np.ndarray:
     return np.divide(total, length[:, None], out=np.zeros_like(total), where=length[:, None] > 1e-12)
 
 
-def bake_strokes(asset: Asset, groups: dict, texel_density: float, finest: int, combing: str) -> dict:
-    """Write the stroke TEXCOORD set and ``_HATCHING_DIRECTION`` on every primitive of ``groups`` ({material:
-    [(mesh, primitive)]}, primitives with triangles), ``texel_density`` finest-level texels per mesh unit: the
-    coordinates count TAM tiles (``finest`` texels each). Returns {material: MaterialStrokes}."""
+@dataclass
+class MeshStrokes:
+    """The stroke parameterization of one mesh's welded primitives, before it is written."""
+
+    mesh: int
+    primitives: list  # the primitives, in welding order
+    face_offsets: np.ndarray  # (len(primitives) + 1,) each primitive's first face in the welded mesh
+    result: object  # StrokeParameterization of the welded mesh
+    vertex_direction: np.ndarray  # (split vertices, 3) ``_HATCHING_DIRECTION``
+    singular: np.ndarray  # (faces,) faces around which the cross field turns
+    source: str  # where the field came from
+
+
+def solve_strokes(asset: Asset, groups: dict, texel_density: float, finest: int, combing: str) -> list[MeshStrokes]:
+    """The cross field and stroke parameterization of every mesh of ``groups`` ({material: [(mesh, primitive)]},
+    primitives with triangles), ``texel_density`` finest-level texels per mesh unit: the coordinates count TAM tiles
+    (``finest`` texels each). Reads the primitives only through their welded mesh and face order, which an unwrap
+    (:func:`baker.texels.targets.unwrap_material`) keeps, so the unwrap may run before, during or after this."""
     from baker.geometry.normals import vertex_normals
     from baker.techniques.tam.direction_field import cross_field
     from baker.techniques.tam.stroke_parameterization import stroke_parameterization
 
+    members = {mp for group in groups.values() for mp in group}
+    tiles_per_unit = texel_density / finest
+    out = []
+    for m in sorted({m for m, _ in members}):
+        prims = [p for p in asset.triangle_primitives(m) if (m, p) in members]
+        mesh = asset.welded(m, prims)
+        faces = np.asarray(mesh.faces, np.int64)
+        normals = vertex_normals(mesh.positions, faces)
+        directions, strength, source = field_targets(asset, m, mesh, prims, faces, combing)
+        cross = cross_field(mesh.positions, faces, normals, directions=directions, strength=strength)
+        result = stroke_parameterization(mesh.positions, faces, normals, cross.direction, scale=tiles_per_unit)
+        singular = np.zeros(len(faces), bool)
+        singular[cross.singular_faces] = True
+        out.append(MeshStrokes(m, prims, np.cumsum([0] + [len(g.faces) for g in mesh.geometries]), result,
+                               vertex_stroke_directions(result, normals), singular, source))
+    return out
+
+
+def write_strokes(asset: Asset, groups: dict, solved: list[MeshStrokes]) -> dict:
+    """Write ``solved`` (:func:`solve_strokes` of ``groups``) as the stroke TEXCOORD set and ``_HATCHING_DIRECTION``
+    on every primitive as it is now (after an unwrap, if any). Returns {material: MaterialStrokes}."""
     doc = asset.doc
     material_of = {mp: material for material, members in groups.items() for mp in members}
     # one set index per material (texCoord is the material's): after every set any of its primitives has
     texcoord = {material: 1 + max(max(asset.primitive(m, p).texcoords, default=-1) for m, p in members)
                 for material, members in groups.items()}
     out = {material: MaterialStrokes(texcoord[material]) for material in groups}
-    tiles_per_unit = texel_density / finest
-    for m in sorted({m for m, _ in material_of}):
-        prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
-        mesh = asset.welded(m, prims)
-        faces = np.asarray(mesh.faces, np.int64)
-        face_offsets = np.cumsum([0] + [len(g.faces) for g in mesh.geometries])
-        normals = vertex_normals(mesh.positions, faces)
-        directions, strength, source = field_targets(asset, m, mesh, prims, faces, combing)
-        cross = cross_field(mesh.positions, faces, normals, directions=directions, strength=strength)
-        result = stroke_parameterization(mesh.positions, faces, normals, cross.direction, scale=tiles_per_unit)
-        vertex_direction = vertex_stroke_directions(result, normals)
-        singular = np.zeros(len(faces), bool)
-        singular[cross.singular_faces] = True
+    for mesh in solved:
+        m, result = mesh.mesh, mesh.result
         n_split = len(result.vertex_map)
-        for i, (p, g) in enumerate(zip(prims, mesh.geometries)):
-            lo, hi = face_offsets[i], face_offsets[i + 1]
+        for i, p in enumerate(mesh.primitives):
+            lo, hi = mesh.face_offsets[i], mesh.face_offsets[i + 1]
             strokes = out[material_of[(m, p)]]
             strokes.fallback_faces += int(result.fallback[lo:hi].sum())
-            strokes.singular_faces += int(singular[lo:hi].sum())
+            strokes.singular_faces += int(mesh.singular[lo:hi].sum())
             strokes.patches.update((m, int(k)) for k in np.unique(result.patch[lo:hi]))
-            strokes.sources.add(source)
+            strokes.sources.add(mesh.source)
             # a new vertex per (vertex of the primitive, split vertex of the strokes) that a corner uses
-            keys = g.faces.astype(np.int64) * n_split + result.faces[lo:hi]
+            faces = asset.primitive(m, p).faces
+            if len(faces) != hi - lo:
+                raise AssertionError(f"tam: mesh {m} primitive {p} changed its faces since its strokes were solved")
+            keys = faces.astype(np.int64) * n_split + result.faces[lo:hi]
             unique, inverse = np.unique(keys.reshape(-1), return_inverse=True)
             vmap, stroke_vertex = unique // n_split, unique % n_split
             reindex_primitive(asset, m, p, vmap, inverse.reshape(-1, 3), result.uv[stroke_vertex],
                               strokes.texcoord)
             attributes = doc.json["meshes"][m]["primitives"][p]["attributes"]
-            add_vertex_attribute(doc, m, attributes, DIRECTION_ATTRIBUTE, vertex_direction[stroke_vertex],
+            add_vertex_attribute(doc, m, attributes, DIRECTION_ATTRIBUTE, mesh.vertex_direction[stroke_vertex],
                                  leave_out="--tam-strokes uv")
     return out
