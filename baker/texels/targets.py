@@ -156,8 +156,9 @@ def unwraps_started(asset: Asset, size: int | None = None, materials: list[int] 
     usable TEXCOORD_0 (the test :func:`material_targets` makes; or the given ``materials``) and at least
     :data:`~baker.texels.texture_space.UNWRAP_IN_CHILD_FROM_FACES` triangles. The bake meanwhile builds its BVHs
     and traces its per-vertex rays; :func:`unwrap_material` takes the child's layout, the same one it would compute
-    itself. Children not asked for by the end of the block (the bake failed, or was interrupted) are killed."""
-    started = []
+    itself. Children not asked for by the end of the block (the bake failed, or was interrupted) are killed. The
+    block gets the materials whose unwrap runs in a child process meanwhile."""
+    started, forked = [], []
     try:
         for material, members in asset.material_groups().items():
             if ("unwrap", material) in asset.cache or ("unwrap started", material) in asset.cache \
@@ -171,7 +172,9 @@ def unwraps_started(asset: Asset, size: int | None = None, materials: list[int] 
             child = UnwrapInChild([(g.positions, g.faces) for g in geoms], resolution)
             asset.cache[("unwrap started", material)] = (_unwrap_key(asset, geoms), child)
             started.append(material)
-        yield
+            if child.pid is not None:
+                forked.append(material)
+        yield forked
     finally:
         for material in started:
             left = asset.cache.pop(("unwrap started", material), None)
