@@ -8,7 +8,7 @@ ring), the Stanford bunny (no UVs of its own) and Spot (held back from the tests
 ../shared/assets/meshes (skipped when absent). Every mesh is welded by exact position first.
 
 Rows per mesh:
-- ``baker field``: the cross field of ``baker.techniques.tam.direction_field`` (Knöppel et al. 2013) aligned with
+- ``baker field``: the cross field of ``baker.geometry.direction_field`` (Knöppel et al. 2013) aligned with
   ``principal_curvatures``' smoothed principal directions (per vertex; time includes the curvature);
 - ``baker lapped``: ``stroke_parameterization`` (Praun et al. 2000) on that field, ``--repeats`` texture repeats
   across the bounding-box diagonal; the stroke direction is its u axis on each face;
@@ -50,7 +50,7 @@ sys.path.insert(0, str(ROOT))
 
 from baker.geometry.normals import vertex_normals  # noqa: E402
 from baker.techniques.curvature.kernel import principal_curvatures  # noqa: E402
-from baker.techniques.tam.direction_field import anisotropy, cross_field  # noqa: E402
+from baker.geometry.direction_field import anisotropy, cross_field  # noqa: E402
 from baker.techniques.tam.stroke_parameterization import stroke_parameterization  # noqa: E402
 from baker.texels.texture_space import unwrap  # noqa: E402
 

@@ -8,7 +8,7 @@ import trimesh
 
 from baker.geometry.normals import vertex_normals
 from baker.techniques.curvature.kernel import principal_curvatures
-from baker.techniques.tam.direction_field import anisotropy, cross_field
+from baker.geometry.direction_field import anisotropy, cross_field
 
 
 def torus(R=1.0, r=0.35, nu=120, nv=48):
@@ -99,7 +99,7 @@ def test_iterative_solve_matches_the_factorization_and_falls_back_to_it():
     converge (one iteration allowed) the factorization's answer comes back unchanged."""
     import scipy.sparse as sp
 
-    from baker.techniques.tam.direction_field import hermitian_solver, solve_with_data_term
+    from baker.geometry.direction_field import hermitian_solver, solve_with_data_term
 
     n = 1500
     rng = np.random.default_rng(3)

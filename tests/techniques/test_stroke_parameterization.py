@@ -10,7 +10,7 @@ import trimesh
 
 from baker.geometry.normals import vertex_normals
 from baker.techniques.curvature.kernel import principal_curvatures
-from baker.techniques.tam.direction_field import anisotropy, cross_field
+from baker.geometry.direction_field import anisotropy, cross_field
 from baker.techniques.tam.stroke_parameterization import stroke_parameterization
 from tests.techniques.test_direction_field import cross_angle_degrees, torus
 

@@ -3,7 +3,7 @@ screen space, denser where a Lambert light leaves the surface darker (RTR4 15.3;
 
 1. **Field**: per vertex of the welded scene, principal curvatures (:mod:`baker.techniques.curvature.kernel`) and
    Knöppel et al.'s globally optimal cross field aligned with them where |k1 - k2| is clear
-   (:func:`baker.techniques.tam.direction_field.cross_field`, one solve per connected piece: a piece without any
+   (:func:`baker.geometry.direction_field.cross_field`, one solve per connected piece: a piece without any
    anisotropy, a plane, gets its smoothest field), weighted ``alignment`` = 0.1 against smoothness: on a scanned
    mesh (the bunny) the strokes then follow the form rather than the fit's noise, while on a torus or a cylinder
    they still follow the principal directions to half a degree (tests/techniques/test_hatching.py). Of the cross's four directions the *primary* one is the branch
@@ -79,14 +79,14 @@ def default_light(camera) -> np.ndarray:
 def principal_cross_field(positions: np.ndarray, faces: np.ndarray,
                           alignment: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """(unit vertex normals, primary field direction per vertex) of a welded mesh: the cross field of
-    :mod:`baker.techniques.tam.direction_field` aligned with the principal directions, turned to its branch nearest
+    :mod:`baker.geometry.direction_field` aligned with the principal directions, turned to its branch nearest
     the k1 direction. A vertex used by no face gets a zero direction."""
     import scipy.sparse as sp
     from scipy.sparse.csgraph import connected_components
 
     from baker.geometry.normals import vertex_normals
     from baker.techniques.curvature.kernel import principal_curvatures
-    from baker.techniques.tam.direction_field import anisotropy, cross_field
+    from baker.geometry.direction_field import anisotropy, cross_field
 
     positions = np.asarray(positions, np.float64)
     faces = np.asarray(faces, np.int64)

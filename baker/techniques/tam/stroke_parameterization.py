@@ -8,9 +8,9 @@ texture's axes follow a tangent direction field at a uniform texture scale (thei
 texture to the field"). Here every face ends up in exactly one patch (no overlapping, alpha-blended patch edges:
 the TAM's strokes tile, so a cut between patches is enough):
 
-1. the field: the cross field of ``direction_field.cross_field`` (Knöppel et al. 2013), carried from each vertex
-   into each face by the minimal rotation of the vertex normal onto the face normal and averaged there as a 4-RoSy
-   value exp(4 i theta);
+1. the field: the cross field of ``baker.geometry.direction_field.cross_field`` (Knöppel et al. 2013), carried
+   from each vertex into each face by the minimal rotation of the vertex normal onto the face normal and averaged
+   there as a 4-RoSy value exp(4 i theta);
 2. growing: seeds are taken in order of the field's confidence (away from singularities first); a patch grows
    across manifold edges, nearest faces first (Dijkstra over centroid distances), while a face's normal stays
    within a cone around the seed's, the field turns little across the edge, and the face's choice among the
@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from baker.techniques.tam.direction_field import ROSY
+from baker.geometry.direction_field import ROSY
 
 QUARTER = np.pi / 2
 

@@ -1,5 +1,5 @@
 """The tam bake's stroke coordinates (``--tam-strokes field``, issue 38): per mesh, a cross field aligned with the
-principal curvature directions (:mod:`baker.techniques.tam.direction_field`, Knöppel et al. 2013) and the lapped,
+principal curvature directions (:mod:`baker.geometry.direction_field`, Knöppel et al. 2013) and the lapped,
 field-aligned parameterization of :mod:`baker.techniques.tam.stroke_parameterization` (Praun et al. 2000), written
 as a new TEXCOORD set that ``BAKER_tonal_art_map.texCoord`` names, with the chart's u axis per vertex as
 ``_HATCHING_DIRECTION``.
@@ -11,7 +11,7 @@ vertex ``vmap[k]`` (every attribute, morph target and primitive extension's vert
 
 Where the field comes from, per welded vertex: an artist's combing (the ``combing`` vertex attribute, non-zero
 vectors) wins; elsewhere the principal direction of k1, weighted by how clearly |k1 - k2| stands out
-(:func:`~baker.techniques.tam.direction_field.anisotropy`): the curvature bake's ``_PRINCIPAL_DIRECTION`` and
+(:func:`~baker.geometry.direction_field.anisotropy`): the curvature bake's ``_PRINCIPAL_DIRECTION`` and
 ``_PRINCIPAL_CURVATURES`` when every primitive of the mesh has them (tam ``requires`` curvature, so it runs
 first when both are baked), else the same estimate computed here with the curvature bake's default options.
 """
@@ -71,7 +71,7 @@ def welded_attribute(asset: Asset, m: int, mesh, prims: list[int], name: str, wi
 def field_targets(asset: Asset, m: int, mesh, prims: list[int], faces: np.ndarray, combing: str):
     """(directions, strength, source) of the cross field's data term per welded vertex."""
     from baker.techniques.curvature import extension as curvature_ext
-    from baker.techniques.tam.direction_field import anisotropy
+    from baker.geometry.direction_field import anisotropy
 
     direction = welded_attribute(asset, m, mesh, prims, curvature_ext.DIRECTION, 3)
     principal = welded_attribute(asset, m, mesh, prims, curvature_ext.PRINCIPAL, 2)
@@ -127,7 +127,7 @@ def solve_strokes(asset: Asset, groups: dict, texel_density: float, finest: int,
     (``finest`` texels each). Reads the primitives only through their welded mesh and face order, which an unwrap
     (:func:`baker.texels.targets.unwrap_material`) keeps, so the unwrap may run before, during or after this."""
     from baker.geometry.normals import vertex_normals
-    from baker.techniques.tam.direction_field import cross_field
+    from baker.geometry.direction_field import cross_field
     from baker.techniques.tam.stroke_parameterization import stroke_parameterization
 
     members = {mp for group in groups.values() for mp in group}

@@ -1,5 +1,6 @@
 """A smooth cross field (4-RoSy) on a triangle mesh, aligned with the principal curvature directions where the
-surface is clearly anisotropic: the direction field hatching strokes follow (RTR4 15.3; issue 38).
+surface is clearly anisotropic: the direction field hatching strokes follow (RTR4 15.3; issue 38), shared by the tam
+bake's stroke coordinates and ``baker lines --hatching``.
 
 Praun et al.'s real-time hatching applies a tonal art map through a lapped-texture parameterization oriented by a
 smooth direction field (Praun, Finkelstein & Hoppe, SIGGRAPH 2000); Hertzmann & Zorin ("Illustrating smooth
