@@ -23,7 +23,10 @@ the TAM's strokes tile, so a cut between patches is enough):
    from its field direction by more than ``max_stray`` degrees leaves its patch and goes back into the pool, from
    which the next round grows new patches (the rest of its patch keeps its solved, valid coordinates). Rounds
    repeat until every face has a chart; a face left after the last round is its own patch, whose chart is exact
-   (its gradients are the targets), so no face ends flipped and every face's area scale is within the band.
+   (its gradients are the targets), so no face ends flipped and every face's area scale is within the band;
+5. attaching: a face that ended as a patch of its own joins a neighbouring patch when a chart continuing that
+   patch's coordinates across their shared edge passes the same check (on the bunny: single-face patches, whose
+   strokes break at every edge, 3.2% -> 0.5% of the faces; half as many patches).
 
 The vertices are split at patch borders: new vertex k copies old vertex ``vertex_map[k]``. A degenerate face (zero
 area, or a repeated vertex) gets a tiny positive-area chart of its own; an edge shared by more than two faces, or by
@@ -373,6 +376,90 @@ def solve_patches(patch, faces, local, gradients, double_area, target_u, target_
     return corner_uv
 
 
+@numba.njit(cache=True, nogil=True)
+def _attach_single_faces(faces, local, gradients, theta, patch, choice, corner_uv, first, neighbour, jump, scale,
+                         band, min_stray_cos, passes):
+    """A face left as a patch of its own (its field turns too fast for the growth, or its chart failed the check in
+    its patch) joins a neighbouring patch of several faces when its chart can continue that patch's across their
+    shared edge: the corners the patch already has keep its coordinates, a third corner gets the face's field-aligned
+    gradient from them, and the chart must pass the same check (area scale within [1/band, band], u axis within the
+    stray angle of the field). Then the strokes run on across that edge instead of breaking at it. ``passes`` times
+    in face order, neighbours in adjacency order, so deterministic; in place."""
+    n_vertices = faces.max() + 1
+    size = np.zeros(patch.max() + 1, np.int64)
+    for f in range(len(patch)):
+        if patch[f] >= 0:
+            size[patch[f]] += 1
+    # (patch, vertex) -> its coordinates, from the patches of several faces (a patch's corners agree per vertex)
+    vertex_uv = dict()
+    for f in range(len(patch)):
+        if patch[f] >= 0 and size[patch[f]] > 1:
+            for k in range(3):
+                key = patch[f] * n_vertices + faces[f, k]
+                if key not in vertex_uv:
+                    vertex_uv[key] = (corner_uv[f, k, 0], corner_uv[f, k, 1])
+    uv = np.empty((3, 2))
+    known = np.zeros(3, np.bool_)
+    for _ in range(passes):
+        moved = False
+        for f in range(len(patch)):
+            p = patch[f]
+            if p < 0 or size[p] != 1:
+                continue
+            for e in range(first[f], first[f + 1]):
+                g = neighbour[e]
+                q = patch[g]
+                if q < 0 or q == p or size[q] < 2:
+                    continue
+                c = (choice[g] - jump[e]) % 4  # f's direction that continues g's
+                angle = theta[f] + c * (np.pi / 2)
+                du0, du1 = np.cos(angle), np.sin(angle)
+                count = 0
+                for k in range(3):
+                    key = q * n_vertices + faces[f, k]
+                    known[k] = key in vertex_uv
+                    if known[k]:
+                        uv[k, 0], uv[k, 1] = vertex_uv[key]
+                        count += 1
+                if count < 2:
+                    continue
+                for k in range(3):
+                    if known[k]:
+                        continue
+                    su, sv = 0.0, 0.0
+                    for j in range(3):
+                        if known[j]:
+                            dx = local[f, k, 0] - local[f, j, 0]
+                            dy = local[f, k, 1] - local[f, j, 1]
+                            su += uv[j, 0] + scale * (du0 * dx + du1 * dy)
+                            sv += uv[j, 1] + scale * (-du1 * dx + du0 * dy)
+                    uv[k, 0], uv[k, 1] = su / count, sv / count
+                # the chart's Jacobian in the face frame (rows: grad u, grad v), as chart_measures computes it
+                j00 = j01 = j10 = j11 = 0.0
+                for k in range(3):
+                    j00 += uv[k, 0] * gradients[f, k, 0]
+                    j01 += uv[k, 0] * gradients[f, k, 1]
+                    j10 += uv[k, 1] * gradients[f, k, 0]
+                    j11 += uv[k, 1] * gradients[f, k, 1]
+                area_scale = (j00 * j11 - j01 * j10) / (scale * scale)
+                if not (1.0 / band <= area_scale <= band):
+                    continue
+                length = np.sqrt(j11 * j11 + j10 * j10)
+                if length <= 0.0 or (j11 * du0 - j10 * du1) / length < min_stray_cos:
+                    continue
+                patch[f], choice[f] = q, c
+                size[p] -= 1
+                size[q] += 1
+                for k in range(3):
+                    corner_uv[f, k, 0], corner_uv[f, k, 1] = uv[k, 0], uv[k, 1]
+                    if not known[k]:
+                        vertex_uv[q * n_vertices + faces[f, k]] = (uv[k, 0], uv[k, 1])
+                moved = True
+                break
+        if not moved:
+            break
+
+
 def chart_measures(corner_uv, local, gradients, direction_u, scale):
     """Per face: the area scale (UV area over scale^2 times surface area; negative: flipped) and the angle
     (radians) between the chart's u axis and the intended direction, with the u axis in the face frame."""
@@ -426,6 +513,7 @@ def stroke_parameterization(positions: np.ndarray, faces: np.ndarray, normals: n
     max_stray = float(np.radians(max_stray_degrees))
 
     final_patch = np.full(n_faces, -1, np.int64)
+    final_choice = np.zeros(n_faces, np.int64)
     corner_uv = np.zeros((n_faces, 3, 2))
     pool = usable.copy()
     next_id = 0
@@ -458,7 +546,14 @@ def stroke_parameterization(positions: np.ndarray, faces: np.ndarray, normals: n
         final_patch[members] = kept[members] + next_id
         next_id += int(kept.max()) + 1 if len(members) else 0
         corner_uv[members] = solved[members]
+        final_choice[members] = choice[members]
         pool &= ~good
+
+    if next_id:
+        _attach_single_faces(faces, local, gradients, theta, final_patch, final_choice, corner_uv, *adjacency[:3],
+                             float(scale), float(band), float(np.cos(max_stray)), 4)
+        used, final_patch[usable] = np.unique(final_patch[usable], return_inverse=True)  # dense, in the same order
+        next_id = len(used)
 
     # degenerate faces: a tiny chart of their own (they cover no area; any tone will do)
     for f in np.nonzero(degenerate)[0]:
