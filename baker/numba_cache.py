@@ -12,10 +12,6 @@ so the wheel carries the compiled kernels; the first time a module folder's kern
 copied into the user cache (the package folder may be read-only). numba still checks each entry's key (signature,
 bytecode hash, numba version, target triple, CPU name and features), so a seed built on another CPU or numba misses
 and that kernel compiles as before, into the same user folder.
-
-Each process that looks a kernel up touches its build folder's ``.last-used``; the first time a build's folder is
-made (a new wheel, version or checkout), the build folders beside it unused for :data:`PRUNE_AFTER_DAYS` days are
-removed, so upgrades do not pile up compiled kernels (~9 MiB per build).
 """
 from __future__ import annotations
 
@@ -34,8 +30,6 @@ PACKAGE = Path(__file__).resolve().parent
 SEED = PACKAGE / "numba_seed"
 SEED_ID_FILE = "SEED_ID"  # one line: a hash of the seed's files, written by the wheel build (setup.py)
 SEED_BUILD_VARIABLE = "BAKER_NUMBA_SEED_BUILD"
-LAST_USED = ".last-used"  # touched by every process that looks a kernel up in the build folder
-PRUNE_AFTER_DAYS = 30  # a build folder unused this long goes when another build's folder is first made
 
 
 def user_cache_root() -> Path:
@@ -51,43 +45,7 @@ def build_folder() -> Path:
         seed_id = (SEED / SEED_ID_FILE).read_text().strip()
     except OSError:
         seed_id = "source"
-    folder = user_cache_root() / f"{__version__}-{seed_id}"
-    try:
-        new = not folder.is_dir()
-        folder.mkdir(parents=True, exist_ok=True)
-        (folder / LAST_USED).touch()
-        if new:
-            prune_unused_builds(folder)
-    except OSError:  # an unwritable cache: the locator reports it where it creates the module folder
-        pass
-    return folder
-
-
-def prune_unused_builds(current: Path, days: float = PRUNE_AFTER_DAYS) -> list[Path]:
-    """Remove the build folders beside ``current`` whose ``.last-used`` (or, without one, the folder itself) is
-    older than ``days``: a process of that build would have touched it. Returns what was removed."""
-    import time
-
-    removed = []
-    limit = time.time() - days * 86400
-    for folder in sorted(current.parent.iterdir()):
-        if folder == current or not folder.is_dir() or folder.name.startswith("."):
-            continue
-        stamp = folder / LAST_USED
-        try:
-            used = (stamp if stamp.exists() else folder).stat().st_mtime
-        except OSError:
-            continue
-        if used < limit:
-            # renamed first, so a process starting on it now misses the whole folder rather than half of it
-            trash = folder.with_name(f".removing-{folder.name}-{os.getpid()}")
-            try:
-                os.rename(folder, trash)
-            except OSError:
-                continue
-            shutil.rmtree(trash, ignore_errors=True)
-            removed.append(folder)
-    return removed
+    return user_cache_root() / f"{__version__}-{seed_id}"
 
 
 @functools.lru_cache(maxsize=None)

@@ -32,38 +32,6 @@ def test_locator_is_first_and_names_the_package_folder(monkeypatch, tmp_path):
         numba_cache.build_folder.cache_clear()
 
 
-def test_a_new_build_folder_removes_builds_unused_for_a_month(monkeypatch, tmp_path):
-    """Upgrades do not pile up kernels: the first time a build's folder is made, its siblings whose last use is
-    older than PRUNE_AFTER_DAYS go; recently used ones, hidden folders and the current build stay."""
-    import time
-
-    root = tmp_path / "baker" / "numba"
-    old = time.time() - (numba_cache.PRUNE_AFTER_DAYS + 1) * 86400
-    stale, recent, unstamped, hidden = (root / name for name in ("0.0.1-aaaa", "0.0.2-bbbb", "0.0.0-cccc", ".x"))
-    for folder in (stale, recent, unstamped, hidden):
-        (folder / "baker.geometry").mkdir(parents=True)
-        (folder / "baker.geometry" / "k-1.py311.nbc").write_bytes(b"kernel")
-    (stale / numba_cache.LAST_USED).touch()
-    os.utime(stale / numba_cache.LAST_USED, (old, old))
-    (recent / numba_cache.LAST_USED).touch()
-    os.utime(recent, (old, old))  # the folder is old, its stamp is not
-    os.utime(unstamped, (old, old))
-    os.utime(hidden, (old, old))
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
-    numba_cache.build_folder.cache_clear()
-    try:
-        current = numba_cache.build_folder()
-        assert current.is_dir() and (current / numba_cache.LAST_USED).is_file()
-        assert sorted(p.name for p in root.iterdir()) == sorted([".x", "0.0.2-bbbb", current.name])
-        # an existing build folder prunes nothing: only a new build does
-        (stale / "baker.geometry").mkdir(parents=True)
-        os.utime(stale, (old, old))
-        numba_cache.build_folder.cache_clear()
-        assert numba_cache.build_folder() == current and stale.is_dir()
-    finally:
-        numba_cache.build_folder.cache_clear()
-
-
 def test_source_stamp_is_the_content_not_the_mtime(tmp_path):
     def f():
         return 1
