@@ -49,14 +49,21 @@ class CausticsOptions:
     samples: int = opt(3, "surface samples per texel side (photons, or Jacobian mesh vertices)", min=1, max=16)
     strength: float = opt(1.0, "runtime: scale of the caustic modulation (0 = off, 1 = physical)", min=0.0, max=10.0)
     fade_distance: float | None = opt(None, "runtime: distance in metres from the baked depth over which the "
-                                            "caustic fades (default: 1 x scale)", min=0.0, max=1e4)
-    water_level: float = opt(0.0, "runtime: world height (glTF +Y) of the mean water surface, in metres")
+                                            "caustic fades (default: 1 x scale; with the default water level at "
+                                            "least the asset's height, so its top and bottom keep half the "
+                                            "caustic)", min=0.0, max=1e4)
+    water_level: float | None = opt(None, "runtime: world height (glTF +Y) of the mean water surface, in metres "
+                                          "(default: the baked depth above the middle of the asset's bounding "
+                                          "box, so the whole asset is under water and lit by the caustics; 0 "
+                                          "without an asset)", min=-1e6, max=1e6)
 
 
-def at_scale(options: CausticsOptions, extent: float | None = None) -> tuple[CausticsOptions, float]:
+def at_scale(options: CausticsOptions, extent: float | None = None,
+             heights: tuple[float, float] | None = None) -> tuple[CausticsOptions, float]:
     """``options`` with every unset length filled at the water's scale, and that scale. The scale is the tile's
     (tile / 2 m) when the tile is given, else half of ``extent`` (the asset's bounding-box diagonal) / 2 m, else 1.
-    Values the user gave are kept exactly."""
+    ``heights``: the asset's lowest and highest world height (glTF +Y), which place the default water
+    (:func:`water_over`); without them the water level defaults to 0. Values the user gave are kept exactly."""
     if options.tile_size is not None:
         scale = options.tile_size / REFERENCE["tile_size"]
     elif extent is not None and extent > 0.0:
@@ -65,4 +72,28 @@ def at_scale(options: CausticsOptions, extent: float | None = None) -> tuple[Cau
         scale = 1.0
     filled = {name: REFERENCE[name] * scale for name in ("tile_size", "depth", "fade_distance", "amplitude")}
     filled["wind_speed"] = REFERENCE["wind_speed"] * math.sqrt(scale)
-    return replace(options, **{k: v for k, v in filled.items() if getattr(options, k) is None}), float(scale)
+    fade_given = options.fade_distance is not None
+    options = replace(options, **{k: v for k, v in filled.items() if getattr(options, k) is None})
+    if options.water_level is None:
+        if heights is None:
+            options = replace(options, water_level=0.0)
+        else:
+            # the default water covers the asset: the fade (unless given) reaches all of it at half strength or more
+            level, reach = water_over(heights, options.depth)
+            fade = options.fade_distance if fade_given else max(options.fade_distance, 2.0 * reach)
+            options = replace(options, water_level=level, fade_distance=fade)
+    return options, float(scale)
+
+
+def water_over(heights: tuple[float, float], depth: float) -> tuple[float, float]:
+    """The default water level over an asset spanning world heights ``heights`` (lowest, highest), and the largest
+    distance of the asset from the baked depth under it. The level puts the baked floor (``depth`` below the water)
+    through the middle of the asset's height, so the sharpest caustics fall on it (a runtime fades them out away
+    from that depth and above the water, runtime-shaders/baker_caustics.glsl); when that would leave the asset's top
+    less than a tenth of its height under water (depth < 0.6 x height), the level is raised to that, so all of it is
+    under water."""
+    bottom, top = (float(h) for h in heights)
+    height = max(top - bottom, 0.0)
+    level = max(0.5 * (bottom + top) + depth, top + 0.1 * height)
+    reach = max(abs(level - top - depth), abs(level - bottom - depth))
+    return float(level), float(reach)

@@ -1,33 +1,28 @@
-"""Preview panel of BAKER_caustics: the material's caustic frames projected in world space and added to a Lambert
-shade (``runtime-shaders/baker_caustics.glsl``), at a fixed time of the loop.
+"""Preview panel of BAKER_caustics: what a runtime draws (``runtime-shaders/baker_caustics.glsl``, as the three.js
+and Babylon.js hosts call it), at a fixed time of the loop.
 
-The depth fade is left out (fade 1): a preview shows the pattern on any asset, whatever its height below
-``waterLevel``. The pattern is shown at the asset's scale: a tile much larger than the asset would light it
-uniformly and one much smaller would blur to grey, so the panel projects with the baked tile size clamped to
-[extent / 4, extent] (extent: the diagonal of the scene's bounding box) and says so in its label. Faces that are
-not horizontal read the frames triplanar (the floor projection along the refracted sun for the up axis, the two
-vertical planes for the others, blended by the normal's components to the 4th power) instead of stretching the
-floor projection into stripes along the sun."""
+The panel is the Lambert reference with the caustics applied by the runtime's own calls, with the material's
+values as written: the frames projected along ``projectionDirection`` from the world position with the baked tile
+size (``baker_caustics_uv``), faded by the point's depth below ``waterLevel`` (``baker_caustics_fade``: nothing
+above the water), and the key light's Lambert part of the reference redistributed by the irradiance
+(``baker_caustics_apply``), as the hosts redistribute their directional lights' Lambert light. What the panel shows
+on an asset is what a runtime shows on it: a water level that leaves the asset dry shows no caustics here either
+(baker's default puts the water over the asset, :func:`baker.techniques.caustics.options.water_over`)."""
 from __future__ import annotations
 
 import numpy as np
 
-from baker.preview.core import DrawItem, Panel, Scene
+from baker.preview.core import DrawItem, Panel, Scene, host_text
 from baker.techniques.caustics.extension import read
 
 LOOP_FRACTION = 0.37  # the still's time, as a fraction of the period: between two frames, so the blend shows too
-TILES_PER_EXTENT = (1.0, 4.0)  # the shown tile: between extent / 4 and extent
-
-
-def shown_tile_size(tile_size: float, extent: float) -> float:
-    """The tile size the panel projects with: the baked one when it is within [extent / 4, extent]."""
-    if extent <= 0:
-        return tile_size
-    return float(min(max(tile_size, extent / TILES_PER_EXTENT[1]), extent / TILES_PER_EXTENT[0]))
+# the Lambert reference (baker.preview.core.LAMBERT): ambient + key light, the key light being the sun the caustics
+# redistribute
+AMBIENT, KEY = 0.15, 0.85
 
 
 class CausticsPanel(Panel):
-    """Frames of the material's BAKER_caustics at t = 0.37 period, blended and added to the lit colour."""
+    """Frames of the material's BAKER_caustics at t = 0.37 period, blended and applied to the reference shade."""
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
@@ -49,13 +44,12 @@ class CausticsPanel(Panel):
 
     def describe(self, scene: Scene) -> str:
         self.prepare(scene)
-        baked = sorted({i.data["caustics"].tile_size for i in scene.items if self.applies(i)})
+        baked = sorted({(i.data["caustics"].tile_size, i.data["caustics"].water_level) for i in scene.items
+                        if self.applies(i)})
         if not baked:
             return self.label
-        shown = shown_tile_size(baked[0], self.extent)
-        if abs(shown - baked[0]) <= 1e-9 * max(abs(baked[0]), 1e-30):
-            return f"{self.label} (tile {baked[0]:.3g}, asset {self.extent:.3g})"
-        return f"{self.label} (tile {baked[0]:.3g} shown as {shown:.3g}: asset {self.extent:.3g})"
+        tile, level = baked[0]
+        return f"{self.label} (tile {tile:.3g}, asset {self.extent:.3g}, water at y {level:.3g})"
 
     def frames(self, caustics):
         count = len(caustics.frame_textures)
@@ -66,33 +60,65 @@ class CausticsPanel(Panel):
     def uniforms(self, item):
         c = item.data["caustics"]
         _, _, blend = self.frames(c)
-        return {"u_projection": c.projection_direction, "u_waterLevel": c.water_level, "u_depth": c.depth,
-                "u_tileSize": shown_tile_size(c.tile_size, self.extent), "u_scale": c.intensity_scale,
-                "u_strength": c.strength, "u_blend": blend, "u_rgb": item.data["caustics_rgb"]}
+        return {"u_baker_caustics_on": 1.0, "u_bakerCausticsProjection": c.projection_direction,
+                "u_bakerCausticsWaterLevel": c.water_level, "u_bakerCausticsDepth": c.depth,
+                "u_bakerCausticsTileSize": c.tile_size, "u_bakerCausticsScale": c.intensity_scale,
+                "u_bakerCausticsStrength": c.strength, "u_bakerCausticsFadeDistance": c.fade_distance,
+                "u_bakerCausticsBlend": blend}
 
     def textures(self, scene, ctx, item):
         c = item.data["caustics"]
         first, following, _ = self.frames(c)
-        return {"u_first": scene.texture(ctx, c.frame_textures[first], repeat=True),
-                "u_next": scene.texture(ctx, c.frame_textures[following], repeat=True)}
+        return {"u_bakerCausticsFirst": rgb_texture(scene, ctx, c.frame_textures[first]),
+                "u_bakerCausticsNext": rgb_texture(scene, ctx, c.frame_textures[following])}
 
+
+def rgb_texture(scene: Scene, ctx, texture_index: int):
+    """A frame as an RGB texture (REPEAT, LINEAR), a gray frame's value in all three channels: the hosts' stage
+    reads .rgb, as browsers decode a gray PNG."""
+    import moderngl
+
+    key = ("gl-rgb", id(ctx), texture_index)
+    if key not in scene.cache:
+        pixels = scene.image(texture_index)
+        pixels = np.ascontiguousarray(np.repeat(pixels[..., :1], 3, axis=2) if pixels.shape[2] < 3 else pixels[..., :3])
+        h, w, _ = pixels.shape
+        tex = ctx.texture((w, h), 3, pixels.tobytes(), dtype="f4")
+        tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
+        tex.repeat_x = tex.repeat_y = True
+        scene.cache[key] = tex
+    return scene.cache[key]
+
+
+# The display of the sheet (8 bits, no tone mapping): light the caustics add above the reference's shade is
+# compressed into the headroom left above it, reference + h e / (h + e) per channel (e the added light, h = 1 -
+# reference; Reinhard's x / (1 + x) on the excess, slope 1 where the caustic starts), so a bright caustic line shows
+# as a highlight instead of clipping to flat white; darkening is drawn as computed (it never goes below the ambient
+# shade: the stage scales only the key light's part).
+HEADROOM = """vec3 headroom(vec3 reference, vec3 lit) {
+    vec3 room = max(vec3(1.0) - reference, vec3(0.0));
+    vec3 added = max(lit - reference, vec3(0.0));
+    return min(lit, reference) + room * added / max(room + added, vec3(1e-6));
+}"""
+
+# the web hosts' stage itself (runtime-shaders/hosts/web/surface_caustics.glsl), on the Lambert reference: its key
+# light is the sunlit part the stage redistributes
+STAGE = host_text("web/surface_caustics.glsl")
 
 PANELS = [
     CausticsPanel("caustics", "caustics", ("baker_caustics.glsl",),
-                  "uniform sampler2D u_first;\nuniform sampler2D u_next;\nuniform vec3 u_projection;\n"
-                  "uniform float u_waterLevel;\nuniform float u_depth;\nuniform float u_tileSize;\n"
-                  "uniform float u_scale;\nuniform float u_strength;\nuniform float u_blend;\nuniform float u_rgb;",
-                  "vec3 w = pow(abs(Ng), vec3(4.0));\n"
-                  "    w /= max(w.x + w.y + w.z, 1e-6);\n"
-                  "    vec2 floorUV = baker_caustics_uv(P, u_projection, u_waterLevel, u_depth, u_tileSize);\n"
-                  "    vec3 irradiance =\n"
-                  "        w.y * baker_caustics_irradiance(u_first, u_next, floorUV, u_blend, u_scale, u_rgb)\n"
-                  "        + w.x * baker_caustics_irradiance(u_first, u_next, vec2(P.z, P.y) / u_tileSize, u_blend,\n"
-                  "                                          u_scale, u_rgb)\n"
-                  "        + w.z * baker_caustics_irradiance(u_first, u_next, vec2(P.x, P.y) / u_tileSize, u_blend,\n"
-                  "                                          u_scale, u_rgb);\n"
-                  "    float lambert = max(dot(N, u_light), 0.0);\n"
-                  "    color = baker_caustics_apply(albedo * (0.3 + 0.2 * lambert), albedo * 0.5, irradiance,\n"
-                  "                                 u_strength, 1.0);",
+                  "uniform float u_baker_caustics_on;\nuniform sampler2D u_bakerCausticsFirst;\n"
+                  "uniform sampler2D u_bakerCausticsNext;\nuniform vec3 u_bakerCausticsProjection;\n"
+                  "uniform float u_bakerCausticsWaterLevel;\nuniform float u_bakerCausticsDepth;\n"
+                  "uniform float u_bakerCausticsTileSize;\nuniform float u_bakerCausticsScale;\n"
+                  "uniform float u_bakerCausticsStrength;\nuniform float u_bakerCausticsFadeDistance;\n"
+                  "uniform float u_bakerCausticsBlend;\n" + HEADROOM,
+                  "float lambert = max(dot(N, u_light), 0.0);\n"
+                  "    vec3 bakerWorldPosition = P;\n"
+                  f"    vec3 bakerSunLight = albedo * {KEY} * lambert;\n"
+                  f"    vec3 reference = albedo * ({AMBIENT} + {KEY} * lambert);\n"
+                  "    vec3 bakerDiffuse = reference;\n"
+                  f"    {STAGE}\n"
+                  "    color = headroom(reference, bakerDiffuse);",
                   order=45),
 ]

@@ -22,7 +22,8 @@ def run(asset: Asset, options: CausticsOptions, seed: int = 0, progress: Progres
         check_options(options)
     except ValueError as exc:
         raise BakerError(None, str(exc)) from None
-    options, water_scale = at_scale(options, world_diagonal(asset))
+    lo, hi = world_bounds(asset)
+    options, water_scale = at_scale(options, float(np.linalg.norm(hi - lo)), (float(lo[1]), float(hi[1])))
     materials = list(asset.material_groups())
     frames = caustic_frames(options, seed=seed)
     textures, scale = ext.write_frame_textures(asset.doc, frames)
@@ -30,9 +31,9 @@ def run(asset: Asset, options: CausticsOptions, seed: int = 0, progress: Progres
         ext.write_caustics(asset.doc, material, options, frames, textures, scale, water_scale)
 
 
-def world_diagonal(asset: Asset) -> float:
-    """The diagonal of the bounding box of every triangle mesh as the default scene places it (world units); the
-    meshes' own positions when no node places them."""
+def world_bounds(asset: Asset) -> tuple[np.ndarray, np.ndarray]:
+    """The corners (lowest, highest) of the bounding box of every triangle mesh as the default scene places it
+    (world units); the meshes' own positions when no node places them; zeros without a triangle."""
     gltf = asset.doc.json
     nodes = gltf.get("nodes", [])
     placed = [(nodes[i]["mesh"], world) for i, world in world_nodes(gltf) if "mesh" in nodes[i]]
@@ -41,7 +42,9 @@ def world_diagonal(asset: Asset) -> float:
     points = [asset.primitive(m, p).positions @ world[:3, :3].T + world[:3, 3]
               for m, world in placed for p in asset.triangle_primitives(m)]
     points = np.concatenate(points) if points else np.zeros((0, 3))
-    return float(np.linalg.norm(points.max(0) - points.min(0))) if len(points) else 0.0
+    if not len(points):
+        return np.zeros(3), np.zeros(3)
+    return points.min(0), points.max(0)
 
 
 def run_caustics(args) -> int:
