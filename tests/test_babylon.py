@@ -20,6 +20,8 @@ How frames are compared (both 400 x 300, sRGB; measured on this machine, SwiftSh
   technique Babylon.js does not draw scores 1.0 (its change is then 0).
   A technique that replaces the lit colour (the curvature view) has the base difference inside its change: it
   passes instead when its frame matches within TIGHT_MAD = 2/255 (measured 0.0).
+An open single-sided sphere with a window towards the camera: in both engines the outline changes no pixel inside
+the window (the hosts' depth-only back-face pass) and still draws the silhouette.
 Failing frames leave three.png, babylon.png and diff.png (|difference| x 4) in .cache/test-artifacts/test_babylon/.
 """
 from __future__ import annotations

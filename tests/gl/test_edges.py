@@ -4,8 +4,11 @@ Everything goes through the written file: a cube (24 vertices, split normals) an
 saved as .glb and read back. Fins: the vertex shader's outputs are captured with transform feedback and compared with
 the twin, and a sphere's contour fins cover the ring 2 pi R w a w-pixel line should. Shell outline: rendered with
 _OUTLINE_NORMAL, its coverage equals the area between the convex hulls of the twin-displaced and the original
-vertices, and the cube's corners are closed (with the split NORMALs they crack open). Wireframe: coverage matches
-the twin on every pixel, and the quad diagonal of the face seen head-on is hidden by the mask.
+vertices, and the cube's corners are closed (with the split NORMALs they crack open). Open meshes: through the window
+of a single-sided sphere no shell ink shows once the open primitive's back faces go into depth first (unit normals
+and no such pass: the whole window), and an open bowl's shell is pinned to its rim by the zero _OUTLINE_NORMAL there.
+Wireframe: coverage matches the twin on every pixel, and the quad diagonal of the face seen head-on is hidden by the
+mask.
 """
 from __future__ import annotations
 
