@@ -47,9 +47,10 @@ class OutlinePanel(Panel):
         return super().available(scene) or bool(isinstance(scene, Scene) and scene.part("edge-fins"))
 
     def draw(self, ctx, scene, camera, size):
-        # the surfaces as glTF and the hosts draw them: a single-sided material's back faces culled, so an open
-        # primitive's inside is what its openings show (or not)
-        single = [i for i in scene.items if not (i.material or {}).get("doubleSided")]
+        # an open primitive of a single-sided material as glTF and the hosts draw it: back faces culled, so its
+        # openings show what lies behind (a closed one shows no back face either way: left double-sided, so a
+        # mirrored node's flipped winding cannot hide it)
+        single = [i for i in scene.items if not (i.material or {}).get("doubleSided") and is_open(i)]
         culled = {id(i) for i in single}
         ctx.front_face = "ccw"
         ctx.enable(ctx.CULL_FACE)
@@ -67,7 +68,7 @@ class OutlinePanel(Panel):
             ctx.cull_face = "front"
             # an open single-sided primitive (zero outline normals on its rims): its back faces into depth only
             # first, so the shell cannot show through its openings (RTR4 15.2.2: the shell needs a closed mesh)
-            occluders = [i for i in items if id(i) in culled and is_open(i)]
+            occluders = [i for i in items if id(i) in culled]
             if occluders:
                 ctx.enable(ctx.BLEND)
                 ctx.blend_func = ctx.ZERO, ctx.ONE  # depth only (moderngl's color_mask does not hold across draws)
