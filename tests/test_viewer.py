@@ -266,4 +266,3 @@ def test_viewer_softens_the_blender_heads_diffuse(site, tmp_path):
     red = bump_detail(on, 0, covered), bump_detail(off, 0, covered)
     print("head red detail on/off", red)
     assert red[0] < 0.85 * red[1]
-
