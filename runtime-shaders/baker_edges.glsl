@@ -10,7 +10,11 @@
 //    Data: the fin primitive of BAKER_edges (attributes _FIN_V0.._FIN_V3, _FIN_CORNER, _FIN_FLAGS).
 // 2. Shell outline (RTR4 15.2.2, "shell or halo method"): draw the back faces again, pushed out along
 //    _OUTLINE_NORMAL by a distance proportional to the view depth, so the outline is `width` pixels wide. The baked
-//    normal is one average per welded position: a cube's corners do not crack open.
+//    normal is one average per welded position: a cube's corners do not crack open. A shell needs a closed mesh: on
+//    an open one the inflated back faces show through every opening. So the bake writes _OUTLINE_NORMAL = 0 at
+//    vertices on boundary and non-manifold edges (the shell is pinned to the rim and cannot cross it), and a host
+//    draws an open primitive of a single-sided material's back faces into depth only (colour writes off) before the
+//    shell, so where its inside shows through an opening the shell stays hidden; boundary lines come from the fins.
 // 3. Single-pass wireframe (Baerentzen et al., "Single-pass Wireframe Rendering", SIGGRAPH 2006 sketch; RTR4 15.4):
 //    the fragment's distance in pixels to each triangle edge is its barycentric coordinate divided by the screen-space
 //    rate of change of that coordinate; BAKER_edges.wireframeMask (bit k: edge v_k -> v_k+1) hides quad diagonals.
@@ -87,8 +91,8 @@ vec4 baker_fin_culled() {
     return vec4(2.0, 2.0, 2.0, 1.0);
 }
 
-// Shell outline (RTR4 15.2.2): the vertex pushed out along the unit outline normal so the shell is `widthPx` pixels
-// wide at the vertex's depth. clipW: w of the unpushed vertex in clip space (its view depth for a perspective
+// Shell outline (RTR4 15.2.2): the vertex pushed out along the outline normal so the shell is `widthPx` pixels
+// wide at the vertex's depth (unit normal; zero on an open rim: the vertex stays put). clipW: w of the unpushed vertex in clip space (its view depth for a perspective
 // projection, 1 for an orthographic one); projectionScaleY: the projection matrix's [1][1] (cot(yfov / 2), or
 // 1 / ymag); viewportHeight in pixels. Draw the result with front faces culled, after the object.
 vec3 baker_shell_position(vec3 position, vec3 outlineNormal, float clipW, float widthPx, float viewportHeight,

@@ -3,7 +3,9 @@
 //
 // 1. Fins (McGuire & Hughes, NPAR 2004; RTR4 15.2.4): every edge a degenerate quad carrying v0, v1 and the opposite
 //    vertices v2, v3; contour by eq. 15.1, (n0 . v)(n1 . v) < 0, ridge/valley by the face-normal angle.
-// 2. Shell outline (RTR4 15.2.2): back faces pushed out along _OUTLINE_NORMAL, `width` pixels at any depth.
+// 2. Shell outline (RTR4 15.2.2): back faces pushed out along _OUTLINE_NORMAL, `width` pixels at any depth; the
+//    normal is zero on open rims (boundary, non-manifold edges) and hosts write an open single-sided primitive's back
+//    faces to depth before the shell (see baker_edges.glsl).
 // 3. Single-pass wireframe (Baerentzen et al., SIGGRAPH 2006 sketch; RTR4 15.4): the distance in pixels to an edge
 //    is the barycentric coordinate over its screen-space rate (pass fwidth(bary) from a fragment shader).
 //
@@ -71,8 +73,8 @@ fn baker_fin_culled() -> vec4f {
     return vec4f(2.0, 2.0, 2.0, 1.0);
 }
 
-// Shell outline (RTR4 15.2.2): the vertex pushed out along the unit outline normal so the shell is `widthPx` pixels
-// wide at its depth. clipW: w of the unpushed vertex in clip space; projectionScaleY: the projection's [1][1].
+// Shell outline (RTR4 15.2.2): the vertex pushed out along the outline normal (unit; zero on an open rim) so the
+// shell is `widthPx` pixels wide at its depth. clipW: w of the unpushed vertex in clip space; projectionScaleY: the projection's [1][1].
 fn baker_shell_position(position: vec3f, outlineNormal: vec3f, clipW: f32, widthPx: f32, viewportHeight: f32,
                         projectionScaleY: f32) -> vec3f {
     let unitsPerPixel = 2.0 * clipW / (viewportHeight * projectionScaleY);

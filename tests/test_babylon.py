@@ -20,6 +20,8 @@ How frames are compared (both 400 x 300, sRGB; measured on this machine, SwiftSh
   technique Babylon.js does not draw scores 1.0 (its change is then 0).
   A technique that replaces the lit colour (the curvature view) has the base difference inside its change: it
   passes instead when its frame matches within TIGHT_MAD = 2/255 (measured 0.0).
+An open single-sided sphere with a window towards the camera: in both engines the outline changes no pixel inside
+the window (the hosts' depth-only back-face pass) and still draws the silhouette.
 Failing frames leave three.png, babylon.png and diff.png (|difference| x 4) in .cache/test-artifacts/test_babylon/.
 """
 from __future__ import annotations
@@ -440,3 +442,56 @@ def test_skin_reddens_the_terminator_of_a_15mm_suzanne_in_both_engines(site, tmp
     for rise, pixels in measured.values():
         assert pixels > 150 and rise >= 0.01
     assert abs(measured["three"][0] - measured["babylon"][0]) < 0.25 * measured["three"][0]
+
+
+def _window_region(cut_triangles, view, width, height, fov_degrees=35.0, margin=3):
+    """Pixels (row 0 at the top) whose centres lie inside the projected cut-out triangles, ``margin`` pixels in from
+    the rim, for the page's camera (``window.__bakerView``: eye, target; three.js's up +y, vertical fov 35 degrees)."""
+    eye, target = np.array(view["eye"]), np.array(view["target"])
+    f = (target - eye) / np.linalg.norm(target - eye)
+    s = np.cross(f, [0.0, 1.0, 0.0])
+    s /= np.linalg.norm(s)
+    u = np.cross(s, f)
+    rel = cut_triangles.reshape(-1, 3) - eye
+    depth = rel @ f
+    t = 1.0 / np.tan(np.radians(fov_degrees) / 2)
+    x = (rel @ s) / depth * t * height / 2 + width / 2
+    y = height / 2 - (rel @ u) / depth * t * height / 2
+    corners = np.stack([x, y], axis=1).reshape(-1, 3, 2)
+    yy, xx = np.mgrid[0:height, 0:width]
+    px, py = xx.ravel() + 0.5, yy.ravel() + 0.5
+    inside = np.zeros(len(px), bool)
+    for a, b, c in corners:
+        sides = [(q[0] - p[0]) * (py - p[1]) - (q[1] - p[1]) * (px - p[0]) for p, q in ((a, b), (b, c), (c, a))]
+        inside |= np.all([d >= 0 for d in sides], axis=0) | np.all([d <= 0 for d in sides], axis=0)
+    return ndimage.binary_erosion(inside.reshape(height, width), iterations=margin)
+
+
+def test_outline_leaves_an_open_spheres_window_clear(site, tmp_path):
+    """The shell outline on an open single-sided mesh (a sphere with a window facing the viewer's camera), in the
+    three.js and the Babylon.js pages: switching the outline on changes no pixel inside the window (the hosts write
+    the open primitive's back faces to depth before the shell, RTR4 15.2.2), and still draws the silhouette ring.
+    Without that pass the window fills with the inflated back faces' ink."""
+    import trimesh
+
+    root, url = site["root"], site["url"]
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
+    towards_camera = np.array([0.5, 0.25, 0.85]) / np.linalg.norm([0.5, 0.25, 0.85])  # ui.js FRAME_DIRECTION
+    cut = sphere.triangles_center @ towards_camera > 0.8
+    source = tmp_path / "holed_sphere.obj"
+    trimesh.Trimesh(sphere.vertices, sphere.faces[~cut], process=False).export(source)
+    save(baker.bake(source, bakes=("edges",)), root / "holed_sphere.glb")
+    jobs = [{"url": f"{url}/index.html?hud=0&src=holed_sphere.glb{engine}{switch}",
+             "out": str(tmp_path / f"{k}-{j}.png"), "width": W, "height": H}
+            for k, engine in enumerate(("", "&engine=babylon")) for j, switch in enumerate(("", "&off=outline"))]
+    infos = shoot(jobs, tmp_path / "jobs.json")
+    images = [_image(job["out"]) for job in jobs]
+    for k, engine in enumerate(("three.js", "Babylon.js")):
+        (info, on), (_, off) = zip(infos[2 * k: 2 * k + 2], images[2 * k: 2 * k + 2])
+        assert info["ready"] and not info["errors"] and "outline" in info["techniques"], info
+        window = _window_region(sphere.vertices[sphere.faces[cut]], info["view"], W, H)
+        ink = np.abs(on - off).max(axis=2) > 8 / 255
+        print(f"{engine}: window pixels {int(window.sum())}, changed by the outline {int(ink[window].sum())}, "
+              f"elsewhere {int(ink[~ndimage.binary_dilation(window, iterations=8)].sum())}")
+        assert window.sum() > 3000 and ink[window].sum() == 0
+        assert ink[~ndimage.binary_dilation(window, iterations=8)].sum() > 500  # the silhouette ring

@@ -22,6 +22,7 @@ from conftest import assert_khronos_clean
 
 ROOT = Path(__file__).resolve().parents[1]
 SPOT = ROOT / "examples" / "spot" / "spot.obj"
+FANDISK = ROOT.parent / "shared" / "assets" / "meshes" / "fandisk.obj"
 HELPERS = Path(__file__).parent / "blender"
 FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 BAKES = ("thickness", "curvature", "edges", "fur", "skin", "tam", "toon")
@@ -60,7 +61,8 @@ def bake(*argv) -> None:
 
 @pytest.fixture(scope="session")
 def baked(tmp_path_factory) -> dict:
-    """{label: .glb} for every bake of spot alone, all bakes together (with edge fins), hair and text."""
+    """{label: .glb} for every bake of spot alone, all bakes together (with edge fins), fandisk's edges, hair and
+    text."""
     out = tmp_path_factory.mktemp("blender_baked")
     files = {}
     for name in BAKES:
@@ -70,6 +72,8 @@ def baked(tmp_path_factory) -> dict:
     bake("bake", SPOT, "--bakes", "edges", "--edges-fins", "true", "-o", files["edges_fins"])
     files["all"] = out / "spot_all.glb"
     bake("bake", SPOT, "--bakes", ",".join(BAKES), "--edges-fins", "true", *sum(CHEAP.values(), ()), "-o", files["all"])
+    files["fandisk"] = out / "fandisk_edges.glb"
+    bake("bake", FANDISK, "--bakes", "edges", "-o", files["fandisk"])
     files["hair"] = out / "spot_hair.glb"
     bake("hair", SPOT, "--guides", "40", "--children", "3", "-o", files["hair"])
     files["text"] = out / "text.glb"
@@ -145,7 +149,7 @@ ACCESSOR_KEYS = {"BAKER_edges": ("edges", "oppositeVertices", "flags", "dihedral
                  "EXT_mesh_primitive_edge_visibility": ("visibility", "silhouetteMates"),
                  "BAKER_hair": ("widthScale", "ribbonIndices")}
 VERTEX_INDEX_KEYS = {"edges", "oppositeVertices"}
-ROUND_TRIP = ("all", "hair", "text", "edges")
+ROUND_TRIP = ("all", "hair", "text", "edges", "fandisk")
 
 
 @pytest.fixture(scope="session")
@@ -324,6 +328,7 @@ def test_addon_shows_the_baked_data(baked, round_trips):
         assert wanted or name == "sharp_edge", name
         marked = {tuple(sorted(bytes(np.asarray(p, np.float32)) for p in pair)) for pair in spot[name + "_positions"]}
         assert marked == wanted, f"{name}: {len(marked ^ wanted)} edges differ from BAKER_edges' flagged edges"
+    assert spot["freestyle_edge_attribute"] == 0, "Blender 4.5 reads use_freestyle_mark, not a generic attribute"
     material = next(m for m in report["materials"].values() if m["payload"])
     assert {"BAKER Translucency", "BAKER LUT Coordinates"} <= set(material["groups"])
     mixes = {name: fac for name, fac in material["mixes"].items() if name.startswith("BAKER mix")}
@@ -346,6 +351,37 @@ def test_addon_shows_the_baked_data(baked, round_trips):
     _, report = round_trips["text"]
     text = [o for o in report["objects"].values() if o["type"] == "MESH"]
     assert text and not text[0]["hidden"] and "baker_gltf_node" in text[0]["properties"]
+
+
+def test_fandisk_creases_are_marks_freestyle_reads(baked, round_trips):
+    """Blender 4.5's Freestyle and Line Art read MeshEdge.use_freestyle_mark (5.0 moved the marks to the
+    ``freestyle_edge`` attribute): after the add-on's import, the marked edges are exactly fandisk's crease and hard
+    edges as BAKER_edges flags them, matched by end positions."""
+    _, report = round_trips["fandisk"]
+    (fandisk,) = [o for o in report["objects"].values() if o["type"] == "MESH"]
+    doc = GltfDocument.load(baked["fandisk"])
+    wanted = set()
+    for prim in doc.json["meshes"][0]["primitives"]:
+        ext = prim["extensions"]["BAKER_edges"]
+        positions = doc.accessor(prim["attributes"]["POSITION"]).astype(np.float32)
+        pairs = doc.accessor(ext["edges"]).astype(np.int64).reshape(-1, 2)
+        flags = doc.accessor(ext["flags"]).astype(np.int64)
+        wanted |= {tuple(sorted((bytes(positions[a]), bytes(positions[b])))) for a, b in pairs[(flags & (4 | 128)) != 0]}
+    marked = {tuple(sorted(bytes(np.asarray(p, np.float32)) for p in pair)) for pair in fandisk["freestyle_edge_positions"]}
+    print("fandisk: BAKER_edges crease/hard edges", len(wanted), "Freestyle-marked Blender edges", fandisk["freestyle_edge"])
+    assert len(wanted) > 100
+    assert fandisk["freestyle_edge"] == len(wanted) and marked == wanted
+
+
+def test_freestyle_draws_the_fandisk_marks(blender_python, baked, tmp_path):
+    """Freestyle itself (Cycles, a 128 px render, edge marks the only line selection) draws lines from the add-on's
+    marks, and none once they are cleared: the marks are where Blender 4.5's Freestyle looks."""
+    report = tmp_path / "freestyle.json"
+    run_blender(blender_python, "render_freestyle.py", ADDON, baked["fandisk"], report)
+    lines = json.loads(report.read_text())
+    print("fandisk Freestyle:", lines)
+    assert lines["marked"] > 100
+    assert lines["with_marks"] > 500 and lines["without_marks"] == 0
 
 
 def test_translucency_group_renders_thin_parts_brighter(blender_python, baked, tmp_path):

@@ -562,3 +562,91 @@ def test_skin_reddens_the_terminator_of_a_15mm_suzanne(tmp_path):
     assert band.sum() > 1000
     assert redness(skin) > redness(reference) + 0.01
     assert "1 unit = 1000 mm" in label and "LUT rows 0-" in label and "clamped" not in label
+
+
+def _projected_fill(triangles, camera, size):
+    """Pixels (row 0 at the top, as the panels) whose centres lie inside any of the world triangles (k, 3, 3)."""
+    vp = camera.projection @ camera.view
+    h = np.concatenate([triangles.reshape(-1, 3), np.ones((triangles.size // 3, 1))], axis=1) @ vp.T
+    px = (h[:, :2] / h[:, 3:] * 0.5 + 0.5) * size
+    px[:, 1] = size - px[:, 1]
+    yy, xx = np.mgrid[0:size, 0:size]
+    x, y = xx.ravel() + 0.5, yy.ravel() + 0.5
+    inside = np.zeros(len(x), bool)
+    for a, b, c in px.reshape(-1, 3, 2):
+        sides = [(q[0] - p[0]) * (y - p[1]) - (q[1] - p[1]) * (x - p[0]) for p, q in ((a, b), (b, c), (c, a))]
+        inside |= np.all([d >= 0 for d in sides], axis=0) | np.all([d <= 0 for d in sides], axis=0)
+    return inside.reshape(size, size)
+
+
+def _outline_ink(path, views, size=256):
+    """Per view: the camera and the outline panel's ink (i) as baked, (ii) with every material double-sided (the
+    mesh's own inside hides the shell: the reference the open single-sided rendering must not exceed)."""
+    from baker import readers
+    from baker.preview.core import all_panels, create_context, frame_camera, gather_scene, render_panel
+
+    panels = all_panels()
+    outline = next(p for p in panels if p.name == "outline")
+    scene = gather_scene(readers.read(path), panels)
+    ctx = create_context()
+    out = []
+    try:
+        for azimuth, elevation in views:
+            camera = frame_camera(scene, azimuth, elevation)
+            ink = {}
+            for name in ("baked", "double-sided"):
+                for item in scene.items:
+                    item.material = dict(item.material or {}, doubleSided=name == "double-sided")
+                ink[name] = render_panel(ctx, outline, scene, camera, size).max(axis=2) < 0.1
+            out.append((camera, ink))
+    finally:
+        scene.release()
+        ctx.release()
+    return out
+
+
+def test_outline_leaves_openings_clear(tmp_path):
+    """RTR4 15.2.2: the shell needs a closed mesh; through an opening of a single-sided mesh its inflated back faces
+    would fill the hole with ink. The bake pins _OUTLINE_NORMAL to zero on the rims and the panel writes an open
+    primitive's back faces to depth first: no ink inside a window cut into a sphere (without that pass: every window
+    pixel, see tests/gl/test_edges.py), and inside the teapot's openings (the spout's mouth, the ring between lid and
+    body) only what the shell draws when the teapot's inside is there to hide it (double-sided: the lid's own
+    contour); the silhouette ring is unchanged."""
+    import trimesh
+
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
+    centres = sphere.triangles_center
+    cut = (centres[:, 2] > 0.3) & (np.abs(centres[:, 0]) < 0.45) & (np.abs(centres[:, 1]) < 0.3)
+    source = tmp_path / "holed_sphere.obj"
+    trimesh.Trimesh(sphere.vertices, sphere.faces[~cut], process=False).export(source)
+    save(baker.bake(source, bakes=("edges",)), tmp_path / "holed_sphere.glb")
+    for camera, ink in _outline_ink(tmp_path / "holed_sphere.glb", [(0, 0), (25, 10), (-30, -15)]):
+        window = ndimage.binary_erosion(_projected_fill(sphere.vertices[sphere.faces[cut]], camera, 256), iterations=2)
+        away = ~ndimage.binary_dilation(window, iterations=12)
+        print("holed sphere: window pixels", int(window.sum()), "ink: baked", int(ink["baked"][window].sum()),
+              "silhouette", int(ink["baked"][away].sum()))
+        assert window.sum() > 4000 and ink["baked"][window].sum() == 0
+        assert ink["baked"][away].sum() > 1000 and np.array_equal(ink["baked"][away], ink["double-sided"][away])
+
+    teapot = Path(__file__).resolve().parents[2] / "shared" / "assets" / "meshes" / "teapot.obj"
+    mesh = trimesh.load(teapot, process=True)
+    rims = mesh.edges_sorted[trimesh.grouping.group_rows(mesh.edges_sorted, require_count=1)]
+    # each boundary loop as a fan around its centre: the openings' screen regions (the body's rim minus the lid's)
+    labels = trimesh.graph.connected_component_labels(rims, node_count=len(mesh.vertices))[rims[:, 0]]
+    fans = []
+    for label in np.unique(labels):
+        loop = rims[labels == label]
+        centre = mesh.vertices[np.unique(loop)].mean(axis=0)
+        fans.append((centre, np.concatenate([mesh.vertices[loop], np.repeat(centre[None, None], len(loop), 0)], 1)))
+    spout = next(f for c, f in fans if c[0] > 2.9)
+    body, lid = sorted((f for c, f in fans if abs(c[1] - 2.4) < 0.05 and abs(c[0]) < 0.05), key=lambda f: -np.ptp(f[..., 0]))
+    save(baker.bake(teapot, bakes=("edges",)), tmp_path / "teapot.glb")
+    for camera, ink in _outline_ink(tmp_path / "teapot.glb", [(60, 55), (90, 30)], size=512):
+        openings = _projected_fill(spout, camera, 512) | (_projected_fill(body, camera, 512) &
+                                                          ~ndimage.binary_dilation(_projected_fill(lid, camera, 512)))
+        openings = ndimage.binary_erosion(openings, iterations=1)
+        counts = {name: int(image[openings].sum()) for name, image in ink.items()}
+        print("teapot: opening pixels", int(openings.sum()), "ink in them", counts)
+        # the ring between lid and body is narrow: most of it is the lid's own contour, drawn either way
+        assert openings.sum() > 500
+        assert counts["baked"] <= counts["double-sided"] + 0.01 * openings.sum()

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numba
 import numpy as np
@@ -465,6 +466,15 @@ class MeshEdges:
     classes: EdgeClasses
     outline_normals: np.ndarray  # (V,) per input vertex (equal for all copies of a welded position)
 
+    @cached_property
+    def open_vertices(self) -> np.ndarray:
+        """(V,) bool per input vertex: its welded position lies on a boundary or non-manifold edge, where a shell
+        outline cannot work (RTR4 15.2.2-15.2.3: the inflated back faces show through the opening)."""
+        on_open_edge = (self.flags & (BOUNDARY | NON_MANIFOLD)) != 0
+        welded_open = np.zeros(len(self.welded), bool)
+        welded_open[self.topology.edges[on_open_edge].reshape(-1)] = True
+        return welded_open[self.vertex_to_welded]
+
     @property
     def flags(self) -> np.ndarray:
         return self.classes.flags
@@ -569,6 +579,14 @@ class PrimitiveEdges:
     fin_corners: np.ndarray | None  # (E_p, 4, 3) positions v0, v1, v2, v3 (v3 = v2 mirrored over the edge when
     # absent); None when not asked for
     outline_normals: np.ndarray  # (V_p, 3)
+    open_vertices: np.ndarray  # (V_p,) bool: on a boundary or non-manifold edge (MeshEdges.open_vertices)
+
+    @property
+    def shell_normals(self) -> np.ndarray:
+        """``_OUTLINE_NORMAL``: the outline normals, zero at open vertices, so the shell is pinned to the mesh along
+        every boundary: a shell triangle hinged on a boundary edge cannot cross that edge on screen without turning
+        front-facing (culled), and no inflated back face pokes into an opening."""
+        return np.where(self.open_vertices[:, None], 0.0, self.outline_normals)
 
 
 def hard_mask(flags: np.ndarray, hard_uv_seams: bool = False) -> np.ndarray:
@@ -698,4 +716,4 @@ def primitive_edges(mesh: MeshEdges, face_range: tuple[int, int], vertex_range: 
         fin_corners = np.stack([p0, p1, p2, p3], axis=1)
 
     return PrimitiveEdges(codes.reshape(-1, 3), mates, edges, opposite, rep_flags, rep_angle, wire, fin_corners,
-                          mesh.outline_normals[v_lo:v_hi])
+                          mesh.outline_normals[v_lo:v_hi], mesh.open_vertices[v_lo:v_hi])

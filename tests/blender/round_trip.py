@@ -31,7 +31,14 @@ for obj in bpy.data.objects:
         pairs = pairs.reshape(-1, 2)
         for name in ("sharp_edge", "freestyle_edge"):
             values = np.zeros(count, bool)
-            if name in mesh.attributes:
+            if name == "freestyle_edge" and bpy.app.version < (5, 0, 0):
+                # what Freestyle and Line Art read before Blender 5.0 (a generic attribute of that name is ignored)
+                mesh.edges.foreach_get("use_freestyle_mark", values)
+                generic = np.zeros(count, bool)
+                if name in mesh.attributes:
+                    mesh.attributes[name].data.foreach_get("value", generic)
+                row["freestyle_edge_attribute"] = int(generic.sum())
+            elif name in mesh.attributes:
                 mesh.attributes[name].data.foreach_get("value", values)
             row[name] = int(values.sum())
             row[name + "_positions"] = [co[list(pair)].tolist() for pair in pairs[values]]

@@ -4,8 +4,11 @@ Everything goes through the written file: a cube (24 vertices, split normals) an
 saved as .glb and read back. Fins: the vertex shader's outputs are captured with transform feedback and compared with
 the twin, and a sphere's contour fins cover the ring 2 pi R w a w-pixel line should. Shell outline: rendered with
 _OUTLINE_NORMAL, its coverage equals the area between the convex hulls of the twin-displaced and the original
-vertices, and the cube's corners are closed (with the split NORMALs they crack open). Wireframe: coverage matches
-the twin on every pixel, and the quad diagonal of the face seen head-on is hidden by the mask.
+vertices, and the cube's corners are closed (with the split NORMALs they crack open). Open meshes: through the window
+of a single-sided sphere no shell ink shows once the open primitive's back faces go into depth first (unit normals
+and no such pass: the whole window), and an open bowl's shell is pinned to its rim by the zero _OUTLINE_NORMAL there.
+Wireframe: coverage matches the twin on every pixel, and the quad diagonal of the face seen head-on is hidden by the
+mask.
 """
 from __future__ import annotations
 
@@ -287,8 +290,10 @@ def test_sphere_contour_fins_cover_a_ring(gl_context, sphere):
 
 
 # ---------------------------------------------------------------------------------------------------------- shell
-def _render_outline(ctx, data, normals, eye, width):
-    """Object in red, then its shell's back faces in green behind it: returns the green mask."""
+def _render_outline(ctx, data, normals, eye, width, occluder=False, double_sided=False):
+    """Object in red (single-sided: back faces culled, unless ``double_sided``), then its shell's back faces in green
+    behind it: returns the green mask. ``occluder``: between the two, the object's back faces into depth only, as the
+    hosts draw an open single-sided primitive (its inside, seen through an opening, then hides the shell)."""
     import moderngl
 
     vp = view_projection(eye)
@@ -305,7 +310,15 @@ def _render_outline(ctx, data, normals, eye, width):
     obj["u_color"].value = (1.0, 0.0, 0.0, 1.0)
     ctx.front_face = "ccw"
     ctx.cull_face = "back"
+    if double_sided:
+        ctx.disable(moderngl.CULL_FACE)
     ctx.vertex_array(obj, [(pos, "3f", "POSITION")], index_buffer=ibo, index_element_size=4).render()
+    ctx.enable(moderngl.CULL_FACE)
+    if occluder:
+        fbo.color_mask = (False, False, False, False)
+        ctx.cull_face = "front"
+        ctx.vertex_array(obj, [(pos, "3f", "POSITION")], index_buffer=ibo, index_element_size=4).render()
+        fbo.color_mask = (True, True, True, True)
     shell = program(ctx, "shell")
     set_matrix(shell, "u_viewProjection", vp)
     shell["u_color"].value = (0.0, 1.0, 0.0, 1.0)
@@ -365,6 +378,89 @@ def test_cube_outline_corners_close_only_with_outline_normals(gl_context, cube):
         col, row = int(x + sx * 2.0), int(y + sy * 2.0)
         assert merged[row, col], "the outline is closed at the corner"
         assert not split[row, col], "split normals crack the shell open at the corner"
+
+
+def holed_sphere() -> tuple[trimesh.Trimesh, np.ndarray]:
+    """A single-sided icosphere with a rectangular window cut into its +z side: (the open mesh, the cut triangles)."""
+    s = trimesh.creation.icosphere(3, radius=1.0)
+    c = s.triangles_center
+    cut = (c[:, 2] > 0.3) & (np.abs(c[:, 0]) < 0.5) & (np.abs(c[:, 1]) < 0.35)
+    return trimesh.Trimesh(s.vertices, s.faces[~cut], process=False), s.vertices[s.faces[cut]]
+
+
+def window_pixels(triangles: np.ndarray, vp: np.ndarray, margin: int) -> np.ndarray:
+    """Pixels whose centres lie inside the projected (cut-out) triangles, at least ``margin`` pixels from the
+    window's rim (the rim's own line may be there)."""
+    from scipy import ndimage
+
+    h = np.concatenate([triangles.reshape(-1, 3), np.ones((triangles.size // 3, 1))], axis=1) @ vp.T
+    corners = to_pixels(h).reshape(-1, 3, 2)
+    yy, xx = np.mgrid[0:SIZE, 0:SIZE]
+    px, py = xx.ravel() + 0.5, yy.ravel() + 0.5
+    inside = np.zeros(len(px), bool)
+    for a, b, c in corners:
+        sides = [(q[0] - p[0]) * (py - p[1]) - (q[1] - p[1]) * (px - p[0]) for p, q in ((a, b), (b, c), (c, a))]
+        inside |= np.all([d >= 0 for d in sides], axis=0) | np.all([d <= 0 for d in sides], axis=0)
+    inside = inside.reshape(SIZE, SIZE)
+    return ndimage.binary_erosion(inside, iterations=margin) if margin > 0 else \
+        ndimage.binary_dilation(inside, iterations=-margin) if margin < 0 else inside
+
+
+def test_open_mesh_shell_leaves_its_window_clear(gl_context, tmp_path):
+    """RTR4 15.2.2-15.2.3: a shell fails on an open mesh: through the window of a single-sided sphere the inflated
+    back faces fill the opening with ink. With the bake's _OUTLINE_NORMAL (zero on the rim) and the hosts'
+    depth-only back-face pass, no ink is left inside the window, and the silhouette ring is as wide as before."""
+    from baker.geometry.edges import outline_normals
+
+    mesh, cut = holed_sphere()
+    data = baked(tmp_path, mesh, "holed_sphere")
+    baked_normals = data["outline"]
+    length = np.linalg.norm(baked_normals, axis=1)
+    boundary = mesh.edges_sorted[trimesh.grouping.group_rows(mesh.edges_sorted, require_count=1)]
+    rim = {tuple(p) for p in mesh.vertices[np.unique(boundary)].astype(np.float32).round(5)}
+    zero = {tuple(p) for p in data["positions"][length < 0.5].round(5)}
+    assert len(rim) >= 10 and zero == rim  # zero exactly on the window's rim
+    assert np.all(np.abs(length[length >= 0.5] - 1.0) < 1e-5)
+    unit = outline_normals(data["positions"], data["indices"].reshape(-1, 3)).astype(np.float32)  # what baker wrote
+    eye = np.array([0.4, 0.3, 3.2])
+    width = 5.0
+    before, vp = _render_outline(gl_context, data, unit, eye, width)
+    after, _ = _render_outline(gl_context, data, baked_normals, eye, width, occluder=True)
+    window = window_pixels(cut, vp.astype(np.float32), margin=2)
+    print("ink inside the window: unit normals", int(before[window].sum()), "baked + occluder", int(after[window].sum()),
+          "of", int(window.sum()), "window pixels")
+    assert window.sum() > 2000
+    assert before[window].mean() > 0.5  # the failure this guards against shows
+    assert after[window].sum() == 0
+    # the silhouette ring, away from the window: the same pixels
+    outside = ~window_pixels(cut, vp.astype(np.float32), margin=-int(width) - 2)
+    ring_before, ring_after = before & outside, after & outside
+    assert ring_before.sum() > 2000 and np.count_nonzero(ring_before != ring_after) == 0
+
+
+def test_shell_is_pinned_to_an_open_bowls_rim(gl_context, tmp_path):
+    """A double-sided open bowl seen from inside: the shell lies behind it, but with unit normals everywhere the
+    rim's normals lean outwards and push ink out past the rim (a window's far rim seen through the window does the
+    same). With _OUTLINE_NORMAL zero on the rim the shell is pinned there: no ink beyond the bowl's own pixels."""
+    from baker.geometry.edges import outline_normals
+
+    grid = np.linspace(-0.8, 0.8, 9)
+    xx, yy = np.meshgrid(grid, grid)
+    # a shallow bowl opening towards the eye (normals +z, the rim bent towards -z): seen from inside, like a
+    # window's far rim seen through the window
+    vertices = np.stack([xx.ravel(), yy.ravel(), -0.4 * (xx.ravel() ** 2 + yy.ravel() ** 2)], axis=1)
+    quads = np.array([[r * 9 + c, r * 9 + c + 1, (r + 1) * 9 + c + 1, (r + 1) * 9 + c] for r in range(8) for c in range(8)])
+    sheet = trimesh.Trimesh(vertices, np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]]), process=False)
+    data = baked(tmp_path, sheet, "sheet")
+    unit = outline_normals(data["positions"], data["indices"].reshape(-1, 3)).astype(np.float32)
+    eye = np.array([0.5, 0.4, -3.0])  # inside: the bowl's back faces are what the shell draws
+    width = 6.0
+    before, vp = _render_outline(gl_context, data, unit, eye, width, double_sided=True)
+    after, _ = _render_outline(gl_context, data, data["outline"], eye, width, double_sided=True)
+    beyond = ~window_pixels(sheet.vertices[sheet.faces], vp.astype(np.float32), margin=-1)
+    print("shell ink beyond the bowl's rim: unit normals", int(before[beyond].sum()), "baked", int(after[beyond].sum()))
+    assert before[beyond].sum() > 200
+    assert after[beyond].sum() == 0
 
 
 # ---------------------------------------------------------------------------------------------------------- wireframe

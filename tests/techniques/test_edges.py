@@ -137,7 +137,7 @@ def test_cube_fins_carry_the_edge_and_its_faces(cube, tmp_path):
 
 
 def test_open_cube_has_4_boundary_edges(tmp_path):
-    _, doc = bake_file(split_cube(open_top=True), tmp_path, "open")
+    out, doc = bake_file(split_cube(open_top=True), tmp_path, "open")
     data = primitive_data(doc)
     flags = data["flags"].astype(np.int64)
     assert np.count_nonzero(flags & E.BOUNDARY) == 4 and data["ext"]["counts"]["boundary"] == 4
@@ -146,6 +146,16 @@ def test_open_cube_has_4_boundary_edges(tmp_path):
     boundary = edges[(flags & E.BOUNDARY) != 0]
     np.testing.assert_allclose(pos[boundary][..., 2], 0.5)  # the rim of the missing top face
     assert np.all(data["oppositeVertices"][(flags & E.BOUNDARY) != 0][:, 1] == 0xFFFF)
+    # the shell is pinned to the open rim: _OUTLINE_NORMAL zero on every copy of the 4 rim corners, unit elsewhere
+    length = np.linalg.norm(data["outline"], axis=1)
+    on_rim = np.isin(np.arange(len(pos)), boundary) | np.isclose(pos[:, 2], 0.5)
+    assert on_rim.sum() >= 4 and np.all(length[on_rim] == 0.0) and np.allclose(length[~on_rim], 1.0)
+    assert validate_file(out, khronos=False)["issues"]["numErrors"] == 0
+
+    def half_length(d, prim):
+        prim["attributes"]["_OUTLINE_NORMAL"] = d.add_accessor((data["outline"] * 0.5).astype(np.float32))
+
+    assert "BAKER_EDGES_OUTLINE_NOT_UNIT" in _codes(_corrupt(out, tmp_path / "half.glb", half_length))
 
 
 # ---------------------------------------------------------------------------------------------------------- fandisk

@@ -5,7 +5,8 @@ Where the data goes (see ``schemas/BAKER_edges/README.md``):
   ``visibility`` (2 bits per triangle edge, LSB first, ceil(6N/8) bytes) and ``silhouetteMates``;
 - ``BAKER_edges`` on the primitive: accessors for the edge list, opposite vertices, flags, dihedral angles and the
   wireframe mask, the settings, per-class counts, and the index of the optional fin primitive;
-- the vertex attribute ``_OUTLINE_NORMAL`` (FLOAT VEC3, unit): one averaged normal per welded position;
+- the vertex attribute ``_OUTLINE_NORMAL`` (FLOAT VEC3): one averaged unit normal per welded position, zero at
+  positions on a boundary or non-manifold edge (the shell outline is pinned to open boundaries);
 - optionally a fin primitive in the same mesh (4 vertices, 2 degenerate triangles per edge) whose ``BAKER_edges``
   names its source primitive; a viewer that ignores the extensions rasterizes nothing from it. Its attributes
   ``_FIN_V0.._FIN_V3`` (VEC3), ``_FIN_CORNER`` and ``_FIN_FLAGS`` (scalars) are laid out as
@@ -417,9 +418,10 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             values = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_EDGES_OUTLINE", width=3)
             if values is not None and len(values):
                 length = np.linalg.norm(values, axis=1)
-                if np.abs(length - 1.0).max() > 1e-3:
-                    issues.error("BAKER_EDGES_OUTLINE_NOT_UNIT", "outline normals must be unit vectors",
-                                 pointer("accessors", attrs[name]))
+                # zero at vertices on an open boundary (the shell is pinned there), unit everywhere else
+                if np.minimum(np.abs(length - 1.0), length).max() > 1e-3:
+                    issues.error("BAKER_EDGES_OUTLINE_NOT_UNIT", "outline normals must be unit vectors (or zero at "
+                                 "vertices on a boundary or non-manifold edge)", pointer("accessors", attrs[name]))
         fins = ext.get("fins")
         if fins is not None:
             ok = isinstance(fins, int) and 0 <= fins < len(prims)

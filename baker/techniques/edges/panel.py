@@ -47,7 +47,17 @@ class OutlinePanel(Panel):
         return super().available(scene) or bool(isinstance(scene, Scene) and scene.part("edge-fins"))
 
     def draw(self, ctx, scene, camera, size):
-        draw_surfaces(ctx, REFERENCE, scene, camera, size)
+        # an open primitive of a single-sided material as glTF and the hosts draw it: back faces culled, so its
+        # openings show what lies behind (a closed one shows no back face either way: left double-sided, so a
+        # mirrored node's flipped winding cannot hide it)
+        single = [i for i in scene.items if not (i.material or {}).get("doubleSided") and is_open(i)]
+        culled = {id(i) for i in single}
+        ctx.front_face = "ccw"
+        ctx.enable(ctx.CULL_FACE)
+        ctx.cull_face = "back"
+        draw_surfaces(ctx, REFERENCE, scene.subset(single), camera, size)
+        ctx.disable(ctx.CULL_FACE)
+        draw_surfaces(ctx, REFERENCE, scene.subset([i for i in scene.items if id(i) not in culled]), camera, size)
         shell = Panel("shell", "", (), "", "color = u_ink;", vertex_modules=("baker_edges.glsl",),
                       vertex_body="float w = (u_viewProjection * vec4(POSITION, 1.0)).w;\n"
                                   "    position = baker_shell_position(POSITION, a_outline, w, u_width, "
@@ -55,13 +65,28 @@ class OutlinePanel(Panel):
         items = [i for i in scene.items if self.applies(i)]
         if items:
             ctx.enable(ctx.CULL_FACE)
-            ctx.front_face = "ccw"
             ctx.cull_face = "front"
+            # an open single-sided primitive (zero outline normals on its rims): its back faces into depth only
+            # first, so the shell cannot show through its openings (RTR4 15.2.2: the shell needs a closed mesh)
+            occluders = [i for i in items if id(i) in culled]
+            if occluders:
+                ctx.enable(ctx.BLEND)
+                ctx.blend_func = ctx.ZERO, ctx.ONE  # depth only (moderngl's color_mask does not hold across draws)
+                draw_surfaces(ctx, shell, scene.subset(occluders), camera, size, extra={"u_width": 0.0},
+                              fallback=False)
+                ctx.blend_func = ctx.DEFAULT_BLENDING
+                ctx.disable(ctx.BLEND)
             draw_surfaces(ctx, shell, scene.subset(items), camera, size,
                           extra={"u_width": max(2.0, size / 96.0)}, fallback=False)
             ctx.disable(ctx.CULL_FACE)
         for fins in scene.part("edge-fins"):
             draw_fins(ctx, fins, camera, size)
+
+
+def is_open(item) -> bool:
+    """The bake zeroes _OUTLINE_NORMAL on boundary and non-manifold edges: a primitive with such rows is open."""
+    normals = item.attributes.get(OUTLINE_NORMAL)
+    return normals is not None and bool((np.einsum("ij,ij->i", normals, normals) < 0.25).any())
 
 
 def draw_fins(ctx, fins: EdgeFins, camera: Camera, size: int) -> None:

@@ -72,7 +72,7 @@ def run(asset: Asset, options: EdgesOptions, seed: int = 0, progress: Progress =
             if options.visibility:
                 written = ext.write_edge_visibility(doc, m, p, pe.visibility_codes, pe.silhouette_mates, len(pos))
             if options.outline_normals:
-                ext.write_outline_normals(doc, m, p, pe.outline_normals)
+                ext.write_outline_normals(doc, m, p, pe.shell_normals)
             fins = ext.write_fin_primitive(doc, m, p, pe) if options.fins and len(pe.edges) else None
             ext.write_primitive_edges(doc, m, p, pe, options=options, vertex_count=len(pos), fins=fins, outline=options.outline_normals,
                                       visibility=written is not None)

@@ -29,6 +29,14 @@ export function maskFromVisibility(bytes, triangleCount) {
 	return mask;
 }
 
+/** True when some _OUTLINE_NORMAL (3 floats per vertex) is zero: BAKER_edges pins the shell to zero on boundary and non-manifold edges. */
+export function hasOpenRim(normals) {
+	for (let i = 0; i + 2 < normals.length; i += 3) {
+		if (normals[i] * normals[i] + normals[i + 1] * normals[i + 1] + normals[i + 2] * normals[i + 2] < 0.25) return true;
+	}
+	return false;
+}
+
 /** Loader extension for BAKER_edges. options.edges overrides the line style ({ color, finWidth, outlineWidth, wireframeWidth, wireframeColor, classes }). */
 export class BakerEdgesExtension {
 	constructor(loader, options = {}) {
@@ -76,6 +84,26 @@ export class BakerEdgesExtension {
 			if (primitive.attributes[outline] !== undefined) {
 				// under the stage's name whatever the extension calls it
 				const { [outline.toLowerCase()]: normals } = await primitiveAttributes(loader, primitive, [outline]);
+				const parts = [];
+				if (hasOpenRim(normals.data) && mesh.material?.backFaceCulling !== false) {
+					// an open single-sided primitive (the bake zeroes _OUTLINE_NORMAL on its rims): through an opening
+					// the inflated back faces would show (RTR4 15.2.2: the shell needs a closed mesh). Its back faces go
+					// into depth first: the shell stage at width 0 with colour writes off, its material made before
+					// the shell's (Babylon draws opaque meshes in material creation order)
+					const inside = bakerMesh('baker outline occluder', scene, mesh, positions, indices, { _outline_normal: normals });
+					const depthOnly = stageMaterial('baker outline occluder', scene, {
+						glsl, vertex: 'edges_outline.vert', fragment: 'solid.frag',
+						attributes: ['position', '_outline_normal'], uniforms: ['u_width', 'u_color'],
+					});
+					depthOnly.setFloat('u_width', 0);
+					depthOnly.setVector3('u_color', { x: 0, y: 0, z: 0 });
+					depthOnly.disableColorWrite = true;
+					depthOnly.backFaceCulling = true;
+					depthOnly.cullBackFaces = false;
+					depthOnly.sideOrientation = GLTF_FRONT;
+					inside.material = depthOnly;
+					parts.push(inside);
+				}
 				const shell = bakerMesh('baker outline', scene, mesh, positions, indices, { _outline_normal: normals });
 				const material = stageMaterial('baker shell outline', scene, {
 					glsl, vertex: 'edges_outline.vert', fragment: 'solid.frag',
@@ -88,7 +116,8 @@ export class BakerEdgesExtension {
 				material.cullBackFaces = false;
 				material.sideOrientation = GLTF_FRONT;
 				shell.material = material;
-				c.add('outline', (on) => shell.setEnabled(on));
+				parts.push(shell);
+				c.add('outline', (on) => { for (const part of parts) part.setEnabled(on); });
 			}
 			let mask = null;
 			if (ext.wireframeMask !== undefined) mask = (await readAccessor(loader, ext.wireframeMask)).data;

@@ -105,9 +105,10 @@ def blender_object(gltf_importer, node_index: int):
 
 
 def mark_edges(mesh, positions: np.ndarray, edges: np.ndarray, flags: np.ndarray) -> dict:
-    """Freestyle edge marks on every Blender edge whose end positions match a hard (normal seam) or crease
-    BAKER_edges edge, and Sharp on the hard ones. Crease edges are not marked sharp: Blender would then split the
-    imported (smooth) custom normals there and the untouched mesh would shade differently."""
+    """Freestyle edge marks (``use_freestyle_mark`` in Blender 4.x, the ``freestyle_edge`` attribute from 5.0) on every
+    Blender edge whose end positions match a hard (normal seam) or crease BAKER_edges edge, and Sharp on the hard
+    ones. Crease edges are not marked sharp: Blender would then split the imported (smooth) custom normals there and
+    the untouched mesh would shade differently."""
     points = to_blender(positions)
 
     def pair_keys(selected):
@@ -128,12 +129,24 @@ def mark_edges(mesh, positions: np.ndarray, edges: np.ndarray, flags: np.ndarray
     counts = {}
     for name, keep in wanted.items():
         marks = np.fromiter((k in keep for k in edge_keys), bool, len(edge_keys))
-        attribute = mesh.attributes.get(name) or mesh.attributes.new(name, "BOOLEAN", "EDGE")
         current = np.zeros(len(mesh.edges), bool)
-        attribute.data.foreach_get("value", current)
-        attribute.data.foreach_set("value", current | marks)
+        if name == "freestyle_edge" and not freestyle_marks_are_attributes():
+            # Blender < 5 keeps Freestyle marks in their own edge layer (MeshEdge.use_freestyle_mark): Freestyle and
+            # Line Art ignore a generic "freestyle_edge" attribute there, and 5.0's versioning would clash with one
+            mesh.edges.foreach_get("use_freestyle_mark", current)
+            mesh.edges.foreach_set("use_freestyle_mark", current | marks)
+        else:
+            attribute = mesh.attributes.get(name) or mesh.attributes.new(name, "BOOLEAN", "EDGE")
+            attribute.data.foreach_get("value", current)
+            attribute.data.foreach_set("value", current | marks)
         counts[name] = int(marks.sum())
     return counts
+
+
+def freestyle_marks_are_attributes() -> bool:
+    """Blender 5.0 moved Freestyle edge marks into the generic boolean edge attribute ``freestyle_edge``; before,
+    they were a layer of their own, read and written as ``MeshEdge.use_freestyle_mark``."""
+    return bpy.app.version >= (5, 0, 0)
 
 
 def make_curves(name: str, positions: np.ndarray, tangents: np.ndarray, param: np.ndarray, strands: int,

@@ -182,12 +182,12 @@ export const RUNTIMES = [
 			shaders: ["fins (McGuire & Hughes 2004), shell outline (RTR4 15.2.2), single-pass wireframe (Bærentzen et al. 2006)", "[`BAKER_edges`](../schemas/BAKER_edges/README.md) + `EXT_mesh_primitive_edge_visibility`", "`tests/gl/twins_edges.py`, `tests/gl/test_edges.py`"],
 			three: [
 				["`BAKER_edges` fin primitive", "`BakerEdgesPlugin`", "McGuire & Hughes fins: `baker_fin_classify` (contours, ridges, valleys, boundaries) and `baker_fin_position` (constant pixel width) in the vertex shader"],
-				["`BAKER_edges` `_OUTLINE_NORMAL`", "`BakerEdgesPlugin`", "shell outline (RTR4 15.2.2): back faces pushed out by `baker_shell_position`, a constant pixel width"],
+				["`BAKER_edges` `_OUTLINE_NORMAL`", "`BakerEdgesPlugin`", "shell outline (RTR4 15.2.2): back faces pushed out by `baker_shell_position`, a constant pixel width; an open primitive (zero normals on its rims) with a single-sided material gets a depth-only back-face mesh (`baker outline occluder`, renderOrder 0.5, shell 0.75) so no ink shows through its openings"],
 				["`BAKER_edges` `wireframeMask`", "`BakerEdgesPlugin`", "single-pass wireframe (Bærentzen et al. 2006, `baker_wireframe`) on a non-indexed copy with per-corner barycentrics; quad diagonals hidden by the mask"],
 			],
 			babylon: [
 				["`BAKER_edges` fin primitive", "edge fins (`fins`), McGuire & Hughes 2004: contour, ridge, valley, boundary", "`ShaderMaterial` on the loaded fin mesh"],
-				["`BAKER_edges.outlineNormal`", "shell outline (`outline`), RTR4 15.2.2", "a back-face shell mesh, `ShaderMaterial`"],
+				["`BAKER_edges.outlineNormal`", "shell outline (`outline`), RTR4 15.2.2", "a back-face shell mesh, `ShaderMaterial`; an open primitive (zero normals on its rims) with a single-sided material first gets a depth-only back-face mesh (`baker outline occluder`, `disableColorWrite`) so no ink shows through its openings"],
 				["`BAKER_edges.wireframeMask`", "single-pass wireframe (`wireframe`, off by default), Bærentzen et al. 2006", "a non-indexed mesh with barycentrics, premultiplied `ShaderMaterial`"],
 				["`EXT_mesh_primitive_edge_visibility`", "its visible edges as the wireframe's mask when `BAKER_edges` has none (or the file has only this extension)", "as above"],
 			],

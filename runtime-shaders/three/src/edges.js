@@ -18,6 +18,15 @@ export function wireframeGeometry(geometry, mask) {
 	return out;
 }
 
+/** True when some _OUTLINE_NORMAL is zero: BAKER_edges pins the shell to zero on boundary and non-manifold edges. */
+export function hasOpenRim(normals) {
+	for (let i = 0; i < normals.count; i++) {
+		const x = normals.getX(i), y = normals.getY(i), z = normals.getZ(i);
+		if (x * x + y * y + z * z < 0.25) return true;
+	}
+	return false;
+}
+
 /** GLTFLoader plugin for BAKER_edges: fins (McGuire & Hughes 2004), shell outline (RTR4 15.2.2), wireframe (Baerentzen 2006). */
 export class BakerEdgesPlugin {
 	constructor(parser, options = {}) {
@@ -72,7 +81,20 @@ export class BakerEdgesPlugin {
 				shell.frustumCulled = false;
 				trackViewport(shell, uniforms);
 				object.add(shell);
-				c.add('outline', (on) => { shell.visible = on; });
+				const parts = [shell];
+				if (hasOpenRim(geometry.attributes._outline_normal) && object.material.side !== THREE.DoubleSide) {
+					// an open single-sided primitive (the bake zeroes _OUTLINE_NORMAL on its rims): through an opening
+					// the inflated back faces would show (RTR4 15.2.2: the shell needs a closed mesh). Its back faces
+					// go into depth first, colour untouched, after the scene's opaque objects and before the shell.
+					const inside = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ side: THREE.BackSide, colorWrite: false }));
+					inside.name = 'baker outline occluder';
+					inside.frustumCulled = false;
+					inside.renderOrder = 0.5;
+					shell.renderOrder = 0.75;
+					object.add(inside);
+					parts.push(inside);
+				}
+				c.add('outline', (on) => { for (const part of parts) part.visible = on; });
 			}
 			if (ext.wireframeMask !== undefined || ext.wireframeHides) {
 				const mask = ext.wireframeMask !== undefined ? (await this.parser.getDependency('accessor', ext.wireframeMask)).array : null;
