@@ -80,6 +80,12 @@ def usd_primitive_hooks() -> dict:
     return {name: ext.to_usd_primitive for name, ext in extensions().items() if hasattr(ext, "to_usd_primitive")}
 
 
+def usd_material_readers() -> dict:
+    """Extension name -> ``from_usd(doc, material, params)``: fills in what a material extension's USD attributes
+    cannot carry (lists of objects holding glTF indices) when :mod:`baker.readers.usd_baked` reads a stage back."""
+    return {name: ext.from_usd for name, ext in extensions().items() if hasattr(ext, "from_usd")}
+
+
 def vertex_attribute_widths() -> dict:
     """Custom attribute name -> its data's component count, from each extension's ``VERTEX_ATTRIBUTES``: what a
     padded glTF layout (:mod:`baker.gltf.vertex_attributes`) hides and USD writes at its own width."""
