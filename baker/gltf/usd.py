@@ -45,8 +45,9 @@ a stage):
   material input ``inputs:baker:thicknessFactor`` (float) holds ``thicknessFactor`` (texel value 1.0 = that many
   units).
 - Every other field of a ``BAKER_<name>`` material extension is a typed **custom attribute** on the Material prim,
-  ``baker:<name>:<key>`` (e.g. ``baker:thickness:rays`` int, ``baker:thickness:subsurfaceColor`` float3,
-  ``baker:thickness:distribution`` string), by :func:`usd_parameters`: a texture reference keeps its non-index
+  ``baker:<name>:<key>`` (e.g. ``baker:thickness:rays`` int, ``baker:thickness:subsurfaceColor`` double3,
+  ``baker:thickness:distribution`` string; numbers are doubles, so reading them back gives the JSON's numbers),
+  by :func:`usd_parameters`: a texture reference keeps its non-index
   fields (``baker:<name>:<field>:scale``), a top-level ``texCoord`` becomes ``texCoordPrimvar`` (``"st"``), a
   vertex attribute name becomes its primvar's (``"primvars:baker:thickness"``), lists of objects (which carry
   indices) are left out. Attributes rather than ``customData`` so they are typed, can be time-sampled or
@@ -583,16 +584,16 @@ def custom_attributes(prim, namespace: str, params: dict) -> None:
             type_name, value = Sdf.ValueTypeNames.Bool, value
         elif isinstance(value, int):
             type_name = Sdf.ValueTypeNames.Int if -2**31 <= value < 2**31 else Sdf.ValueTypeNames.Int64
-        elif isinstance(value, float):
-            type_name = Sdf.ValueTypeNames.Float
+        elif isinstance(value, float):  # double: a JSON number read back is the number written
+            type_name = Sdf.ValueTypeNames.Double
         elif isinstance(value, str):
             type_name = Sdf.ValueTypeNames.String
         elif isinstance(value, list) and value and all(isinstance(v, (int, float)) and not isinstance(v, bool)
                                                        for v in value):
             value = [float(v) for v in value]
-            vectors = {2: (Sdf.ValueTypeNames.Float2, Gf.Vec2f), 3: (Sdf.ValueTypeNames.Float3, Gf.Vec3f),
-                       4: (Sdf.ValueTypeNames.Float4, Gf.Vec4f)}
-            type_name, make = vectors.get(len(value), (Sdf.ValueTypeNames.FloatArray, Vt.FloatArray))
+            vectors = {2: (Sdf.ValueTypeNames.Double2, Gf.Vec2d), 3: (Sdf.ValueTypeNames.Double3, Gf.Vec3d),
+                       4: (Sdf.ValueTypeNames.Double4, Gf.Vec4d)}
+            type_name, make = vectors.get(len(value), (Sdf.ValueTypeNames.DoubleArray, Vt.DoubleArray))
             value = make(*value) if len(value) in vectors else make(value)
         elif isinstance(value, list) and value and all(isinstance(v, str) for v in value):
             type_name, value = Sdf.ValueTypeNames.StringArray, Vt.StringArray(value)

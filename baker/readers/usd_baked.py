@@ -240,7 +240,7 @@ class _StageReader:
             gltf["alphaMode"], gltf["alphaCutoff"] = "MASK", float(threshold.Get())
 
     def _json_value(self, value, where: str):
-        """A custom attribute's value as JSON (numbers of float32 attributes as the nearest short decimal)."""
+        """A custom attribute's value as JSON (the writer's numbers are doubles: the JSON's numbers)."""
         from pxr import Sdf
 
         if isinstance(value, Sdf.AssetPath):
@@ -317,11 +317,10 @@ class _StageReader:
             raise BakerError(self.path, f"{where}: cannot read {resolved}: {exc}") from None
 
 
-def _number(value: float, where: str, path: Path):
+def _number(value: float, where: str, path: Path) -> float:
     if not np.isfinite(value):
         raise BakerError(path, f"{where}: {value} is not a finite number")
-    return float(np.format_float_positional(np.float32(value), unique=True, trim="0")) if \
-        float(np.float32(value)) == value else value
+    return value
 
 
 def _texcoord(varname: str) -> int:
