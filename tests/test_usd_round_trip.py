@@ -1,0 +1,114 @@
+"""baker reads its own USD: ``inspect``, ``preview`` and ``validate`` of a baked ``.usda``/``.usdz`` report the same
+baked data as the GLB of the same bake (:mod:`baker.readers.usd_baked`), and a stage whose baked data is broken
+(written with pxr: a NaN, a wrong-length primvar) fails validation with one error and is refused by the reader."""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pxr = pytest.importorskip("pxr")
+
+from pxr import Sdf, Usd, UsdGeom, Vt  # noqa: E402
+
+import baker  # noqa: E402
+from baker import validate  # noqa: E402
+from baker.commands.inspect import describe  # noqa: E402
+from baker.errors import BakerError  # noqa: E402
+from baker.pipeline import save  # noqa: E402
+from baker.preview.core import preview  # noqa: E402
+
+SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
+# every bake whose data USD carries (edges' per-edge lists and fur's fin primitives are glTF-only: not baked here)
+BAKES = ("thickness", "curvature", "skin", "tam", "toon", "fur", "caustics")
+FAST = {
+    "thickness": {"rays": 8, "texture_size": 64},
+    "curvature": {"per_texel": True, "texture_size": 64},
+    "skin": {"width": 32, "height": 32, "penumbra_size": 16},
+    "tam": {"size": 64, "levels": 2},
+    "fur": {"shells": 4, "texture_size": 32, "hairs": 100, "fins": False},
+    "caustics": {"size": 32, "frames": 2, "waves": 16},
+}
+
+
+@pytest.fixture(scope="module")
+def bake(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("round_trip")
+    asset = baker.bake(SPOT, bakes=list(BAKES), options=FAST)
+    for name in ("spot.glb", "spot.usda", "spot.usdz"):
+        save(asset, folder / name)
+    return folder
+
+
+def _baked_rows(info: dict) -> list:
+    return [(r["mesh"], r["primitive"], r["vertices"], r["triangles"], r["baked"]) for r in info["meshes"]]
+
+
+@pytest.mark.parametrize("suffix", [".usda", ".usdz"])
+def test_inspect_reports_the_glb_baked_data(bake, suffix):
+    glb, usd = describe(bake / "spot.glb"), describe(bake / f"spot{suffix}")
+    glb_rows, usd_rows = _baked_rows(glb), _baked_rows(usd)
+    assert len(glb_rows) == len(usd_rows) == 1
+    (_, _, glb_vertices, glb_triangles, glb_baked), (_, _, usd_vertices, usd_triangles, usd_baked) = \
+        glb_rows[0], usd_rows[0]
+    assert (usd_vertices, usd_triangles) == (glb_vertices, glb_triangles)
+    assert set(glb_baked) >= {"_THICKNESS", "_CURVATURE", "_HATCHING_DIRECTION"}
+    assert set(usd_baked) == set(glb_baked)
+    for name, stats in glb_baked.items():
+        for key in ("min", "mean", "max"):
+            assert usd_baked[name][key] == pytest.approx(stats[key], rel=1e-6, abs=1e-7), (name, key)
+    assert [m["extensions"] for m in usd["materials"]] == [m["extensions"] for m in glb["materials"]]
+    assert sorted(t["size"] for m in usd["materials"] for t in m["textures"]) == \
+        sorted(t["size"] for m in glb["materials"] for t in m["textures"])
+
+
+def test_preview_draws_the_glb_panels(bake):
+    size = 48
+    glb, usd = preview(bake / "spot.glb", size=size), preview(bake / "spot.usda", size=size)
+    names = [name for name, _, _ in glb.panels]
+    assert len(names) >= 7, names  # the reference + thickness, translucency, skin, toon, caustics, tam, fur, ...
+    assert [name for name, _, _ in usd.panels] == names
+    assert usd.sheet.shape == glb.sheet.shape
+    for name, _, (y, x, s) in glb.panels:
+        a = glb.sheet[y: y + s, x: x + s].astype(np.float64)
+        b = usd.sheet[y: y + s, x: x + s].astype(np.float64)
+        assert np.abs(a - b).mean() < 2.0, (name, np.abs(a - b).mean())
+
+
+def test_validate_passes_a_good_stage_without_khronos(bake, capsys):
+    report = validate.validate_file(bake / "spot.usda")  # Khronos asked for: not applicable, not a failure
+    assert report["issues"]["numErrors"] == 0, report["issues"]["messages"]
+    assert report["khronos"]["ran"] is False and "not applicable" in report["khronos"]["reason"]
+    assert report["mimeType"] == "model/vnd.usda"
+    assert validate.main([str(bake / "spot.usdz")], khronos=False) == 0
+    assert "Khronos glTF-Validator does not apply" in validate.format_text("spot.usda", report)
+
+
+def _broken_copy(bake, tmp_path, values) -> Path:
+    """spot.usda with its thickness primvar replaced by ``values`` (given the original)."""
+    shutil.copytree(bake / "spot_textures", tmp_path / "spot_textures")
+    out = tmp_path / "spot.usda"
+    shutil.copy(bake / "spot.usda", out)
+    stage = Usd.Stage.Open(str(out))
+    mesh = next(p for p in stage.Traverse() if p.IsA(UsdGeom.Mesh))
+    primvar = UsdGeom.PrimvarsAPI(mesh).GetPrimvar("baker:thickness")
+    primvar.Set(Vt.FloatArray.FromNumpy(values(np.asarray(primvar.Get(), np.float32))))
+    stage.GetRootLayer().Save()
+    return out
+
+
+@pytest.mark.parametrize("broken, problem", [
+    (lambda v: np.where(np.arange(len(v)) == 7, np.float32("nan"), v).astype(np.float32), "value 7 is not finite"),
+    (lambda v: v[:-1], "values for"),
+])
+def test_validate_fails_a_stage_with_broken_baked_data(bake, tmp_path, broken, problem):
+    out = _broken_copy(bake, tmp_path, broken)
+    report = validate.validate_file(out, khronos=False)
+    errors = [m for m in report["issues"]["messages"] if m["severity"] == 0]
+    assert len(errors) == 1 and errors[0]["code"] == "BAKER_USD_UNREADABLE", errors
+    assert "primvars:baker:thickness" in errors[0]["message"] and problem in errors[0]["message"]
+    assert validate.main([str(out)], khronos=False) == 1
+    with pytest.raises(BakerError, match="primvars:baker:thickness"):
+        describe(out)
