@@ -62,6 +62,9 @@ def test_inspect_reports_the_glb_baked_data(bake, suffix):
     assert [m["extensions"] for m in usd["materials"]] == [m["extensions"] for m in glb["materials"]]
     assert sorted(t["size"] for m in usd["materials"] for t in m["textures"]) == \
         sorted(t["size"] for m in glb["materials"] for t in m["textures"])
+    # fur's coverage-preserving mip chains: the KTX2 files come back as the same chains
+    chains = [[(c["place"], c["size"], c["levels"], c["coverage"]) for c in info["coverageMips"]] for info in (glb, usd)]
+    assert len(chains[0]) == 5 and chains[1] == chains[0]
 
 
 def test_preview_draws_the_glb_panels(bake):
@@ -74,7 +77,7 @@ def test_preview_draws_the_glb_panels(bake):
     for name, _, (y, x, s) in glb.panels:
         a = glb.sheet[y: y + s, x: x + s].astype(np.float64)
         b = usd.sheet[y: y + s, x: x + s].astype(np.float64)
-        assert np.abs(a - b).mean() < 2.0, (name, np.abs(a - b).mean())
+        assert np.abs(a - b).mean() < 0.5, (name, np.abs(a - b).mean())  # measured: 0 on every panel
 
 
 def test_validate_passes_a_good_stage_without_khronos(bake, capsys):

@@ -19,8 +19,10 @@ points as :mod:`baker.readers.usd` does) one glTF mesh and node:
 - what the attributes cannot carry (lists of objects holding glTF indices, e.g. TAM level sizes) each extension
   recovers in its ``from_usd(doc, material, params)`` hook (:func:`baker.registry.usd_material_readers`).
 
-Not recovered: primitive extensions (``BAKER_edges``' edge lists, fin primitives), coverage-mip chains, glTF node
-hierarchy (one node per mesh, in world space). Broken data (a primvar of the wrong length, NaN or infinity in one,
+- each ``coverageMips`` chain from its ``baker:<name>:coverageMips:_<i>:*`` attributes (the KTX2 file back into an
+  accessor, its level 0's coverage measured again).
+
+Not recovered: primitive extensions (``BAKER_edges``' edge lists, fin primitives), glTF node hierarchy (one node per mesh, in world space). Broken data (a primvar of the wrong length, NaN or infinity in one,
 a texture outside the stage's folder) raises :class:`~baker.errors.BakerError` naming the prim and the attribute.
 """
 from __future__ import annotations
@@ -174,12 +176,16 @@ class _StageReader:
         if surface and surface.GetIdAttr().Get() == "UsdPreviewSurface":
             self._preview_surface(gltf, surface)
         prim = material.GetPrim()
-        extensions = {}
+        extensions, mips = {}, {}
         for attr in prim.GetAttributes():
             name = attr.GetName()
-            if name.startswith("baker:") and attr.HasAuthoredValue() and ":coverageMips:" not in name:
-                parts = name.split(":")[1:]
-                _put(extensions, parts, self._json_value(attr.Get(), f"{key}.{name}"))
+            if not (name.startswith("baker:") and attr.HasAuthoredValue()):
+                continue
+            parts = name.split(":")[1:]
+            if len(parts) == 4 and parts[1] == "coverageMips":  # baker:<ns>:coverageMips:_<i>:<field>
+                mips.setdefault(parts[0], {}).setdefault(parts[2], {})[parts[3]] = attr.Get()
+                continue
+            _put(extensions, parts, self._json_value(attr.Get(), f"{key}.{name}"))
         for output in material.GetOutputs():
             parts = output.GetBaseName().split(":")
             if parts[0] != "baker" or len(parts) < 3 or parts[-1] == "a":
@@ -197,6 +203,10 @@ class _StageReader:
                 gltf.setdefault("extensions", {})["KHR_materials_volume"] = {
                     "thicknessTexture": info, "thicknessFactor": float(volume.Get())}
                 self.doc.use_extension("KHR_materials_volume")
+        for short, entries in sorted(mips.items()):
+            if isinstance(extensions.get(short), dict):
+                extensions[short]["coverageMips"] = [self._coverage_mips(entries[k], f"{key}.baker:{short}:{k}")
+                                                     for k in sorted(entries, key=lambda k: int(k.lstrip("_") or 0))]
         hooks = registry.usd_material_readers()
         for short, params in sorted(extensions.items()):
             if not isinstance(params, dict):
@@ -255,6 +265,33 @@ class _StageReader:
                 return items
             return [_number(float(v), where, self.path) for v in items]
         return str(value)
+
+    def _coverage_mips(self, fields: dict, where: str) -> dict:
+        """A ``coverageMips`` entry (:mod:`baker.texels.alpha_mips`) from the writer's ``file`` (the KTX2), ``image``
+        (its level 0, one of the material's textures), ``alphaCutoff`` and ``levelCount``: the KTX2 becomes an
+        accessor again and the coverage is measured on its level 0."""
+        from baker.texels.alpha_mips import alpha_coverage, read_coverage_mips
+
+        image, ktx2 = fields.get("image"), fields.get("file")
+        if image is None or ktx2 is None:
+            raise BakerError(self.path, f"{where}: a coverage mip chain needs its file and image")
+        source = self.images.get(image.resolvedPath or image.path)
+        texture = next((t for t, tex in enumerate(self.doc.json.get("textures") or []) if tex.get("source") == source),
+                       None)
+        if source is None or texture is None:
+            raise BakerError(self.path, f"{where}: image {image.path} is none of the material's textures")
+        data = self._asset_bytes(ktx2.resolvedPath or ktx2.path, f"{where}:file")
+        accessor = self.doc.add_accessor(np.frombuffer(data, np.uint8), target=None,
+                                         name=f"coverage mips of texture {texture} (KTX2)")
+        cutoff = float(fields.get("alphaCutoff", 0.5))
+        entry = {"texture": texture, "accessor": accessor, "mimeType": "image/ktx2", "alphaCutoff": cutoff}
+        if "levelCount" in fields:
+            entry["levelCount"] = int(fields["levelCount"])
+        try:
+            entry["coverage"] = alpha_coverage(read_coverage_mips(self.doc, entry)[0][..., 3], cutoff)
+        except ValueError:  # not a KTX2 chain: `baker validate` says why
+            pass
+        return entry
 
     def _texture_info(self, output, short: str, extensions: dict) -> dict | None:
         from pxr import UsdShade
