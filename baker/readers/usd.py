@@ -51,7 +51,7 @@ def read(path: Path, allow_outside=None, max_memory: int | None = None) -> GltfD
         if problem:
             raise BakerError(path, problem)
         return doc
-    return doc_from_trimesh_scene(path, read_usd(path))
+    return doc_from_trimesh_scene(path, read_usd(path, stage))
 
 
 def renderable_meshes(stage):
@@ -71,7 +71,7 @@ def renderable_meshes(stage):
         yield UsdGeom.Mesh(prim), np.array(xform_cache.GetLocalToWorldTransform(prim), dtype=np.float64)
 
 
-def read_usd(path) -> "trimesh.Scene":
+def read_usd(path, stage=None) -> "trimesh.Scene":
     """Read every renderable ``UsdGeom.Mesh`` of a stage into a ``trimesh.Scene`` in world space.
 
     One ``trimesh.Trimesh`` per mesh prim, named by its prim path (geometry and node). A stage without meshes
@@ -81,7 +81,7 @@ def read_usd(path) -> "trimesh.Scene":
     from pxr import Usd, UsdGeom
 
     path = Path(path)
-    stage = open_stage(path)
+    stage = open_stage(path) if stage is None else stage  # the caller may have opened it already
     time = Usd.TimeCode.EarliestTime()
     scene = trimesh.Scene()
     for usd_mesh, matrix in renderable_meshes(stage):
