@@ -21,14 +21,14 @@ from baker.pipeline import save  # noqa: E402
 from baker.preview.core import preview  # noqa: E402
 
 SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
-# every bake whose data USD carries (edges' per-edge lists and fur's fin primitives are glTF-only: not baked here)
-BAKES = ("thickness", "curvature", "skin", "tam", "toon", "fur", "caustics")
+BAKES = ("thickness", "curvature", "skin", "edges", "tam", "toon", "fur", "caustics")
 FAST = {
     "thickness": {"rays": 8, "texture_size": 64},
     "curvature": {"per_texel": True, "texture_size": 64},
     "skin": {"width": 32, "height": 32, "penumbra_size": 16},
     "tam": {"size": 64, "levels": 2},
-    "fur": {"shells": 4, "texture_size": 32, "hairs": 100, "fins": False},
+    "edges": {"fins": True},
+    "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
     "caustics": {"size": 32, "frames": 2, "waves": 16},
 }
 
@@ -42,23 +42,22 @@ def bake(tmp_path_factory):
     return folder
 
 
-def _baked_rows(info: dict) -> list:
-    return [(r["mesh"], r["primitive"], r["vertices"], r["triangles"], r["baked"]) for r in info["meshes"]]
 
 
 @pytest.mark.parametrize("suffix", [".usda", ".usdz"])
 def test_inspect_reports_the_glb_baked_data(bake, suffix):
     glb, usd = describe(bake / "spot.glb"), describe(bake / f"spot{suffix}")
-    glb_rows, usd_rows = _baked_rows(glb), _baked_rows(usd)
-    assert len(glb_rows) == len(usd_rows) == 1
-    (_, _, glb_vertices, glb_triangles, glb_baked), (_, _, usd_vertices, usd_triangles, usd_baked) = \
-        glb_rows[0], usd_rows[0]
-    assert (usd_vertices, usd_triangles) == (glb_vertices, glb_triangles)
-    assert set(glb_baked) >= {"_THICKNESS", "_CURVATURE", "_HATCHING_DIRECTION"}
-    assert set(usd_baked) == set(glb_baked)
-    for name, stats in glb_baked.items():
-        for key in ("min", "mean", "max"):
-            assert usd_baked[name][key] == pytest.approx(stats[key], rel=1e-6, abs=1e-7), (name, key)
+    # the surface, then the fins of edges and of fur (finsOf), each with its baked attributes and extensions
+    assert len(glb["meshes"]) == len(usd["meshes"]) == 3
+    assert set(glb["meshes"][0]["baked"]) >= {"_THICKNESS", "_CURVATURE", "_HATCHING_DIRECTION", "_OUTLINE_NORMAL"}
+    assert set(glb["meshes"][0]["extensions"]) == {"BAKER_edges", "EXT_mesh_primitive_edge_visibility"}
+    for a, b in zip(glb["meshes"], usd["meshes"]):
+        assert [b[k] for k in ("mesh", "primitive", "vertices", "triangles", "attributes", "extensions")] == \
+            [a[k] for k in ("mesh", "primitive", "vertices", "triangles", "attributes", "extensions")]
+        assert set(b["baked"]) == set(a["baked"])
+        for name, stats in a["baked"].items():
+            for key in ("min", "mean", "max"):
+                assert b["baked"][name][key] == pytest.approx(stats[key], rel=1e-6, abs=1e-7), (name, key)
     assert [m["extensions"] for m in usd["materials"]] == [m["extensions"] for m in glb["materials"]]
     assert sorted(t["size"] for m in usd["materials"] for t in m["textures"]) == \
         sorted(t["size"] for m in glb["materials"] for t in m["textures"])
@@ -71,7 +70,8 @@ def test_preview_draws_the_glb_panels(bake):
     size = 48
     glb, usd = preview(bake / "spot.glb", size=size), preview(bake / "spot.usda", size=size)
     names = [name for name, _, _ in glb.panels]
-    assert len(names) >= 7, names  # the reference + thickness, translucency, skin, toon, caustics, tam, fur, ...
+    assert {"lambert", "thickness", "skin", "toon", "caustics", "hatching", "outline", "wireframe", "fur"} <= \
+        set(names), names
     assert [name for name, _, _ in usd.panels] == names
     assert usd.sheet.shape == glb.sheet.shape
     for name, _, (y, x, s) in glb.panels:

@@ -73,7 +73,8 @@ IMAGE_EXTENSIONS = {"image/png": ".png", "image/jpeg": ".jpg", "image/webp": ".w
                     "image/avif": ".avif"}
 
 
-def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> list[Path]:
+def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None,
+              primitive_accessors=None) -> list[Path]:
     """Write ``doc`` (a :class:`~baker.gltf.document.GltfDocument`) as ``.usda``, ``.usdc``, ``.usd`` or ``.usdz``.
 
     The file is written atomically; textures go to ``<stem>_textures/`` beside it, or into the ``.usdz`` package.
@@ -84,16 +85,20 @@ def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_co
     components whatever the glTF layout padded it to. ``texture_color_spaces`` maps an extension name to a function
     ``(params, json_path) -> "sRGB" | "raw"`` naming the colour space of each texture it references
     (:func:`baker.registry.usd_texture_color_spaces`; without one, its textures are data: ``raw``).
+    ``primitive_accessors`` maps a primitive extension's name to its members that are accessors
+    (:func:`baker.registry.usd_primitive_accessors`): that extension is written on the mesh prim (see the module
+    docstring) so that :mod:`baker.readers.usd_baked` reads it back.
     """
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".usd", ".usda", ".usdc", ".usdz"):
         raise BakerError(path, "output must end in .usd, .usda, .usdc or .usdz")
     if suffix == ".usdz":
-        _write_usdz(doc, path, primitive_hooks, attribute_widths, texture_color_spaces)
+        _write_usdz(doc, path, primitive_hooks, attribute_widths, texture_color_spaces, primitive_accessors)
         return [path]
     folder = f"{path.stem}_textures"
-    stage, images = build_stage(doc, folder, primitive_hooks, attribute_widths, texture_color_spaces)
+    stage, images = build_stage(doc, folder, primitive_hooks, attribute_widths, texture_color_spaces,
+                                primitive_accessors)
     # one atomic group, textures renamed first and the stage last: a reader never sees a stage whose textures are
     # missing, and a failed or killed run keeps every earlier file
     return write_stage_and_textures(stage, path, [(path.parent / folder / name, data) for name, data in images])
@@ -109,10 +114,12 @@ def write_stage_and_textures(stage, path: Path, textures) -> list[Path]:
     return targets
 
 
-def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> None:
+def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None,
+                primitive_accessors=None) -> None:
     from pxr import Sdf, UsdUtils
 
-    stage, images = build_stage(doc, "textures", primitive_hooks, attribute_widths, texture_color_spaces)
+    stage, images = build_stage(doc, "textures", primitive_hooks, attribute_widths, texture_color_spaces,
+                                primitive_accessors)
     with tempfile.TemporaryDirectory(prefix=".baker-usdz-") as work:
         work = Path(work)
         root = work / f"{path.stem}.usdc"
@@ -177,7 +184,8 @@ class _Names:
         return candidate
 
 
-def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None):
+def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None,
+                primitive_accessors=None):
     """Author the stage in memory; returns (stage, [(texture file name, bytes)]) in a fixed order. The stage, not its
     root layer, is returned: Python holds a layer by a weak handle, which expires once the stage is collected."""
     from pxr import Gf, Kind, Usd, UsdGeom
@@ -190,7 +198,7 @@ def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths
     Usd.ModelAPI(root).SetKind(Kind.Tokens.component)  # one asset: what USDZ viewers and assemblies expect
 
     writer = _Writer(doc, stage, texture_folder, primitive_hooks or {}, attribute_widths or {},
-                     texture_color_spaces or {})
+                     texture_color_spaces or {}, primitive_accessors or {})
     writer.names.make("/Root", "Materials", "Materials")  # reserved: a node named "Materials" becomes Materials_1
     gltf = doc.json
     nodes = gltf.get("nodes", [])
@@ -223,8 +231,9 @@ def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths
 
 class _Writer:
     def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict, attribute_widths: dict,
-                 texture_color_spaces: dict):
+                 texture_color_spaces: dict, primitive_accessors: dict):
         self.doc = doc
+        self.primitive_accessors = primitive_accessors
         self.primitive_hooks = primitive_hooks
         self.attribute_widths = attribute_widths
         self.stage = stage
@@ -239,9 +248,9 @@ class _Writer:
 
     # ------------------------------------------------------------------ geometry
     def mesh(self, mesh_index: int, parent: str) -> None:
-        from pxr import Sdf, UsdGeom, UsdShade, Vt
+        from pxr import Sdf, UsdGeom, UsdShade
 
-        from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, is_derived_fins, faces_from_indices, to_float
+        from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, is_derived_fins
 
         doc = self.doc
         mesh = doc.json["meshes"][mesh_index]
@@ -250,51 +259,112 @@ class _Writer:
                  and "POSITION" in prim.get("attributes", {})
                  and not is_derived_fins(prim)]  # fins are glTF runtime geometry
         base = mesh.get("name") or f"mesh{mesh_index}"
+        written = {}  # glTF primitive -> (its mesh prim path, name)
         for p, prim in prims:
-            attrs = prim["attributes"]
-            positions = doc.accessor(attrs["POSITION"]).astype(np.float32)
-            n = len(positions)
-            indices = doc.accessor(prim["indices"]).astype(np.int64) if "indices" in prim else np.arange(n)
-            if len(indices) and (indices.min() < 0 or indices.max() >= n):
-                raise BakerError(doc.path, f"mesh {mesh_index} primitive {p} has indices out of range")
-            faces = faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
             name = self.names.make(parent, base if len(prims) == 1 else f"{base}_{p}", f"mesh{mesh_index}")
-            usd_mesh = UsdGeom.Mesh.Define(self.stage, f"{parent}/{name}")
-            usd_mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)  # glTF triangles are the final surface
-            usd_mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(positions))
-            usd_mesh.CreateFaceVertexCountsAttr(Vt.IntArray.FromNumpy(np.full(len(faces), 3, np.int32)))
-            usd_mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(faces.reshape(-1).astype(np.int32)))
-            lo, hi = (positions.min(0), positions.max(0)) if n else (np.zeros(3, np.float32),) * 2
-            usd_mesh.CreateExtentAttr(Vt.Vec3fArray.FromNumpy(np.stack([lo, hi]).astype(np.float32)))
-            primvars = UsdGeom.PrimvarsAPI(usd_mesh.GetPrim())
-            for key in sorted(attrs, key=_attribute_order):
-                acc = attrs[key]
-                if key == "NORMAL":
-                    usd_mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(doc.accessor(acc).astype(np.float32)))
-                    usd_mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
-                elif key.startswith("TEXCOORD_"):
-                    uv = to_float(doc, acc)
-                    st = np.column_stack([uv[:, 0], 1.0 - uv[:, 1]]).astype(np.float32)
-                    pv = primvars.CreatePrimvar(_st_name(int(key[9:])), Sdf.ValueTypeNames.TexCoord2fArray,
-                                                UsdGeom.Tokens.vertex)
-                    pv.Set(Vt.Vec2fArray.FromNumpy(st))
-                elif key == "COLOR_0":
-                    color = to_float(doc, acc).astype(np.float32)
-                    usd_mesh.CreateDisplayColorPrimvar(UsdGeom.Tokens.vertex).Set(
-                        Vt.Vec3fArray.FromNumpy(np.ascontiguousarray(color[:, :3])))
-                    if color.shape[1] == 4:
-                        usd_mesh.CreateDisplayOpacityPrimvar(UsdGeom.Tokens.vertex).Set(
-                            Vt.FloatArray.FromNumpy(np.ascontiguousarray(color[:, 3])))
-                elif key.startswith("_"):
-                    self._custom_primvar(primvars, key, acc)
+            usd_mesh = self._triangles(f"{parent}/{name}", mesh_index, p, prim)
+            written[p] = (f"{parent}/{name}", name)
             if "material" in prim:
                 material = self.material(prim["material"])
                 UsdShade.MaterialBindingAPI.Apply(usd_mesh.GetPrim()).Bind(material)
+            self._primitive_extensions(usd_mesh.GetPrim(), prim)
             # extensions add their own USD beside the mesh (e.g. BAKER_edges' crease curves)
             for ext_name, hook in self.primitive_hooks.items():
                 if ext_name in (prim.get("extensions") or {}):
                     hook(self.stage, self.names.make(parent, f"{name}_{ext_name[6:]}", "extra"), parent, doc,
                          mesh_index, p)
+        # fins (zero-area quads a runtime extrudes, BAKER_edges / BAKER_fur ``finsOf``) as guide meshes: no final
+        # render draws them, and the stage reads back with them (baker.readers.usd_baked)
+        for p, prim in enumerate(mesh.get("primitives", [])):
+            if not (is_derived_fins(prim) and "POSITION" in prim.get("attributes", {})):
+                continue
+            ext_name, ext = next((k, v) for k, v in prim["extensions"].items() if isinstance(v, dict) and "finsOf" in v)
+            if ext.get("finsOf") not in written:
+                continue
+            source_path, source_name = written[ext["finsOf"]]
+            name = self.names.make(parent, f"{source_name}_fins", "fins")
+            usd_mesh = self._triangles(f"{parent}/{name}", mesh_index, p, prim)
+            usd_mesh.CreatePurposeAttr(UsdGeom.Tokens.guide)
+            fins = usd_mesh.GetPrim()
+            fins.CreateRelationship("baker:finsOf", custom=True).SetTargets([Sdf.Path(source_path)])
+            fins.CreateAttribute("baker:finsOf:extension", Sdf.ValueTypeNames.String, custom=True).Set(ext_name)
+
+    def _triangles(self, path: str, mesh_index: int, p: int, prim: dict):
+        """A ``UsdGeom.Mesh`` at ``path`` with one glTF triangle primitive's points, faces and primvars."""
+        from pxr import Sdf, UsdGeom, Vt
+
+        from baker.gltf.accessors import MODE_TRIANGLES, faces_from_indices, to_float
+
+        doc = self.doc
+        attrs = prim["attributes"]
+        positions = doc.accessor(attrs["POSITION"]).astype(np.float32)
+        n = len(positions)
+        indices = doc.accessor(prim["indices"]).astype(np.int64) if "indices" in prim else np.arange(n)
+        if len(indices) and (indices.min() < 0 or indices.max() >= n):
+            raise BakerError(doc.path, f"mesh {mesh_index} primitive {p} has indices out of range")
+        faces = faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
+        usd_mesh = UsdGeom.Mesh.Define(self.stage, path)
+        usd_mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)  # glTF triangles are the final surface
+        usd_mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(positions))
+        usd_mesh.CreateFaceVertexCountsAttr(Vt.IntArray.FromNumpy(np.full(len(faces), 3, np.int32)))
+        usd_mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(faces.reshape(-1).astype(np.int32)))
+        lo, hi = (positions.min(0), positions.max(0)) if n else (np.zeros(3, np.float32),) * 2
+        usd_mesh.CreateExtentAttr(Vt.Vec3fArray.FromNumpy(np.stack([lo, hi]).astype(np.float32)))
+        primvars = UsdGeom.PrimvarsAPI(usd_mesh.GetPrim())
+        for key in sorted(attrs, key=_attribute_order):
+            acc = attrs[key]
+            if key == "NORMAL":
+                usd_mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(doc.accessor(acc).astype(np.float32)))
+                usd_mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
+            elif key.startswith("TEXCOORD_"):
+                uv = to_float(doc, acc)
+                st = np.column_stack([uv[:, 0], 1.0 - uv[:, 1]]).astype(np.float32)
+                pv = primvars.CreatePrimvar(_st_name(int(key[9:])), Sdf.ValueTypeNames.TexCoord2fArray,
+                                            UsdGeom.Tokens.vertex)
+                pv.Set(Vt.Vec2fArray.FromNumpy(st))
+            elif key == "COLOR_0":
+                color = to_float(doc, acc).astype(np.float32)
+                usd_mesh.CreateDisplayColorPrimvar(UsdGeom.Tokens.vertex).Set(
+                    Vt.Vec3fArray.FromNumpy(np.ascontiguousarray(color[:, :3])))
+                if color.shape[1] == 4:
+                    usd_mesh.CreateDisplayOpacityPrimvar(UsdGeom.Tokens.vertex).Set(
+                        Vt.FloatArray.FromNumpy(np.ascontiguousarray(color[:, 3])))
+            elif key.startswith("_"):
+                self._custom_primvar(primvars, key, acc)
+        return usd_mesh
+
+    def _primitive_extensions(self, usd_prim, prim: dict) -> None:
+        """Each primitive extension listed in ``primitive_accessors`` as custom attributes on the mesh prim,
+        ``baker:<name>:<field>`` (``BAKER_edges`` -> ``baker:edges``, others by their full name): fields as
+        :func:`usd_parameters` writes a material's, each accessor as a flat array (``int[]``, ``uint[]`` or
+        ``float[]``) with its glTF ``:componentType`` and ``:type``, so its exact data reads back."""
+        from pxr import Sdf, Vt
+
+        for ext_name, members in sorted(self.primitive_accessors.items()):
+            ext = (prim.get("extensions") or {}).get(ext_name)
+            if not isinstance(ext, dict):
+                continue
+            namespace = "baker:" + _valid_name(ext_name[6:] if ext_name.startswith("BAKER_") else ext_name)
+            rest = {k: v for k, v in ext.items() if k not in members and k != "fins"}  # fins: the guide mesh's
+            custom_attributes(usd_prim, namespace, usd_parameters(rest))
+            accessors = self.doc.json.get("accessors") or []
+            for member in members:
+                index = ext.get(member)
+                if not isinstance(index, int) or isinstance(index, bool) or not 0 <= index < len(accessors):
+                    continue
+                info = accessors[index]
+                data = np.ascontiguousarray(self.doc.accessor(index).reshape(-1))
+                if info["componentType"] == 5126:
+                    type_name, value = Sdf.ValueTypeNames.FloatArray, Vt.FloatArray.FromNumpy(data.astype(np.float32))
+                elif info["componentType"] == 5125:
+                    type_name, value = Sdf.ValueTypeNames.UIntArray, Vt.UIntArray.FromNumpy(data.astype(np.uint32))
+                else:
+                    type_name, value = Sdf.ValueTypeNames.IntArray, Vt.IntArray.FromNumpy(data.astype(np.int32))
+                at = f"{namespace}:{member}"
+                usd_prim.CreateAttribute(at, type_name, custom=True).Set(value)
+                usd_prim.CreateAttribute(f"{at}:componentType", Sdf.ValueTypeNames.Int, custom=True).Set(
+                    int(info["componentType"]))
+                usd_prim.CreateAttribute(f"{at}:type", Sdf.ValueTypeNames.String, custom=True).Set(info["type"])
 
     def _custom_primvar(self, primvars, key: str, acc: int) -> None:
         from pxr import Sdf, UsdGeom, Vt

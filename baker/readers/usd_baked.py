@@ -39,6 +39,8 @@ from baker.gltf.document import GltfDocument, sniff_mime
 ST_NAME = re.compile(r"st(\d*)")
 LIST_ITEM = re.compile(r"_(\d+)")
 WRAP_CODES = {"repeat": 10497, "clamp": 33071, "mirror": 33648}
+COMPONENT_DTYPES = {5120: np.dtype(np.int8), 5121: np.dtype(np.uint8), 5122: np.dtype(np.int16),
+                    5123: np.dtype(np.uint16), 5125: np.dtype(np.uint32), 5126: np.dtype(np.float32)}
 
 
 def is_baked_stage(stage) -> bool:
@@ -59,11 +61,18 @@ def is_baked_stage(stage) -> bool:
 
 def read_baked_stage(path: Path, stage, meshes) -> GltfDocument:
     """The glTF document of a baked stage; ``meshes``: (UsdGeom.Mesh, world matrix) of every renderable mesh."""
+    from pxr import Usd, UsdGeom
+
     reader = _StageReader(path, stage)
     for mesh, matrix in meshes:
         reader.mesh(mesh, matrix)
     if not reader.doc.json["meshes"]:
         raise BakerError(path, "no triangle faces")
+    # fin primitives: guide meshes that name the mesh they belong to (baker.gltf.usd writes them so)
+    cache = UsdGeom.XformCache(Usd.TimeCode.EarliestTime())
+    for prim in stage.Traverse(Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)):
+        if prim.IsA(UsdGeom.Mesh) and prim.HasRelationship("baker:finsOf"):
+            reader.fins(UsdGeom.Mesh(prim), np.array(cache.GetLocalToWorldTransform(prim), dtype=np.float64))
     return reader.doc
 
 
@@ -75,18 +84,108 @@ class _StageReader:
         self.doc = GltfDocument(json={"asset": {"version": "2.0", "generator": f"baker (read from {path.name})"},
                                       "scene": 0, "scenes": [{"nodes": []}], "nodes": [], "meshes": []}, path=path)
         self.materials: dict[str, int] = {}  # material prim path -> glTF material
+        self.meshes: dict[str, int] = {}  # mesh prim path -> glTF mesh (its primitive 0)
         self.images: dict[str, int] = {}  # resolved asset path -> glTF image
 
     # ------------------------------------------------------------------ geometry
     def mesh(self, mesh, matrix: np.ndarray) -> None:
-        from pxr import UsdGeom, UsdShade
+        from pxr import UsdShade
+
+        primitive = self.primitive(mesh, matrix)
+        if primitive is None:
+            return
+        material = UsdShade.MaterialBindingAPI(mesh.GetPrim()).ComputeBoundMaterial()[0]
+        if material:
+            primitive["material"] = self.material(material)
+        doc = self.doc
+        name = mesh.GetPrim().GetName()
+        doc.json["meshes"].append({"name": name, "primitives": [primitive]})
+        index = len(doc.json["meshes"]) - 1
+        self.meshes[str(mesh.GetPath())] = index
+        self.primitive_extensions(mesh.GetPrim(), index, 0)
+        doc.json["nodes"].append({"name": name, "mesh": index})
+        doc.json["scenes"][0]["nodes"].append(len(doc.json["nodes"]) - 1)
+
+    def fins(self, mesh, matrix: np.ndarray) -> None:
+        """A fin primitive (``finsOf``) of the mesh its ``baker:finsOf`` names, and the reference to it: its
+        extension's ``fins`` on that primitive (BAKER_edges) or on its material (BAKER_fur's list)."""
+        prim = mesh.GetPrim()
+        targets = prim.GetRelationship("baker:finsOf").GetTargets()
+        extension = prim.GetAttribute("baker:finsOf:extension").Get()
+        where = f"mesh {mesh.GetPath()}"
+        if len(targets) != 1 or str(targets[0]) not in self.meshes or not isinstance(extension, str):
+            raise BakerError(self.path, f"{where}: baker:finsOf names no mesh read from the stage")
+        m = self.meshes[str(targets[0])]
+        primitive = self.primitive(mesh, matrix)
+        if primitive is None:
+            return
+        primitive["extensions"] = {extension: {"finsOf": 0}}
+        self.doc.use_extension(extension)
+        primitives = self.doc.json["meshes"][m]["primitives"]
+        primitives.append(primitive)
+        fin = len(primitives) - 1
+        source = primitives[0]
+        if isinstance((source.get("extensions") or {}).get(extension), dict):
+            source["extensions"][extension]["fins"] = fin
+        elif "material" in source:
+            material = self.doc.json["materials"][source["material"]]
+            params = (material.get("extensions") or {}).get(extension)
+            if isinstance(params, dict):
+                params.setdefault("fins", []).append({"mesh": m, "primitive": fin})
+
+    def primitive_extensions(self, prim, mesh: int, primitive: int) -> None:
+        """The primitive extensions written on the mesh prim (``baker:<name>:*``, see :mod:`baker.gltf.usd`), their
+        accessors rebuilt from the flat arrays and their ``:componentType`` and ``:type``."""
+        from baker import registry
+
+        known = registry.usd_primitive_accessors()
+        found: dict = {}
+        for attr in prim.GetAttributes():
+            name = attr.GetName()
+            parts = name.split(":")
+            if parts[0] != "baker" or len(parts) < 3 or not attr.HasAuthoredValue():
+                continue
+            ext = f"BAKER_{parts[1]}" if f"BAKER_{parts[1]}" in known else parts[1]
+            if ext in known:
+                found.setdefault(ext, {})[tuple(parts[2:])] = attr.Get()
+        for ext, fields in sorted(found.items()):
+            params: dict = {}
+            members = known[ext]
+            for key, value in sorted(fields.items()):
+                if key[0] in members:
+                    if len(key) == 1:
+                        params[key[0]] = self._accessor(value, fields, key[0], f"mesh {prim.GetPath()} {ext}.{key[0]}")
+                    continue
+                _put(params, list(key), self._json_value(value, f"{prim.GetPath()}.{':'.join(key)}"))
+            self.doc.set_primitive_extension(mesh, primitive, ext, _with_lists(params))
+
+    def _accessor(self, value, fields: dict, member: str, where: str) -> int:
+        component = fields.get((member, "componentType"))
+        kind = fields.get((member, "type"))
+        width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}.get(kind)
+        dtype = COMPONENT_DTYPES.get(component)
+        data = np.asarray(value)
+        if dtype is None or width is None or len(data) % width:
+            raise BakerError(self.path, f"{where}: {len(data)} values of type {kind} / componentType {component}")
+        if dtype.kind in "iu":
+            info = np.iinfo(dtype)
+            if len(data) and (data.min() < info.min or data.max() > info.max):
+                raise BakerError(self.path, f"{where}: values outside the range of componentType {component}")
+        else:
+            self._finite(data.astype(np.float64), where, "values")
+        data = data.astype(dtype)
+        return self.doc.add_accessor(data if width == 1 else data.reshape(-1, width), target=None)
+
+    def primitive(self, mesh, matrix: np.ndarray) -> dict | None:
+        """One triangle primitive from a writer's mesh prim (None when it has no faces)."""
+        from pxr import UsdGeom
 
         where = f"mesh {mesh.GetPath()}"
         points = _values(mesh.GetPointsAttr().Get(), 3)
         counts = _values(mesh.GetFaceVertexCountsAttr().Get(), 1).astype(np.int64)
         indices = _values(mesh.GetFaceVertexIndicesAttr().Get(), 1).astype(np.int64)
         if not len(counts):
-            return
+            return None
         if (counts != 3).any() or len(indices) != 3 * len(counts):
             raise BakerError(self.path, f"{where}: baker's meshes are triangles (faceVertexCounts all 3)")
         if indices.min() < 0 or indices.max() >= len(points):
@@ -132,15 +231,8 @@ class _StageReader:
         if color is not None:
             rgba = color if opacity is None else np.column_stack([color[:, :3], opacity[:, :1]])
             attributes["COLOR_0"] = doc.add_accessor(rgba.astype(np.float32))
-        primitive = {"attributes": attributes, "mode": 4,
-                     "indices": doc.add_accessor(faces.reshape(-1).astype(np.uint32), target=34963)}
-        material = UsdShade.MaterialBindingAPI(mesh.GetPrim()).ComputeBoundMaterial()[0]
-        if material:
-            primitive["material"] = self.material(material)
-        name = mesh.GetPrim().GetName()
-        doc.json["meshes"].append({"name": name, "primitives": [primitive]})
-        doc.json["nodes"].append({"name": name, "mesh": len(doc.json["meshes"]) - 1})
-        doc.json["scenes"][0]["nodes"].append(len(doc.json["nodes"]) - 1)
+        return {"attributes": attributes, "mode": 4,
+                "indices": doc.add_accessor(faces.reshape(-1).astype(np.uint32), target=34963)}
 
     def _per_point(self, data: np.ndarray, interpolation, n_points: int, where: str, attribute: str) -> np.ndarray:
         """Values of a writer's primvar: vertex (or varying) interpolation, one per point, all finite."""
