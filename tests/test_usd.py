@@ -32,7 +32,9 @@ def baked_sphere(tmp_path_factory):
 
 
 def _only_mesh(stage) -> UsdGeom.Mesh:
-    meshes = [UsdGeom.Mesh(p) for p in stage.Traverse() if p.IsA(UsdGeom.Mesh)]
+    # fins are guide meshes (runtime geometry no final render draws)
+    meshes = [UsdGeom.Mesh(p) for p in stage.Traverse() if p.IsA(UsdGeom.Mesh)
+              and UsdGeom.Imageable(p).ComputePurpose() != UsdGeom.Tokens.guide]
     assert len(meshes) == 1
     return meshes[0]
 
