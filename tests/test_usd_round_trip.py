@@ -21,7 +21,7 @@ from baker.pipeline import save  # noqa: E402
 from baker.preview.core import preview  # noqa: E402
 
 SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
-BAKES = ("thickness", "curvature", "skin", "edges", "tam", "toon", "fur", "caustics")
+BAKES = ("thickness", "curvature", "skin", "edges", "tam", "toon", "fur", "caustics", "normal-blur")
 FAST = {
     "thickness": {"rays": 8, "texture_size": 64},
     "curvature": {"per_texel": True, "texture_size": 64},
@@ -30,13 +30,34 @@ FAST = {
     "edges": {"fins": True},
     "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
     "caustics": {"size": 32, "frames": 2, "waves": 16},
+    "normal-blur": {"texture_size": 64},
 }
+
+
+def _spot_with_maps():
+    """spot with a base colour and a tangent-space normal map (normal-blur needs one; preview draws both)."""
+    from baker import readers
+    from baker.gltf.images import encode_image
+
+    asset = readers.read(SPOT)
+    doc = asset.doc
+    y, x = np.mgrid[0:64, 0:64] / 64.0
+    slope = 0.3 * np.sin(2 * np.pi * 4 * x)  # bumps along u
+    normal = np.stack([-slope, np.zeros_like(slope), np.ones_like(slope)], -1)
+    normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
+    color = np.stack([x, y, 0.5 + 0 * x], -1)
+    images = {"normal": np.rint((normal + 1) / 2 * 255).astype(np.uint8), "color": np.rint(color * 255).astype(np.uint8)}
+    textures = {k: doc.add_texture(doc.add_image(encode_image(v, ".png"), "image/png", k)) for k, v in images.items()}
+    material = doc.json["materials"][0]
+    material["normalTexture"] = {"index": textures["normal"], "scale": 0.8}
+    material["pbrMetallicRoughness"]["baseColorTexture"] = {"index": textures["color"]}
+    return asset
 
 
 @pytest.fixture(scope="module")
 def bake(tmp_path_factory):
     folder = tmp_path_factory.mktemp("round_trip")
-    asset = baker.bake(SPOT, bakes=list(BAKES), options=FAST)
+    asset = baker.bake(_spot_with_maps(), bakes=list(BAKES), options=FAST)
     for name in ("spot.glb", "spot.usda", "spot.usdz"):
         save(asset, folder / name)
     return folder
@@ -70,8 +91,8 @@ def test_preview_draws_the_glb_panels(bake):
     size = 48
     glb, usd = preview(bake / "spot.glb", size=size), preview(bake / "spot.usda", size=size)
     names = [name for name, _, _ in glb.panels]
-    assert {"lambert", "thickness", "skin", "toon", "caustics", "hatching", "outline", "wireframe", "fur"} <= \
-        set(names), names
+    assert {"lambert", "thickness", "skin", "normal-blur", "toon", "caustics", "hatching", "outline", "wireframe",
+            "fur"} <= set(names), names
     assert [name for name, _, _ in usd.panels] == names
     assert usd.sheet.shape == glb.sheet.shape
     for name, _, (y, x, s) in glb.panels:

@@ -9,7 +9,7 @@ several nodes is written under each). Not carried over: points/lines primitives,
 cameras, lights, ``KHR_texture_transform``. Per primitive:
 
 - ``points``, ``faceVertexCounts`` (all 3), ``faceVertexIndices``, ``extent``;
-- ``normals`` (vertex interpolation) from ``NORMAL``;
+- ``normals`` (vertex interpolation) from ``NORMAL``; ``primvars:tangents`` (float4, vertex) from ``TANGENT``;
 - ``primvars:st`` from ``TEXCOORD_0``, ``primvars:st<n>`` from ``TEXCOORD_<n>`` (``texCoord2f``, vertex
   interpolation, ``t = 1 - v``);
 - ``primvars:displayColor`` / ``primvars:displayOpacity`` from ``COLOR_0``;
@@ -17,6 +17,16 @@ cameras, lights, ``KHR_texture_transform``. Per primitive:
   own attributes: ``float[]`` for ``_THICKNESS``, ``float2[]`` for pairs; others as stored: float, float2, float3 or
   float4 array, vertex
   interpolation; integer data is converted to float, normalized integers to [0, 1]).
+
+Primitive extensions that hold accessors and list them in their module's ``USD_PRIMITIVE_ACCESSORS``
+(``BAKER_edges``, ``EXT_mesh_primitive_edge_visibility``) are custom attributes on the Mesh prim,
+``baker:<name>:<field>`` (``BAKER_`` dropped: ``baker:edges:creaseAngle``; ``baker:EXT_mesh_primitive_edge_visibility:
+visibility``): fields as for materials (below), each accessor a flat ``int[]``/``uint[]``/``float[]`` with its glTF
+``:componentType`` and ``:type`` (``baker:edges:edges:type = "VEC2"``), data indexed by vertex being indexed by the
+Mesh's points. A fin primitive (``finsOf`` of ``BAKER_edges``/``BAKER_fur``: zero-area quads a runtime extrudes) is a
+Mesh ``<surface>_fins`` beside its surface with ``purpose = "guide"`` (no final render draws it), its ``_FIN_*``
+primvars, the relationship ``baker:finsOf`` to the surface and ``baker:finsOf:extension``. So a stage reads back
+into the document it was written from (:mod:`baker.readers.usd_baked`).
 
 Each glTF material a written primitive uses becomes a ``UsdShade.Material`` under ``/Root/Materials`` with a
 ``UsdPreviewSurface`` (``diffuseColor``, ``opacity``, ``metallic``, ``roughness``, ``emissiveColor`` times
@@ -49,8 +59,8 @@ a stage):
   ``baker:thickness:distribution`` string; numbers are doubles, so reading them back gives the JSON's numbers),
   by :func:`usd_parameters`: a texture reference keeps its non-index
   fields (``baker:<name>:<field>:scale``), a top-level ``texCoord`` becomes ``texCoordPrimvar`` (``"st"``), a
-  vertex attribute name becomes its primvar's (``"primvars:baker:thickness"``), lists of objects (which carry
-  indices) are left out. Attributes rather than ``customData`` so they are typed, can be time-sampled or
+  vertex attribute name becomes its primvar's (``"primvars:baker:thickness"``), lists of objects carrying indices
+  are left out and lists of plain-data objects become ``_0``, ``_1``, ... namespaces. Attributes rather than ``customData`` so they are typed, can be time-sampled or
   overridden from a stronger layer like any other property, and show up in every USD tool.
 
 Output bytes depend only on the document: no timestamps, no absolute paths, ordered iteration everywhere.
@@ -322,6 +332,9 @@ class _Writer:
                 pv = primvars.CreatePrimvar(_st_name(int(key[9:])), Sdf.ValueTypeNames.TexCoord2fArray,
                                             UsdGeom.Tokens.vertex)
                 pv.Set(Vt.Vec2fArray.FromNumpy(st))
+            elif key == "TANGENT":  # xyz and the bitangent sign w, for normal maps (no UsdGeom name for it)
+                primvars.CreatePrimvar("tangents", Sdf.ValueTypeNames.Float4Array, UsdGeom.Tokens.vertex).Set(
+                    Vt.Vec4fArray.FromNumpy(np.ascontiguousarray(to_float(doc, acc).astype(np.float32))))
             elif key == "COLOR_0":
                 color = to_float(doc, acc).astype(np.float32)
                 usd_mesh.CreateDisplayColorPrimvar(UsdGeom.Tokens.vertex).Set(
@@ -678,8 +691,8 @@ def usd_parameters(params: dict) -> dict:
     glTF indices have no meaning in a stage, so none is kept: a texture reference keeps only its non-index fields
     (``scale``, ``strength``; its image and UV set are the ``UsdUVTexture`` and primvar reader the writer connects);
     a top-level ``texCoord`` (the UV set the extension's textures read) becomes ``texCoordPrimvar``, the primvar's
-    name; lists of objects (which hold accessor, mesh or texture indices, e.g. ``coverageMips``, ``fins``) are
-    left out; and a custom vertex attribute name (``"_THICKNESS"``) becomes the primvar USD carries it as
+    name; lists of objects that hold accessor, mesh or texture indices (``coverageMips``, ``fins``, TAM ``levels``)
+    are left out, lists of plain-data objects (normal blur's ``kernels``) become namespaces ``_0``, ``_1``, ...; and a custom vertex attribute name (``"_THICKNESS"``) becomes the primvar USD carries it as
     (``"primvars:baker:thickness"``).
     """
     out = {}
@@ -694,7 +707,9 @@ def usd_parameters(params: dict) -> dict:
             out["texCoordPrimvar"] = _st_name(value)
         elif isinstance(value, dict):
             out[key] = usd_parameters(value)
-        elif isinstance(value, list) and any(isinstance(v, dict) for v in value):
+        elif isinstance(value, list) and any(isinstance(v, (dict, list)) for v in value):
+            if not _names_gltf_object(value):
+                out[key] = _list_items(value)  # plain data: items _0, _1, ...
             continue
         elif isinstance(value, str) and _CUSTOM_ATTRIBUTE.fullmatch(value):
             out[key] = primvar_name(value)
@@ -704,6 +719,31 @@ def usd_parameters(params: dict) -> dict:
 
 
 _CUSTOM_ATTRIBUTE = re.compile(r"_[A-Z][A-Z0-9_]*")
+# members that hold a glTF index (or a texture reference): meaningless in a stage
+GLTF_INDEX_MEMBERS = {"index", "texture", "textures", "accessor", "mesh", "primitive", "node", "material", "image",
+                      "source", "sampler", "bufferView", "buffer", "skin", "camera", "scene", "texCoord"}
+
+
+def _list_items(items: list) -> dict:
+    """A list of objects or lists as ``{"_0": ..., "_1": ...}``, nested lists likewise (numbers stay arrays)."""
+    out = {}
+    for i, item in enumerate(items):
+        if isinstance(item, dict):
+            out[f"_{i}"] = usd_parameters(item)
+        elif isinstance(item, list) and any(isinstance(v, (dict, list)) for v in item):
+            out[f"_{i}"] = _list_items(item)
+        else:
+            out[f"_{i}"] = item
+    return out
+
+
+def _names_gltf_object(node) -> bool:
+    """Whether a JSON value holds a glTF index anywhere (a member named like one, at any depth)."""
+    if isinstance(node, dict):
+        return any(k in GLTF_INDEX_MEMBERS or _names_gltf_object(v) for k, v in node.items())
+    if isinstance(node, list):
+        return any(_names_gltf_object(v) for v in node)
+    return False
 
 
 def primvar_name(attribute: str) -> str:

@@ -7,7 +7,7 @@ output (:func:`is_baked_stage`). Its meshes must then be the writer's: triangles
 interpolation with one value per point. Per ``UsdGeom.Mesh`` (in traversal order, world transform baked into the
 points as :mod:`baker.readers.usd` does) one glTF mesh and node:
 
-- ``POSITION``, ``NORMAL`` (``normals``), ``TEXCOORD_<n>`` (``primvars:st<n>``, ``v = 1 - t``), ``COLOR_0``
+- ``POSITION``, ``NORMAL`` (``normals``), ``TANGENT`` (``primvars:tangents``), ``TEXCOORD_<n>`` (``primvars:st<n>``, ``v = 1 - t``), ``COLOR_0``
   (``displayColor`` + ``displayOpacity``), and ``_NAME`` from every ``primvars:baker:name`` at the width it has in
   USD (scalar, VEC2, VEC3 or VEC4: the ``native`` layout of :mod:`baker.gltf.vertex_attributes`, which every reader
   accepts);
@@ -22,7 +22,11 @@ points as :mod:`baker.readers.usd` does) one glTF mesh and node:
 - each ``coverageMips`` chain from its ``baker:<name>:coverageMips:_<i>:*`` attributes (the KTX2 file back into an
   accessor, its level 0's coverage measured again).
 
-Not recovered: primitive extensions (``BAKER_edges``' edge lists, fin primitives), glTF node hierarchy (one node per mesh, in world space). Broken data (a primvar of the wrong length, NaN or infinity in one,
+- the primitive extensions written on the Mesh prim (``baker:edges:*``, ``baker:EXT_mesh_primitive_edge_visibility:*``:
+  accessors from their flat arrays, ``:componentType`` and ``:type``) and the fin primitives (guide meshes with
+  ``baker:finsOf``), appended to their surface's glTF mesh and named by its extension's ``fins``.
+
+Not recovered: the glTF node hierarchy (one node per mesh, in world space). Broken data (a primvar of the wrong length, NaN or infinity in one,
 a texture outside the stage's folder) raises :class:`~baker.errors.BakerError` naming the prim and the attribute.
 """
 from __future__ import annotations
@@ -209,7 +213,7 @@ class _StageReader:
         for primvar in sorted(primvars.GetPrimvarsWithValues(), key=lambda p: str(p.GetPrimvarName())):
             name = str(primvar.GetPrimvarName())
             uv = ST_NAME.fullmatch(name)
-            if not (uv or name.startswith("baker:") or name in ("displayColor", "displayOpacity")):
+            if not (uv or name.startswith("baker:") or name in ("displayColor", "displayOpacity", "tangents")):
                 continue
             value = primvar.ComputeFlattened()
             if value is None:
@@ -220,6 +224,8 @@ class _StageReader:
             if uv:
                 data = np.column_stack([data[:, 0], 1.0 - data[:, 1]])  # USD's t points up, glTF's v down
                 attributes[f"TEXCOORD_{int(uv.group(1) or 0)}"] = doc.add_accessor(data.astype(np.float32))
+            elif name == "tangents" and data.shape[1] == 4:
+                attributes["TANGENT"] = doc.add_accessor(data.astype(np.float32))
             elif name == "displayColor":
                 color = data
             elif name == "displayOpacity":
@@ -333,13 +339,49 @@ class _StageReader:
                 scale = shader.GetInput("scale")
                 if scale and scale.Get() is not None:
                     pbr["baseColorFactor"] = [float(c) for c in scale.Get()]
+        metal_rough = self._input_texture(surface, "roughness")
+        if metal_rough is not None:  # glTF: roughness in green, metalness in blue; the factors are the scale's
+            shader, info = metal_rough
+            scale = shader.GetInput("scale").Get() if shader.GetInput("scale") else None
+            if scale is not None:
+                pbr["roughnessFactor"], pbr["metallicFactor"] = float(scale[1]), float(scale[2])
+            pbr["metallicRoughnessTexture"] = info
         gltf["pbrMetallicRoughness"] = pbr
         emissive = value("emissiveColor", None)
         if emissive is not None and any(emissive):
             gltf["emissiveFactor"] = [float(c) for c in emissive]
+        found = self._input_texture(surface, "emissiveColor")
+        if found is not None:
+            shader, gltf["emissiveTexture"] = found
+            scale = shader.GetInput("scale").Get() if shader.GetInput("scale") else None
+            if scale is not None:
+                gltf["emissiveFactor"] = [float(c) for c in scale][:3]
+        found = self._input_texture(surface, "occlusion")
+        if found is not None:  # the writer's scale is the strength
+            shader, info = found
+            scale = shader.GetInput("scale").Get() if shader.GetInput("scale") else None
+            gltf["occlusionTexture"] = info if scale is None or float(scale[0]) == 1.0 else \
+                {**info, "strength": float(scale[0])}
+        found = self._input_texture(surface, "normal")
+        if found is not None:  # the writer's scale is 2 x glTF's scale
+            shader, info = found
+            scale = shader.GetInput("scale").Get() if shader.GetInput("scale") else None
+            gltf["normalTexture"] = info if scale is None or float(scale[0]) == 2.0 else \
+                {**info, "scale": float(scale[0]) / 2}
         threshold = surface.GetInput("opacityThreshold")
         if threshold and threshold.Get() is not None:
             gltf["alphaMode"], gltf["alphaCutoff"] = "MASK", float(threshold.Get())
+
+    def _input_texture(self, surface, name: str):
+        """(UsdUVTexture shader, textureInfo) feeding a ``UsdPreviewSurface`` input, or None."""
+        from pxr import UsdShade
+
+        connected = surface.GetInput(name)
+        if not (connected and connected.HasConnectedSource()):
+            return None
+        shader = UsdShade.Shader(connected.GetConnectedSources()[0][0].source.GetPrim())
+        info = self._shader_texture(shader, 0)
+        return None if info is None else (shader, info)
 
     def _json_value(self, value, where: str):
         """A custom attribute's value as JSON (the writer's numbers are doubles: the JSON's numbers)."""
