@@ -58,7 +58,7 @@ def _spot_with_maps():
 def bake(tmp_path_factory):
     folder = tmp_path_factory.mktemp("round_trip")
     asset = baker.bake(_spot_with_maps(), bakes=list(BAKES), options=FAST)
-    for name in ("spot.glb", "spot.usda", "spot.usdz"):
+    for name in ("spot.glb", "spot.usda", "spot.usdc", "spot.usdz"):
         save(asset, folder / name)
     return folder
 
@@ -85,6 +85,25 @@ def test_inspect_reports_the_glb_baked_data(bake, suffix):
     # fur's coverage-preserving mip chains: the KTX2 files come back as the same chains
     chains = [[(c["place"], c["size"], c["levels"], c["coverage"]) for c in info["coverageMips"]] for info in (glb, usd)]
     assert len(chains[0]) == 5 and chains[1] == chains[0]
+
+
+def _without_indices(value):
+    """An extension object without its glTF indices (they number the objects of each document differently)."""
+    if isinstance(value, dict):
+        return {k: _without_indices(v) for k, v in value.items() if k not in ("index", "texture", "accessor")}
+    if isinstance(value, list):
+        return [_without_indices(v) for v in value]
+    return value
+
+
+def test_material_extensions_read_back_unchanged(bake):
+    from baker import readers
+
+    glb, usd = (readers.read(bake / name).doc.json["materials"][0] for name in ("spot.glb", "spot.usdc"))
+    assert sorted(usd["extensions"]) == sorted(glb["extensions"]) and len(glb["extensions"]) >= 9
+    for name, params in glb["extensions"].items():
+        assert _without_indices(usd["extensions"][name]) == _without_indices(params), name
+    assert usd["normalTexture"]["scale"] == pytest.approx(0.8) and "baseColorTexture" in usd["pbrMetallicRoughness"]
 
 
 def test_preview_draws_the_glb_panels(bake):

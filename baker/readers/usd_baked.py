@@ -298,8 +298,11 @@ class _StageReader:
             source = thickness.GetConnectedSources()[0][0]
             info = self._shader_texture(UsdShade.Shader(source.source.GetPrim()), 0)
             if info is not None:
+                # BAKER_thickness' own factor is a double; the material input a float
+                baked = extensions.get("thickness") if isinstance(extensions.get("thickness"), dict) else {}
+                factor = baked.get("thicknessFactor", float(volume.Get()))
                 gltf.setdefault("extensions", {})["KHR_materials_volume"] = {
-                    "thicknessTexture": info, "thicknessFactor": float(volume.Get())}
+                    "thicknessTexture": info, "thicknessFactor": factor}
                 self.doc.use_extension("KHR_materials_volume")
         for short, entries in sorted(mips.items()):
             if isinstance(extensions.get(short), dict):
@@ -337,7 +340,7 @@ class _StageReader:
             if info is not None:
                 pbr["baseColorTexture"] = info
                 scale = shader.GetInput("scale")
-                if scale and scale.Get() is not None:
+                if scale and scale.Get() is not None and list(scale.Get()) != [1.0, 1.0, 1.0, 1.0]:
                     pbr["baseColorFactor"] = [float(c) for c in scale.Get()]
         metal_rough = self._input_texture(surface, "roughness")
         if metal_rough is not None:  # glTF: roughness in green, metalness in blue; the factors are the scale's
