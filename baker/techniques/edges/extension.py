@@ -40,6 +40,9 @@ OUTLINE_NORMAL = "_OUTLINE_NORMAL"
 FIN_ATTRIBUTES = ("_FIN_V0", "_FIN_V1", "_FIN_V2", "_FIN_V3", "_FIN_CORNER", "_FIN_FLAGS")
 # name -> the data's width (baker.registry); the fur fins share the _FIN_ names
 VERTEX_ATTRIBUTES = {OUTLINE_NORMAL: 3, **dict(zip(FIN_ATTRIBUTES, (3, 3, 3, 3, 1, 1)))}
+# extension name -> its accessor members: the USD writer keeps them on the mesh prim (baker.registry)
+USD_PRIMITIVE_ACCESSORS = {NAME: ("edges", "oppositeVertices", "flags", "dihedralAngles", "wireframeMask"),
+                           EXT_VISIBILITY: ("visibility", "silhouetteMates")}
 FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
 INDEX_MAX = {UBYTE: 0xFF, USHORT: 0xFFFF, UINT: 0xFFFFFFFF}
 

@@ -86,10 +86,10 @@ def write_hair_usd(doc, result: HairResult, emitter_mesh: int, path, curve_type:
     if path.suffix.lower() not in (".usda", ".usdc", ".usd"):
         raise BakerError(path, "hair USD output must end in .usda, .usdc or .usd")
     folder = f"{path.stem}_textures"
-    from baker.registry import usd_texture_color_spaces, vertex_attribute_widths
+    from baker.registry import usd_primitive_accessors, usd_texture_color_spaces, vertex_attribute_widths
 
     stage, images = build_stage(doc, folder, primitive_hooks, vertex_attribute_widths(),
-                                 usd_texture_color_spaces())
+                                 usd_texture_color_spaces(), usd_primitive_accessors())
     hair = UsdGeom.Xform.Define(stage, "/Root/Hair")
     matrix = emitter_world_matrix(doc.json, emitter_mesh)
     if not np.array_equal(matrix, np.eye(4)):

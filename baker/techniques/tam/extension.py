@@ -163,6 +163,17 @@ def write_tam_directory(tam: TonalArtMap, folder, ktx2: bool = False) -> dict:
 
 
 
+def from_usd(doc: GltfDocument, material: int, params: dict) -> None:
+    """A stage read back (:mod:`baker.readers.usd_baked`) keeps each level's textures but not its ``size`` (a list
+    of objects carries no USD attribute): the width of the level's first image."""
+    for level in params.get("levels") or []:
+        textures = level.get("textures") if isinstance(level, dict) else None
+        if isinstance(textures, list) and textures and isinstance(textures[0], dict) and "size" not in level:
+            pixels = decoded_texture(doc, textures[0]["index"])
+            if pixels is not None:
+                level["size"] = int(pixels.shape[1])
+
+
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_tonal_art_map: tones increase, levels halve finest-first and the images exist with
     those sizes, and the primitives using the material have the texture coordinates it reads."""
