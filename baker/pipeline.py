@@ -8,6 +8,7 @@ from pathlib import Path
 from baker import readers, registry
 from baker.errors import BakeNote, BakerError
 from baker.geometry.asset import Asset
+from baker.gltf.meshopt_encode import COMPRESSIONS
 from baker.options import from_mapping
 from baker.progress import QUIET
 
@@ -59,12 +60,10 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
     return asset
 
 
-COMPRESSIONS = ("none", "meshopt")
-
-
 def save(asset: Asset, path, compress: str | None = None) -> list[Path]:
     """Write ``asset`` as glTF/GLB or USD (by the suffix of ``path``); returns every file written. ``compress``:
-    ``"meshopt"`` stores the geometry as EXT_meshopt_compression (glTF/GLB only; lossless, the bake intact)."""
+    ``"meshopt"`` stores the geometry as EXT_meshopt_compression, each bufferView as small as it gets;
+    ``"meshopt-gzip"`` each as small as it gets once gzipped (glTF/GLB only; lossless, the bake intact)."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in OUTPUT_SUFFIXES:

@@ -6,6 +6,7 @@ import sys
 from baker import memory, registry
 from baker.errors import BakerError
 from baker.options import add_arguments, from_args
+from baker.gltf.meshopt_encode import COMPRESSIONS
 
 
 def add_parser(sub) -> None:
@@ -23,10 +24,12 @@ def add_parser(sub) -> None:
                    help="custom vertex attributes: 'blender' pads them to one width per mesh (FLOAT VEC3, or the "
                    "width of the mesh's own attributes), which Blender 4.5 imports; 'native' writes each at its "
                    "width (SCALAR, VEC2, VEC3) (default: blender)")
-    p.add_argument("--compress", choices=("none", "meshopt"), default="none",
-                   help="'meshopt': store the geometry as EXT_meshopt_compression (required by the file; lossless: "
-                   "every baked extension and attribute decodes to the same bytes; three.js with MeshoptDecoder and "
-                   "Babylon.js read it) (default: none)")
+    p.add_argument("--compress", choices=COMPRESSIONS, default="none",
+                   help="store the geometry as EXT_meshopt_compression, required by the file and lossless (every "
+                   "baked extension and attribute decodes to the same bytes; three.js with MeshoptDecoder and "
+                   "Babylon.js read it): 'meshopt' makes each bufferView as small as it gets, 'meshopt-gzip' as "
+                   "small as it gets once gzipped, for servers that gzip (a view stays plain where that is smaller) "
+                   "(default: none)")
     for name, technique in bakes.items():
         add_arguments(p, technique.options, name)
     p.set_defaults(func=run)

@@ -345,7 +345,8 @@ class GltfDocument:
     # ------------------------------------------------------------------ writing
     def save(self, path, compress: str | None = None) -> list[Path]:
         """Write ``.glb`` or ``.gltf`` (+ ``.bin`` + images) atomically, chosen by the file extension.
-        ``compress="meshopt"``: the bufferViews accessors read stored as EXT_meshopt_compression, losslessly
+        ``compress="meshopt"`` (or ``"meshopt-gzip"``): the bufferViews accessors read stored as
+        EXT_meshopt_compression, losslessly, each as small as it gets (or as small as it gets once gzipped)
         (:mod:`baker.gltf.meshopt_encode`).
 
         Returns every file written (the main file last)."""
@@ -390,12 +391,13 @@ class GltfDocument:
                     image["uri"] = urllib.parse.quote(rel.as_posix())
                 side_files[rel.as_posix()] = self.image_files[i]
 
-        if compress == "meshopt" and binary:
-            from baker.gltf.meshopt_encode import compress_meshopt
+        if compress in ("meshopt", "meshopt-gzip"):
+            if binary:
+                from baker.gltf.meshopt_encode import compress_meshopt
 
-            gltf, binary, _ = compress_meshopt(gltf, binary)
+                gltf, binary, _ = compress_meshopt(gltf, binary, "gzip" if compress == "meshopt-gzip" else "size")
         elif compress not in (None, "none"):
-            raise BakerError(path, f"unknown compression {compress!r} (use meshopt)")
+            raise BakerError(path, f"unknown compression {compress!r} (use meshopt or meshopt-gzip)")
         if binary:
             if not gltf.get("buffers"):
                 gltf["buffers"] = [{}]

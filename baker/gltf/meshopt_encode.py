@@ -1,12 +1,13 @@
-"""EXT_meshopt_compression written by baker (``baker bake --compress meshopt``): every bufferView that only accessors
-read is stored with meshoptimizer's codecs, losslessly, so the bake is intact (every extension, custom attribute,
-accessor and bufferView stays where it was, and decodes to the same bytes).
+"""EXT_meshopt_compression written by baker (``baker bake --compress meshopt`` or ``meshopt-gzip``): every bufferView
+that only accessors read is stored with meshoptimizer's codecs, losslessly, so the bake is intact (every extension,
+custom attribute, accessor and bufferView stays where it was, and decodes to the same bytes).
 
 The method follows the extension's specification (Khronos glTF, extensions/2.0/Vendor/EXT_meshopt_compression):
 
-- Each bufferView is tried in the modes its data allows and stored in the smallest encoding that decodes back to
-  its exact bytes (every candidate is decoded and compared before it is kept; none smaller than the raw bytes: the
-  view stays as it is):
+- Each bufferView is tried in the modes its data allows and stored in the encoding that decodes back to its exact
+  bytes (every candidate is decoded and compared before it is kept) and is the smallest (``meshopt``) or the
+  smallest once deflated (``meshopt-gzip``, for servers that gzip); when no encoding beats the plain bytes the view
+  stays as it is:
   - ``ATTRIBUTES`` (vertex codec, version 0 as the extension requires) with the view's ``byteStride``, or the
     accessors' element size when it is a multiple of 4, or the bytes as 4-byte rows (any data, e.g. 16-bit scalars);
   - ``TRIANGLES`` (index codec) for a primitive's triangle-list indices. The codec may rotate a triangle's corners
@@ -19,13 +20,15 @@ The method follows the extension's specification (Khronos glTF, extensions/2.0/V
 - The extension is *required* and the uncompressed bufferViews point into a fallback buffer that has a size and no
   data (``"fallback": true``), the smallest file: three.js's GLTFLoader (with ``setMeshoptDecoder``) and
   Babylon.js's loader (built in) both decode it; a consumer without a meshopt decoder takes the uncompressed bake.
-  Views nothing but accessors read (images, data no accessor names) stay uncompressed in the binary buffer.
+  Views that something other than an accessor reads (an image) stay uncompressed in the binary buffer.
 
 Fallback and binary-buffer views keep their byte offset modulo 16, so every accessor stays aligned.
 """
 from __future__ import annotations
 
-import numpy as np
+import zlib
+
+# no numpy at import: ``baker bake``'s parser reads COMPRESSIONS, and ``baker --version`` builds that parser
 
 EXTENSION = "EXT_meshopt_compression"
 TRIANGLES_MODE = 4  # a primitive's default mode
@@ -33,16 +36,35 @@ INDEX_COMPONENTS = (5123, 5125)  # unsigned short, unsigned int: what the index 
 COMPONENT_SIZES = {5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4}
 TYPE_SIZES = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9, "MAT4": 16}
 MAX_ATTRIBUTE_STRIDE = 256
+TARGETS = ("size", "gzip")
+# ``--compress`` choices: none, or meshopt aiming at each target
+COMPRESSIONS = ("none", "meshopt", "meshopt-gzip")
+GZIP_LEVEL = 6  # deflate's default, what web servers use
 
 
-def compress_meshopt(gltf: dict, binary: bytes) -> tuple[dict, bytearray, dict]:
+def _cost(data: bytes, target: str) -> tuple[int, int]:
+    """What a view's candidate bytes cost for ``target``: (deflated size, size) or (size,)."""
+    if target == "gzip":
+        return len(zlib.compress(data, GZIP_LEVEL)), len(data)
+    return (len(data),)
+
+
+def compress_meshopt(gltf: dict, binary: bytes, target: str = "size") -> tuple[dict, bytearray, dict]:
     """``gltf`` (a JSON dict changed in place) and its single binary buffer, with every bufferView that only
     accessors read stored as EXT_meshopt_compression (see the module docstring).
+
+    ``target``: what each view's encoding minimizes. ``"size"``: its bytes (the file as stored, and as sent by a
+    server that does not compress). ``"gzip"``: its bytes after deflate (what a server that gzips sends), with the
+    plain bytes as one more candidate: the codecs' byte deltas undo the long repeats deflate finds in data that is
+    neither quantized nor reordered (duplicated fin vertices, padded scalars, texel levels).
 
     Returns the JSON, the new binary buffer (the compressed data and the views left uncompressed) and a summary:
     view count per mode and the bytes before and after."""
     import meshopt
+    import numpy as np
 
+    if target not in TARGETS:
+        raise ValueError(f"unknown target {target!r} (use one of {', '.join(TARGETS)})")
     views = gltf.get("bufferViews") or []
     accessors = gltf.get("accessors") or []
     uses = _view_uses(gltf)
@@ -55,7 +77,7 @@ def compress_meshopt(gltf: dict, binary: bytes) -> tuple[dict, bytearray, dict]:
             continue
         start = int(view.get("byteOffset", 0))
         raw = bytes(binary[start: start + int(view["byteLength"])])
-        best = None
+        best, best_cost = None, _cost(raw, target)
         for mode, stride, data in _candidates(view, raw, use, accessors, triangles):
             count = len(data) // stride
             try:
@@ -65,9 +87,10 @@ def compress_meshopt(gltf: dict, binary: bytes) -> tuple[dict, bytearray, dict]:
                 continue
             if np.ascontiguousarray(decoded).tobytes() != data:
                 continue  # the triangle codec rotated a triangle: not this mode
-            if best is None or len(packed) < len(best[3]):
-                best = (mode, stride, count, packed, len(data))
-        if best is not None and len(best[3]) < len(raw):
+            cost = _cost(packed, target)
+            if cost < best_cost:
+                best, best_cost = (mode, stride, count, packed, len(data)), cost
+        if best is not None:
             encoded[index] = best
     if not encoded:
         summary["uncompressed"] = sum(1 for use in uses.values() if not use.other)
@@ -185,8 +208,10 @@ def _candidates(view: dict, raw: bytes, use: ViewUse, accessors: list, triangles
             yield "ATTRIBUTES", rows, raw
 
 
-def _rows(data: bytes, mode: str, stride: int) -> np.ndarray:
-    """The bytes as the encoder takes them: rows of ``stride`` bytes, or 16/32-bit indices."""
+def _rows(data: bytes, mode: str, stride: int):
+    """The bytes as the encoder takes them: rows of ``stride`` bytes, or 16/32-bit indices (a numpy array)."""
+    import numpy as np
+
     if mode == "ATTRIBUTES":
         return np.frombuffer(data, np.uint8).reshape(-1, stride)
     return np.frombuffer(data, np.uint16 if stride == 2 else np.uint32).astype(np.uint32)
