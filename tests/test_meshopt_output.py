@@ -163,3 +163,29 @@ def test_compress_is_glb_or_gltf_only(tmp_path):
     assert result.returncode == 2
     assert len(result.stderr.strip().splitlines()) == 1 and "--compress meshopt" in result.stderr, result.stderr
     assert not (tmp_path / "spot.usda").exists()
+
+
+def test_recipe_compress_key(tmp_path):
+    """``compress`` in a recipe's [build] (or [[assets]]) as ``--compress``; refused with USD output."""
+    import trimesh
+
+    from baker.commands.build import build, load_recipe
+    from baker.errors import BakerError
+
+    (tmp_path / "models").mkdir()
+    trimesh.creation.icosphere(subdivisions=2).export(tmp_path / "models" / "ball.obj")
+    recipe = ('[build]\noutput = "out"\nbakes = ["thickness", "edges"]\ncompress = "meshopt"\n'
+              '[options.thickness]\nrays = 4\nper_texel = false\n[[assets]]\ninputs = ["models/*.obj"]\n')
+    (tmp_path / "baker.toml").write_text(recipe)
+    report = build(load_recipe(tmp_path / "baker.toml"))
+    assert report["baked"] == ["out/models/ball.glb"] and not report["failed"], report
+    out = tmp_path / "out" / "models" / "ball.glb"
+    gltf = json.loads(out.read_bytes()[20: 20 + int.from_bytes(out.read_bytes()[12:16], "little")])
+    assert gltf["extensionsRequired"] == [EXTENSION] and "BAKER_edges" in gltf["extensionsUsed"]
+    assert validate_file(out, khronos=False)["issues"]["numErrors"] == 0
+    (tmp_path / "baker.toml").write_text(recipe.replace('compress = "meshopt"', 'compress = "meshopt"\nformat = "usda"'))
+    with pytest.raises(BakerError, match="compress"):
+        load_recipe(tmp_path / "baker.toml")
+    (tmp_path / "baker.toml").write_text(recipe.replace('"meshopt"', '"zip"'))
+    with pytest.raises(BakerError, match="compress"):
+        load_recipe(tmp_path / "baker.toml")
