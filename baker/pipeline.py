@@ -8,6 +8,7 @@ from pathlib import Path
 from baker import readers, registry
 from baker.errors import BakeNote, BakerError
 from baker.geometry.asset import Asset
+from baker.gltf.meshopt_encode import COMPRESSIONS
 from baker.options import from_mapping
 from baker.progress import QUIET
 
@@ -59,14 +60,20 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
     return asset
 
 
-def save(asset: Asset, path) -> list[Path]:
-    """Write ``asset`` as glTF/GLB or USD (by the suffix of ``path``); returns every file written."""
+def save(asset: Asset, path, compress: str | None = None) -> list[Path]:
+    """Write ``asset`` as glTF/GLB or USD (by the suffix of ``path``); returns every file written. ``compress``:
+    ``"meshopt"`` stores the geometry as EXT_meshopt_compression, each bufferView as small as it gets;
+    ``"meshopt-gzip"`` each as small as it gets once gzipped (glTF/GLB only; lossless, the bake intact)."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in OUTPUT_SUFFIXES:
         raise BakerError(path, f"unsupported output type '{suffix}' (use one of {', '.join(sorted(OUTPUT_SUFFIXES))})")
+    if compress not in (None, *COMPRESSIONS):
+        raise BakerError(path, f"unknown compression {compress!r} (use one of {', '.join(COMPRESSIONS)})")
     if suffix in (".glb", ".gltf"):
-        return asset.doc.save(path)
+        return asset.doc.save(path, compress=compress)
+    if compress not in (None, "none"):
+        raise BakerError(path, f"--compress {compress} writes glTF/GLB only, not '{suffix}'")
     from baker.gltf.usd import write_usd
 
     return write_usd(asset.doc, path, registry.usd_primitive_hooks(), registry.vertex_attribute_widths(),

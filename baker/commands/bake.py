@@ -6,6 +6,7 @@ import sys
 from baker import memory, registry
 from baker.errors import BakerError
 from baker.options import add_arguments, from_args
+from baker.gltf.meshopt_encode import COMPRESSIONS
 
 
 def add_parser(sub) -> None:
@@ -23,6 +24,12 @@ def add_parser(sub) -> None:
                    help="custom vertex attributes: 'blender' pads them to one width per mesh (FLOAT VEC3, or the "
                    "width of the mesh's own attributes), which Blender 4.5 imports; 'native' writes each at its "
                    "width (SCALAR, VEC2, VEC3) (default: blender)")
+    p.add_argument("--compress", choices=COMPRESSIONS, default="none",
+                   help="store the geometry as EXT_meshopt_compression, required by the file and lossless (every "
+                   "baked extension and attribute decodes to the same bytes; three.js with MeshoptDecoder and "
+                   "Babylon.js read it): 'meshopt' makes each bufferView as small as it gets, 'meshopt-gzip' as "
+                   "small as it gets once gzipped, for servers that gzip (a view stays plain where that is smaller) "
+                   "(default: none)")
     for name, technique in bakes.items():
         add_arguments(p, technique.options, name)
     p.set_defaults(func=run)
@@ -42,6 +49,8 @@ def run(args) -> int:
     registry.bake_order(names)  # unknown names fail here, before the input is read
     if Path(args.output).suffix.lower() not in OUTPUT_SUFFIXES:
         raise BakerError(args.output, f"unsupported output type (use one of {', '.join(sorted(OUTPUT_SUFFIXES))})")
+    if args.compress != "none" and Path(args.output).suffix.lower() not in (".glb", ".gltf"):
+        raise BakerError(args.output, f"--compress {args.compress} writes .glb or .gltf only")
     try:
         options = {name: from_args(registry.bakes()[name].options, name, args) for name in names}
     except ValueError as exc:
@@ -65,7 +74,7 @@ def run(args) -> int:
         else:  # not ours (a library's): shown as Python would have
             warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
     asset.cache.clear()  # decoded and welded geometry is done with: free it before the file is assembled
-    save(asset, args.output)
+    save(asset, args.output, compress=args.compress)
     if not args.quiet:
         print(f"baked {', '.join(names)} -> {args.output}", file=sys.stderr)
     return 0

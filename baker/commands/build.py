@@ -8,6 +8,7 @@ Recipe (``baker.toml``, or ``[tool.baker]`` in ``pyproject.toml``), paths relati
     bakes = ["thickness"]
     seed = 0
     attribute-layout = "blender" # blender | native (custom vertex attributes, as `baker bake --attribute-layout`)
+    compress = "none"           # none | meshopt | meshopt-gzip (glb/gltf, as `baker bake --compress`)
 
     [options.thickness]         # defaults for every asset: the fields of the bake's options dataclass
     rays = 64
@@ -72,6 +73,7 @@ class Task:
     options: dict = field(default_factory=dict)  # bake -> {option: value} (every field, resolved)
     seed: int = 0
     attribute_layout: str = "blender"  # baker.gltf.vertex_attributes: "blender" | "native"
+    compress: str = "none"  # baker.gltf.meshopt_encode.COMPRESSIONS
     command: str | None = None
     args: list = field(default_factory=list)
     inputs: list = field(default_factory=list)  # recipe-relative files whose bytes the task needs
@@ -199,9 +201,9 @@ def load_recipe(path) -> Recipe:
     root = path.parent
     build = data.get("build", {})
     for key in build:
-        if key not in ("output", "format", "bakes", "seed", "attribute-layout"):
+        if key not in ("output", "format", "bakes", "seed", "attribute-layout", "compress"):
             _fail(path, text, key, f"unknown [build] key '{key}' (known: output, format, bakes, seed, "
-                  "attribute-layout)")
+                  "attribute-layout, compress)")
     out_dir = build.get("output", "baked")
     fmt = build.get("format", "glb")
     if fmt not in FORMATS:
@@ -209,14 +211,15 @@ def load_recipe(path) -> Recipe:
     default_bakes = build.get("bakes", ["thickness"])
     seed = build.get("seed", 0)
     layout = build.get("attribute-layout", "blender")
+    compress = build.get("compress", "none")
     global_options = data.get("options", {})
 
     per_input: dict[str, dict] = {}
     for entry in data.get("assets", []):
         for key in entry:
-            if key not in ("inputs", "bakes", "options", "seed", "attribute-layout"):
+            if key not in ("inputs", "bakes", "options", "seed", "attribute-layout", "compress"):
                 _fail(path, text, key, f"unknown [[assets]] key '{key}' (known: inputs, bakes, options, seed, "
-                      "attribute-layout)")
+                      "attribute-layout, compress)")
         globs = entry.get("inputs", [])
         if isinstance(globs, str):
             globs = [globs]
@@ -225,8 +228,8 @@ def load_recipe(path) -> Recipe:
             _fail(path, text, "inputs", f"inputs {globs} match no file")
         for rel in matched:
             config = per_input.setdefault(rel, {"bakes": default_bakes, "layers": [global_options], "seed": seed,
-                                                "attribute-layout": layout})
-            for key in ("bakes", "seed", "attribute-layout"):
+                                                "attribute-layout": layout, "compress": compress})
+            for key in ("bakes", "seed", "attribute-layout", "compress"):
                 if key in entry:
                     config[key] = entry[key]
             config["layers"] = config["layers"] + [entry.get("options", {})]
@@ -238,8 +241,11 @@ def load_recipe(path) -> Recipe:
             _fail(path, text, "bakes", f"unknown bake(s) {', '.join(unknown)} (known: {', '.join(registry.bakes())})")
         output = (Path(out_dir) / Path(rel).with_suffix("." + fmt)).as_posix()
         options = _resolve_options(path, text, config["bakes"], config["layers"])
+        if config["compress"] != "none" and fmt not in ("glb", "gltf"):
+            _fail(path, text, "compress", f"compress = {config['compress']!r} writes glb or gltf, not {fmt}")
         tasks.append(Task(output=output, kind="bake", input=rel, bakes=list(config["bakes"]), options=options,
                           seed=int(config["seed"]), attribute_layout=config["attribute-layout"],
+                          compress=config["compress"],
                           inputs=[rel] + referenced_files(root, rel)))
     for entry in data.get("commands", []):
         for key in entry:
@@ -297,6 +303,8 @@ def task_key(root: Path, task: Task) -> tuple[str, dict]:
                "command": task.command, "args": task.args}
     if task.attribute_layout != "blender":  # the default joins no key: locks written before the option stay current
         payload["attributeLayout"] = task.attribute_layout
+    if task.compress != "none":  # likewise
+        payload["compress"] = task.compress
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest(), inputs
 
 
@@ -333,7 +341,7 @@ def run_task(payload: dict) -> dict:
                 notes = [str(w.message) for w in caught if issubclass(w.category, BakeNote)]
                 for inputs in {scratch / "in", (scratch / "in").resolve()}:  # an MTL's path is resolved
                     notes = [note.replace(str(inputs) + os.sep, "") for note in notes]
-                save(asset, out_main)
+                save(asset, out_main, compress=payload.get("compress"))
             else:
                 subst = {"{output}": str(out_main),
                          "{input}": str(scratch / "in" / payload["input"]) if payload.get("input") else ""}
@@ -360,7 +368,7 @@ def run_task(payload: dict) -> dict:
 def _payload(root: Path, task: Task, max_memory: int | None = None) -> dict:
     return {"kind": task.kind, "output": task.output, "input": task.input, "bakes": task.bakes,
             "options": task.options, "seed": task.seed, "attribute_layout": task.attribute_layout,
-            "command": task.command, "args": task.args, "max_memory": max_memory,
+            "compress": task.compress, "command": task.command, "args": task.args, "max_memory": max_memory,
             "files": {rel: (root / rel).read_bytes() for rel in task.inputs}}
 
 

@@ -343,8 +343,11 @@ class GltfDocument:
         return data
 
     # ------------------------------------------------------------------ writing
-    def save(self, path) -> list[Path]:
+    def save(self, path, compress: str | None = None) -> list[Path]:
         """Write ``.glb`` or ``.gltf`` (+ ``.bin`` + images) atomically, chosen by the file extension.
+        ``compress="meshopt"`` (or ``"meshopt-gzip"``): the bufferViews accessors read stored as
+        EXT_meshopt_compression, losslessly, each as small as it gets (or as small as it gets once gzipped)
+        (:mod:`baker.gltf.meshopt_encode`).
 
         Returns every file written (the main file last)."""
         path = Path(path)
@@ -388,6 +391,13 @@ class GltfDocument:
                     image["uri"] = urllib.parse.quote(rel.as_posix())
                 side_files[rel.as_posix()] = self.image_files[i]
 
+        if compress in ("meshopt", "meshopt-gzip"):
+            if binary:
+                from baker.gltf.meshopt_encode import compress_meshopt
+
+                gltf, binary, _ = compress_meshopt(gltf, binary, "gzip" if compress == "meshopt-gzip" else "size")
+        elif compress not in (None, "none"):
+            raise BakerError(path, f"unknown compression {compress!r} (use meshopt or meshopt-gzip)")
         if binary:
             if not gltf.get("buffers"):
                 gltf["buffers"] = [{}]

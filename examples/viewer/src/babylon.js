@@ -14,6 +14,8 @@ import { Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 import { ImportMeshAsync } from '@babylonjs/core/Loading/sceneLoader.js';
 import '@babylonjs/loaders/glTF/glTFFileLoader.js';
 import '@babylonjs/loaders/glTF/2.0/index.js';
+import { MeshoptCompression } from '@babylonjs/core/Meshes/Compression/meshoptCompression.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { TECHNIQUES, bakerControls, registerBakerExtensions, unregisterBakerExtensions } from '../../../runtime-shaders/babylon/src/index.js';
 import {
 	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
@@ -21,6 +23,12 @@ import {
 } from './ui.js';
 import { shaders } from './shaders.js';
 import { RUNTIMES } from '@baker/shared';
+
+// EXT_meshopt_compression: Babylon.js loads meshoptimizer's decoder script from its CDN into the global
+// MeshoptDecoder; the viewer bundles that decoder (three's copy of it) so it decodes offline, and names an empty
+// script for Babylon.js to load
+globalThis.MeshoptDecoder = MeshoptDecoder;
+MeshoptCompression.Configuration.decoder.url = 'data:text/javascript,';
 
 // the runtime-shaders/ WGSL twins as text, under the options.shaders keys (the descriptors name them; esbuild bundles
 // every file the template can name, as text by the import attribute)

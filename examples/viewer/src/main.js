@@ -6,6 +6,7 @@
 // panel shaders and the camera/uniforms the test passes, so the page can be compared with `baker preview`.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { registerBakerPlugins } from '../../../runtime-shaders/three/src/index.js';
 import { shaders } from './shaders.js';
 import { runThreeViewer } from './three_viewer.js';
@@ -22,6 +23,8 @@ function createRenderer() {
 
 async function loadGLB(url) {
 	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders, caustics }) : new GLTFLoader();
+	// EXT_meshopt_compression (`baker bake --compress meshopt`, gltfpack, gltf-transform meshopt)
+	loader.setMeshoptDecoder(MeshoptDecoder);
 	return loader.loadAsync(url);
 }
 
