@@ -11,15 +11,18 @@
 // triangle edge comes from. A step that made triangle edges that were not there (simplify collapses edges) leaves
 // data that cannot be remapped: it is dropped, with one warning line, never written wrong.
 //
-// Draco's edgebreaker encoder renumbers vertices and triangles inside the compressed stream, which no class can
-// follow; a primitive with this data is encoded with Draco's sequential method (which keeps both orders), with one
-// warning line.
+// Draco's encoder renumbers vertices and triangles inside the compressed stream (edgebreaker and sequential alike,
+// as glTF-Transform 4.5 calls it), which no class can follow: a primitive Draco compresses loses this data, with
+// one warning line. meshopt's
+// index codec may rotate a triangle's corners: with its codec given (setMeshoptIndexCodec) the triangles are rotated
+// as it will before the remap.
 import { PropertyType } from '@gltf-transform/core';
 
 export const VERTEX_ID = '_BAKER_VERTEX_ID';
 const EDGES = 'BAKER_edges';
 const EDGE_VISIBILITY = 'EXT_mesh_primitive_edge_visibility';
 const DRACO = 'KHR_draco_mesh_compression';
+const MESHOPT = 'EXT_meshopt_compression';
 const TRIANGLES = 4;
 const FLOAT = 5126;
 
@@ -61,12 +64,38 @@ function sameArray(a, b) {
 	return true;
 }
 
+// meshoptimizer's codec ({encoder, decoder}, both ready) for the index rotation EXT_meshopt_compression makes
+let indexCodec = null;
+
+/** Give the codec EXT_meshopt_compression writes with (gltf-transform.config.mjs does): its index encoder may
+ * rotate a triangle's corners, which moves per-triangle-edge data; with the codec the triangles are rotated as it
+ * will, before the data is remapped. Without it, the data of a primitive written with meshopt is dropped. */
+export function setMeshoptIndexCodec(codec) {
+	indexCodec = codec;
+}
+
+/** The triangles as meshopt's index codec will store them (stable under another round trip), or null. */
+function meshoptRotated(indices) {
+	const { encoder, decoder } = indexCodec;
+	let current = indices;
+	for (let round = 0; round < 4; round++) {
+		const size = current.BYTES_PER_ELEMENT;
+		const encoded = encoder.encodeGltfBuffer(current, current.length, size, 'TRIANGLES');
+		const target = new Uint8Array(current.length * size);
+		decoder.decodeGltfBuffer(target, current.length, size, encoded, 'TRIANGLES');
+		const decoded = new current.constructor(target.buffer);
+		if (sameArray(decoded, current)) return current;
+		current = decoded;
+	}
+	return null;
+}
+
 /** Remove the vertex ids of every primitive and remap (or drop) its topology-indexed data. */
 export function settleTopology(document) {
 	const root = document.getRoot();
 	const logger = document.getLogger();
 	const draco = root.listExtensionsUsed().find((e) => e.extensionName === DRACO);
-	let dracoWarned = false;
+	const meshopt = root.listExtensionsUsed().some((e) => e.extensionName === MESHOPT);
 	for (const mesh of root.listMeshes()) {
 		for (const [p, prim] of mesh.listPrimitives().entries()) {
 			const idAttribute = prim.getAttribute(VERTEX_ID);
@@ -78,6 +107,21 @@ export function settleTopology(document) {
 			const snapshot = SNAPSHOTS.get(prim);
 			if (!snapshot || !hasTopologyData(prim)) continue;
 			const where = `mesh ${JSON.stringify(mesh.getName())} primitive ${p}`;
+			if (meshopt && prim.getIndices()) {
+				const rotated = indexCodec ? meshoptRotated(prim.getIndices().getArray()) : null;
+				if (!rotated) {
+					dropTopologyData(mesh, prim);
+					logger.warn(`@baker/gltf-transform: ${where}: ${MESHOPT}'s index codec may rotate triangles and no ` +
+						'codec was given (setMeshoptIndexCodec); its edge data is dropped');
+					continue;
+				}
+				if (rotated !== prim.getIndices().getArray()) {
+					const old = prim.getIndices();
+					prim.setIndices(document.createAccessor(old.getName()).setType('SCALAR').setArray(rotated)
+						.setBuffer(old.getBuffer()));
+					disposeIfUnused(old);
+				}
+			}
 			const indices = triangleIndices(prim);
 			const unchanged = ids && ids.every((id, v) => id === v) && ids.length === snapshot.vertexCount &&
 				sameArray(indices, snapshot.indices);
@@ -91,14 +135,10 @@ export function settleTopology(document) {
 				}
 				SNAPSHOTS.set(prim, { indices, vertexCount: prim.getAttribute('POSITION').getCount() });
 			}
-			if (draco && draco._encoderOptions && draco._encoderOptions.method !== 0) {
-				// 0 = EncoderMethod.SEQUENTIAL: keeps vertex and triangle order (edgebreaker renumbers both)
-				draco.setEncoderOptions({ ...draco._encoderOptions, method: 0 });
-				if (!dracoWarned) {
-					logger.warn(`@baker/gltf-transform: ${DRACO} uses sequential encoding, which keeps the vertex and ` +
-						'triangle order the baked edge data indexes (edgebreaker renumbers them)');
-				}
-				dracoWarned = true;
+			if (draco && prim.getIndices()) {
+				dropTopologyData(mesh, prim);
+				logger.warn(`@baker/gltf-transform: ${where}: ${DRACO} renumbers vertices and triangles inside its ` +
+					'stream; its edge data is dropped (use meshopt to keep it)');
 			}
 		}
 	}
