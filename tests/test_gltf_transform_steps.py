@@ -183,3 +183,23 @@ def test_quantized_attributes_read_back_within_their_step(spot, tmp_path):
         # quantize keeps the vertex order and stores custom attributes with 12 bits (`--quantize-generic`): baker's
         # reader (c / max, glTF 3.11) gives each value back within one 12-bit step
         assert np.abs(values0 - values1).max() <= 1.0 / (2 ** (12 - signed) - 1), name
+
+
+def test_validator_accepts_quantized_forms_where_precision_permits(spot, tmp_path):
+    """KHR_mesh_quantization's normalized forms of `_OUTLINE_NORMAL` pass while they hold unit vectors to their
+    step (int8 and int16); int8 of vectors 2% short, or integers not normalized, are refused."""
+    def variant(label, dtype, normalized, scale=1.0):
+        doc = GltfDocument.load(spot)
+        prim = doc.json["meshes"][0]["primitives"][0]
+        normals = to_float(doc, prim["attributes"]["_OUTLINE_NORMAL"])[:, :3] * scale
+        stored = np.round(normals * np.iinfo(dtype).max).astype(dtype)
+        prim["attributes"]["_OUTLINE_NORMAL"] = doc.add_accessor(stored, normalized=normalized)
+        path = tmp_path / f"{label}.glb"
+        doc.save(path)
+        report = validate.validate_file(path, khronos=False)
+        return {m["code"] for m in report["issues"]["messages"] if m["severity"] == 0}
+
+    assert variant("int8", np.int8, True) == set()
+    assert variant("int16", np.int16, True) == set()
+    assert variant("int8_short", np.int8, True, scale=0.98) == {"BAKER_EDGES_OUTLINE_NOT_UNIT"}
+    assert variant("int16_raw", np.int16, False) == {"BAKER_EDGES_OUTLINE_ACCESSOR_FORMAT"}
