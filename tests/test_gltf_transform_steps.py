@@ -34,8 +34,10 @@ CLI = PACKAGE / "node_modules" / ".bin" / "gltf-transform"
 SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
 EDGES, VISIBILITY = "BAKER_edges", "EXT_mesh_primitive_edge_visibility"
 STEPS = {"meshopt": ["meshopt"], "draco": ["draco"], "quantize": ["quantize"],
-         "optimize": ["optimize", "--compress", "meshopt"]}
-KEEPS_EDGES = {"meshopt": True, "quantize": True, "draco": False, "optimize": False}
+         "optimize": ["optimize", "--compress", "meshopt"],
+         # weld, reorder and meshopt without simplify: the edge data is remapped, not dropped
+         "optimize-no-simplify": ["optimize", "--compress", "meshopt", "--simplify", "false"]}
+KEEPS_EDGES = {"meshopt": True, "quantize": True, "draco": False, "optimize": False, "optimize-no-simplify": True}
 
 
 @pytest.fixture(scope="module")
