@@ -13,9 +13,8 @@
 //
 // Draco's encoder renumbers vertices and triangles inside the compressed stream (edgebreaker and sequential alike,
 // as glTF-Transform 4.5 calls it), which no class can follow: a primitive Draco compresses loses this data, with
-// one warning line. meshopt's
-// index codec may rotate a triangle's corners: with its codec given (setMeshoptIndexCodec) the triangles are rotated
-// as it will before the remap.
+// one warning line. meshopt's index codec may rotate a triangle's corners: with its codec given
+// (setMeshoptIndexCodec) the triangles are rotated as it will before the remap.
 import { PropertyType } from '@gltf-transform/core';
 
 export const VERTEX_ID = '_BAKER_VERTEX_ID';
@@ -77,7 +76,8 @@ export function setMeshoptIndexCodec(codec) {
 /** The triangles as meshopt's index codec will store them (stable under another round trip), or null. */
 function meshoptRotated(indices) {
 	const { encoder, decoder } = indexCodec;
-	let current = indices;
+	// the codec takes 2- or 4-byte indices
+	let current = indices instanceof Uint8Array ? Uint16Array.from(indices) : indices;
 	for (let round = 0; round < 4; round++) {
 		const size = current.BYTES_PER_ELEMENT;
 		const encoded = encoder.encodeGltfBuffer(current, current.length, size, 'TRIANGLES');
