@@ -19,6 +19,7 @@ import { PropertyType } from '@gltf-transform/core';
 
 export const VERTEX_ID = '_BAKER_VERTEX_ID';
 const EDGES = 'BAKER_edges';
+const HAIR = 'BAKER_hair';
 const EDGE_VISIBILITY = 'EXT_mesh_primitive_edge_visibility';
 const DRACO = 'KHR_draco_mesh_compression';
 const MESHOPT = 'EXT_meshopt_compression';
@@ -27,6 +28,9 @@ const FLOAT = 5126;
 
 // primitive -> { indices (Uint32Array as read), vertexCount }
 const SNAPSHOTS = new WeakMap();
+// each primitive's id attribute has a name of its own (`_BAKER_VERTEX_ID_<n>`), so `join` (which merges primitives
+// with the same attribute names, and drops their extensions) leaves these primitives alone
+let serial = 0;
 
 function triangleIndices(prim) {
 	const indices = prim.getIndices();
@@ -41,15 +45,25 @@ function hasTopologyData(prim) {
 	return Boolean(edgeData || prim.getExtension(EDGE_VISIBILITY));
 }
 
+// BAKER_hair's strands are runs of `verticesPerStrand` vertices and its accessors are per strand or index the
+// ribbon vertices: they hold only while the primitive keeps its vertex order (meshopt, quantize and draco keep it
+// for line primitives); a step that changes it drops BAKER_hair from the mesh's primitives, with a warning
+const hasStrands = (prim) => Boolean(prim.getExtension(HAIR));
+
+function idSemantic(prim) {
+	return prim.listSemantics().find((semantic) => semantic.startsWith(VERTEX_ID));
+}
+
 /** Give `prim` its vertex ids (once), remembering its triangles as read. Called by the classes' read(). */
 export function markVertices(document, prim) {
-	if (prim.getMode() !== TRIANGLES || SNAPSHOTS.has(prim) || !hasTopologyData(prim)) return;
+	if (SNAPSHOTS.has(prim)) return;
+	if (!(prim.getMode() === TRIANGLES && hasTopologyData(prim)) && !hasStrands(prim)) return;
 	const position = prim.getAttribute('POSITION');
 	if (!position) return;
 	const vertexCount = position.getCount();
 	const ids = document.createAccessor(VERTEX_ID).setType('SCALAR')
 		.setArray(Float32Array.from({ length: vertexCount }, (_, i) => i)).setBuffer(position.getBuffer());
-	prim.setAttribute(VERTEX_ID, ids);
+	prim.setAttribute(`${VERTEX_ID}_${serial++}`, ids);
 	SNAPSHOTS.set(prim, { indices: triangleIndices(prim), vertexCount });
 }
 
@@ -97,15 +111,19 @@ export function settleTopology(document) {
 	const draco = root.listExtensionsUsed().find((e) => e.extensionName === DRACO);
 	const meshopt = root.listExtensionsUsed().some((e) => e.extensionName === MESHOPT);
 	for (const mesh of root.listMeshes()) {
+		let strandsMoved = false;
 		for (const [p, prim] of mesh.listPrimitives().entries()) {
-			const idAttribute = prim.getAttribute(VERTEX_ID);
-			if (!idAttribute) continue;
+			const semantic = idSemantic(prim);
+			if (!semantic) continue;
+			const idAttribute = prim.getAttribute(semantic);
 			const ids = idAttribute.getComponentType() === FLOAT && !idAttribute.getNormalized()
 				? Array.from(idAttribute.getArray()) : null;
-			prim.setAttribute(VERTEX_ID, null);
+			prim.setAttribute(semantic, null);
 			disposeIfUnused(idAttribute);
 			const snapshot = SNAPSHOTS.get(prim);
-			if (!snapshot || !hasTopologyData(prim)) continue;
+			if (snapshot && hasStrands(prim) && !(ids && ids.length === snapshot.vertexCount &&
+				ids.every((id, v) => id === v))) strandsMoved = true;
+			if (!snapshot || prim.getMode() !== TRIANGLES || !hasTopologyData(prim)) continue;
 			const where = `mesh ${JSON.stringify(mesh.getName())} primitive ${p}`;
 			if (meshopt && prim.getIndices()) {
 				const rotated = indexCodec ? meshoptRotated(prim.getIndices().getArray()) : null;
@@ -140,6 +158,18 @@ export function settleTopology(document) {
 				logger.warn(`@baker/gltf-transform: ${where}: ${DRACO} renumbers vertices and triangles inside its ` +
 					'stream; its edge data is dropped (use meshopt to keep it)');
 			}
+		}
+		if (strandsMoved) {
+			for (const prim of mesh.listPrimitives()) {
+				const property = prim.getExtension(HAIR);
+				if (!property) continue;
+				const accessors = property.listRefPaths().map((path) => property.getAccessor(path)).filter(Boolean);
+				prim.setExtension(HAIR, null);
+				property.dispose();
+				for (const accessor of accessors) disposeIfUnused(accessor);
+			}
+			logger.warn(`@baker/gltf-transform: mesh ${JSON.stringify(mesh.getName())}: a step changed the vertex ` +
+				`order of its strands; ${HAIR} is dropped, re-run baker hair to rebuild it`);
 		}
 	}
 }
