@@ -41,11 +41,16 @@ KEEPS_EDGES = {"meshopt": True, "quantize": True, "draco": False, "optimize": Fa
 
 
 @pytest.fixture(scope="module")
-def spot(tmp_path_factory):
+def cli():
     if shutil.which("node") is None or not CLI.exists():
         if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
             pytest.fail("the glTF-Transform CLI is required in CI (scripts/install-node-tools installs it)")
         pytest.skip("node or @gltf-transform/cli not installed (run scripts/install-node-tools)")
+    return CLI
+
+
+@pytest.fixture(scope="module")
+def spot(cli, tmp_path_factory):
     path = tmp_path_factory.mktemp("gltf_transform_steps") / "spot.glb"
     save(baker.bake(SPOT, bakes=["thickness", "curvature", "skin", "edges", "tam", "toon", "fur"], options={
         "thickness": {"rays": 8, "texture_size": 64},
@@ -205,3 +210,36 @@ def test_validator_accepts_quantized_forms_where_precision_permits(spot, tmp_pat
     assert variant("int16", np.int16, True) == set()
     assert variant("int8_short", np.int8, True, scale=0.98) == {"BAKER_EDGES_OUTLINE_NOT_UNIT"}
     assert variant("int16_raw", np.int16, False) == {"BAKER_EDGES_OUTLINE_ACCESSOR_FORMAT"}
+
+
+def test_hair_keeps_its_strands_through_optimize(cli, tmp_path):
+    """optimize's join would merge the guide and child strand primitives and drop BAKER_hair: the classes keep them
+    apart, and the strands keep their vertex order (each strand a run of verticesPerStrand vertices)."""
+    from baker.cli import main as baker_main
+    from test_gltf_transform import _write_sphere_obj
+
+    sphere, hair, out = tmp_path / "sphere.obj", tmp_path / "hair.glb", tmp_path / "hair.optimize.glb"
+    _write_sphere_obj(sphere)
+    assert baker_main(["hair", str(sphere), "--guides", "12", "--children", "2", "--segments", "4",
+                       "--iterations", "2", "-o", str(hair), "-q"]) == 0
+    log = _step(hair, out, "optimize")
+    assert "@baker/gltf-transform" not in log, log
+    report = validate.validate_file(out, khronos=False)
+    assert report["issues"]["numErrors"] == 0, report["issues"]["messages"]
+    assert_khronos_clean(out)
+    before, after = _load(hair), _load(out)
+    strands = 0
+    for m, mesh in enumerate(before.json["meshes"]):
+        m1 = next(i for i, x in enumerate(after.json["meshes"]) if x.get("name") == mesh.get("name"))
+        for p, prim in enumerate(mesh["primitives"]):
+            ext = (prim.get("extensions") or {}).get("BAKER_hair")
+            if not ext:
+                continue
+            prim1 = after.json["meshes"][m1]["primitives"][p]
+            assert (prim1.get("extensions") or {}).get("BAKER_hair", {}).get("strandCount") == ext["strandCount"]
+            x0 = to_float(before, prim["attributes"]["POSITION"]) @ _world(before, m)[:3, :3].T + _world(before, m)[:3, 3]
+            x1 = to_float(after, prim1["attributes"]["POSITION"]) @ _world(after, m1)[:3, :3].T + _world(after, m1)[:3, 3]
+            assert x1.shape == x0.shape == (ext["strandCount"] * ext["verticesPerStrand"], 3)
+            assert np.abs(x0 - x1).max() < 1e-3 * np.ptp(x0, axis=0).max()  # int16 positions
+            strands += ext["strandCount"]
+    assert strands > 12
