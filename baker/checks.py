@@ -90,15 +90,26 @@ def is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
+# KHR_mesh_quantization's forms of a float attribute: normalized BYTE, UNSIGNED_BYTE, SHORT, UNSIGNED_SHORT
+NORMALIZED_COMPONENT_TYPES = (5120, 5121, 5122, 5123)
+
+
+def normalized_to_float(data: np.ndarray) -> np.ndarray:
+    """glTF's decoding of normalized integers (spec 3.11): c / max, signed values clamped at -1."""
+    out = data.astype(np.float64) / np.iinfo(data.dtype).max
+    return np.maximum(out, -1.0) if data.dtype.kind == "i" else out
+
+
 def check_vertex_attribute(doc, mesh: int, primitive: int, name: str, issues: Issues, *,
                            code: str, width: int = 1, types: tuple | None = None,
                            component_type: int = 5126) -> np.ndarray | None:
     """Shared rules for a baked per-vertex attribute of ``doc`` (a :class:`~baker.gltf.document.GltfDocument`):
-    present, FLOAT of at least ``width`` components (``types``, default: either layout of
-    :mod:`baker.gltf.vertex_attributes`, the data's own width or padded), one value per vertex, finite. Returns the
-    ``width`` meaningful components
+    present, FLOAT (or, for a FLOAT ``component_type``, a normalized integer type as KHR_mesh_quantization stores
+    it: glTF-Transform's ``quantize`` and ``meshopt`` write those) of at least ``width`` components (``types``,
+    default: either layout of :mod:`baker.gltf.vertex_attributes`, the data's own width or padded), one value per
+    vertex, finite. Returns the ``width`` meaningful components as floats
     (float64, (N,) for width 1; non-finite values included and reported) when the accessor can be read, else None
-    (errors reported).
+    (errors reported). :func:`stored_resolution` says how finely the stored form holds them.
     """
     gltf = doc.json
     accessors = gltf.get("accessors") or []
@@ -115,18 +126,51 @@ def check_vertex_attribute(doc, mesh: int, primitive: int, name: str, issues: Is
     acc = accessors[a]
     acc_ptr = pointer("accessors", a)
     types = types or accepted_types(width)
-    if acc.get("componentType") != component_type or acc.get("type") not in types or acc.get("normalized"):
-        issues.error(f"{code}_ACCESSOR_FORMAT", f"'{name}' must be componentType {component_type} "
-                     f"{' or '.join(types)}, not {acc.get('componentType')} {acc.get('type')}", acc_ptr)
+    quantized = component_type == 5126 and acc.get("normalized") is True \
+        and acc.get("componentType") in NORMALIZED_COMPONENT_TYPES
+    if (acc.get("componentType") != component_type or acc.get("normalized")) and not quantized \
+            or acc.get("type") not in types:
+        allowed = f"{component_type}" + (" (or normalized 5120, 5121, 5122, 5123)" if component_type == 5126 else "")
+        issues.error(f"{code}_ACCESSOR_FORMAT", f"'{name}' must be componentType {allowed} "
+                     f"{' or '.join(types)}, not {acc.get('componentType')} {acc.get('type')}"
+                     f"{' (not normalized)' if acc.get('componentType') in NORMALIZED_COMPONENT_TYPES else ''}",
+                     acc_ptr)
         return None
     positions = attrs.get("POSITION")
     if is_index(positions, accessors) and acc.get("count") != accessors[positions].get("count"):
         issues.error(f"{code}_ACCESSOR_COUNT", f"'{name}' has {acc.get('count')} values but POSITION has "
                      f"{accessors[positions].get('count')} vertices", prim_ptr + "/" + name)
         return None
-    values = unpadded(doc.accessor(a).astype(np.float64), width)
+    data = doc.accessor(a)
+    values = unpadded(normalized_to_float(data) if quantized else data.astype(np.float64), width)
     finite = np.isfinite(values)
     if not finite.all():
         issues.error(f"{code}_VALUE_NOT_FINITE", f"{int((~finite).sum())} of {values.size} values are NaN or "
                      "infinite", acc_ptr)
     return values
+
+
+def stored_resolution(doc, mesh: int, primitive: int, name: str, values: np.ndarray) -> float:
+    """How finely attribute ``name`` of the primitive holds ``values`` (as :func:`check_vertex_attribute` returned
+    them): a normalized integer's step (1/127, 1/32767, ...); for data decoded from Draco (each component quantized
+    to a uniform grid over its range) the smallest spacing between its distinct values, one grid step; 0 for plain
+    FLOAT data. Value checks widen their tolerances by it, so quantized forms pass where their precision permits."""
+    gltf = doc.json
+    prim = gltf["meshes"][mesh]["primitives"][primitive]
+    acc = (gltf.get("accessors") or [])[prim["attributes"][name]]
+    if acc.get("normalized") and acc.get("componentType") in NORMALIZED_COMPONENT_TYPES:
+        bits = {5120: 7, 5121: 8, 5122: 15, 5123: 16}[acc["componentType"]]
+        return 1.0 / (2 ** bits - 1)
+    extras = (gltf.get("asset") or {}).get("extras")
+    record = extras.get("baker") if isinstance(extras, dict) else None
+    entries = record.get("decompressed") if isinstance(record, dict) else None
+    here = pointer("meshes", mesh, "primitives", primitive)
+    if not any(isinstance(entry, dict) and entry.get("extension") == "KHR_draco_mesh_compression"
+               and here in (entry.get("primitives") or []) for entry in (entries or [])):
+        return 0.0
+    step = 0.0
+    for column in values.reshape(len(values), -1).T:
+        distinct = np.unique(column[np.isfinite(column)])
+        if len(distinct) > 1:
+            step = max(step, float(np.diff(distinct).min()))
+    return step

@@ -11,6 +11,8 @@ through the generic custom-attribute path of :mod:`baker.gltf.usd`.
 """
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -88,7 +90,8 @@ def write_material_parameters(doc: GltfDocument, material: int, *, options, valu
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_curvature: named attributes exist with the right types, agree with each other
     (H = (k1 + k2) / 2, k1 >= k2, unit directions) and with ``range``; the texture's UV set exists."""
-    from baker.checks import check_vertex_attribute, is_index, is_number, material_extensions, pointer, primitives_using
+    from baker.checks import (check_vertex_attribute, is_index, is_number, material_extensions, pointer,
+                              primitives_using, stored_resolution)
 
     gltf = doc.json
     for material, ext, ext_ptr in material_extensions(places, NAME):
@@ -120,11 +123,14 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                     acc_ptr = pointer("accessors", prim["attributes"][name])
                     k1, k2 = principal[:, 0], principal[:, 1]
                     scale = max(float(np.nanmax(np.abs(principal))) if principal.size else 0.0, 1e-30)
-                    bad = int((k1 < k2 - 1e-5 * scale).sum())
+                    # quantized forms (KHR_mesh_quantization, Draco) move each value by half its stored step
+                    step = stored_resolution(doc, m, p, name, principal) + (
+                        stored_resolution(doc, m, p, ext["attribute"], mean) if mean is not None else 0.0)
+                    bad = int((k1 < k2 - 1e-5 * scale - step).sum())
                     if bad:
                         issues.error("BAKER_CURVATURE_ORDER", f"{bad} vertices have k1 < k2", acc_ptr)
                     if mean is not None and len(mean) == len(k1):
-                        off = np.abs(mean - 0.5 * (k1 + k2)) > 1e-4 * scale
+                        off = np.abs(mean - 0.5 * (k1 + k2)) > 1e-4 * scale + step
                         if off.any():
                             issues.error("BAKER_CURVATURE_MEAN_MISMATCH", f"{int(off.sum())} vertices have H != "
                                          "(k1 + k2) / 2", acc_ptr)
@@ -133,7 +139,8 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                 direction = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_CURVATURE", width=3)
                 if direction is not None:
                     length = np.linalg.norm(direction, axis=1)
-                    bad = ~((np.abs(length - 1.0) < 1e-3) | (length < 1e-6))
+                    step = math.sqrt(3.0) * stored_resolution(doc, m, p, name, direction)
+                    bad = ~((np.abs(length - 1.0) < 1e-3 + step) | (length < 1e-6 + step))
                     if bad.any():
                         issues.error("BAKER_CURVATURE_DIRECTION_NOT_UNIT", f"{int(bad.sum())} directions are neither "
                                      "unit length nor zero", pointer("accessors", prim["attributes"][name]))

@@ -340,7 +340,7 @@ def _check_edge_accessor(doc, ext, key, ptr, issues, *, types, component_types, 
 def check(doc: GltfDocument, places: list, issues) -> None:
     """Semantic rules of BAKER_edges (``baker validate``), and of EXT_mesh_primitive_edge_visibility on the same
     primitives (the schema pass only visits BAKER_* extensions)."""
-    from baker.checks import check_vertex_attribute, pointer
+    from baker.checks import check_vertex_attribute, pointer, stored_resolution
 
     gltf = doc.json
     for parts, ext in places:
@@ -421,8 +421,10 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             values = check_vertex_attribute(doc, m, p, name, issues, code="BAKER_EDGES_OUTLINE", width=3)
             if values is not None and len(values):
                 length = np.linalg.norm(values, axis=1)
-                # zero at vertices on an open boundary (the shell is pinned there), unit everywhere else
-                if np.minimum(np.abs(length - 1.0), length).max() > 1e-3:
+                # zero at vertices on an open boundary (the shell is pinned there), unit everywhere else; a quantized
+                # form (KHR_mesh_quantization, Draco) moves each component by half its step
+                step = stored_resolution(doc, m, p, name, values)
+                if np.minimum(np.abs(length - 1.0), length).max() > 1e-3 + math.sqrt(3.0) * step:
                     issues.error("BAKER_EDGES_OUTLINE_NOT_UNIT", "outline normals must be unit vectors (or zero at "
                                  "vertices on a boundary or non-manifold edge)", pointer("accessors", attrs[name]))
         fins = ext.get("fins")

@@ -1,6 +1,7 @@
 // EXT_mesh_primitive_edge_visibility (Bentley; primitive): written by baker next to BAKER_edges.
 import { PropertyType } from '@gltf-transform/core';
 import { BakerExtension, defineProperty } from './base.js';
+import { markVertices, prewriteTopology } from './topology.js';
 
 const EDGE_VISIBILITY = 'EXT_mesh_primitive_edge_visibility';
 
@@ -12,4 +13,18 @@ export class EXTMeshPrimitiveEdgeVisibility extends BakerExtension {
 	static EXTENSION_NAME = EDGE_VISIBILITY;
 	static PROPERTIES = [EdgeVisibility];
 	extensionName = EDGE_VISIBILITY;
+	prewriteTypes = [PropertyType.ACCESSOR];
+
+	read(context) {
+		super.read(context);
+		for (const mesh of this.document.getRoot().listMeshes()) {
+			for (const prim of mesh.listPrimitives()) markVertices(this.document, prim);
+		}
+		return this;
+	}
+
+	prewrite(_context, _propertyType) {
+		prewriteTopology(this);
+		return this;
+	}
 }

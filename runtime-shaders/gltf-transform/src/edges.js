@@ -1,6 +1,7 @@
 // BAKER_edges (primitive): the per-edge accessors of a triangle primitive, and its fin primitive.
 import { PropertyType } from '@gltf-transform/core';
 import { BakerExtension, defineProperty, finsOfPrimitive } from './base.js';
+import { markVertices, prewriteTopology } from './topology.js';
 
 const EDGES = 'BAKER_edges';
 
@@ -12,6 +13,7 @@ export class BakerEdges extends BakerExtension {
 	static EXTENSION_NAME = EDGES;
 	static PROPERTIES = [Edges];
 	extensionName = EDGES;
+	prewriteTypes = [PropertyType.ACCESSOR];
 
 	read(context) {
 		super.read(context);
@@ -23,8 +25,16 @@ export class BakerEdges extends BakerExtension {
 					const { fins, ...rest } = ext.get('params');
 					ext.set('params', { ...rest, fins: null });
 				}
+				markVertices(this.document, prim);
 			}
 		}
+		return this;
+	}
+
+	/** Before any compression step claims the accessors: remap the edge data to the vertex and triangle order the
+	 * pipeline left (topology.js). */
+	prewrite(_context, _propertyType) {
+		prewriteTopology(this);
 		return this;
 	}
 

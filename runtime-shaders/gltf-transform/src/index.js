@@ -35,13 +35,14 @@ import { BakerEdges } from './edges.js';
 import { EXTMeshPrimitiveEdgeVisibility } from './edge_visibility.js';
 import { BakerFur } from './fur.js';
 import { BakerHairCards } from './hair_cards.js';
+import { BakerHair } from './hair.js';
 export { Thickness, BakerThickness } from './thickness.js';
 export { Edges, BakerEdges } from './edges.js';
 export { EdgeVisibility, EXTMeshPrimitiveEdgeVisibility } from './edge_visibility.js';
 export { Fur, FurFins, BakerFur } from './fur.js';
 export { HairCardsMaterial, HairCards, BakerHairCards } from './hair_cards.js';
 
-const HAND_WRITTEN = [BakerThickness, BakerEdges, EXTMeshPrimitiveEdgeVisibility, BakerFur, BakerHairCards];
+const HAND_WRITTEN = [BakerThickness, BakerEdges, EXTMeshPrimitiveEdgeVisibility, BakerFur, BakerHairCards, BakerHair];
 
 /** Every class, for `io.registerExtensions([...KHRONOS_EXTENSIONS, ...BAKER_EXTENSIONS])`. */
 export const BAKER_EXTENSIONS = Object.keys(REFERENCES).map((name) =>
@@ -53,7 +54,7 @@ export const BakerCurvature = plain('BAKER_curvature');
 export const BakerSkinLut = plain('BAKER_skin_lut');
 export const BakerTonalArtMap = plain('BAKER_tonal_art_map');
 export const BakerToonRamp = plain('BAKER_toon_ramp');
-export const BakerHair = plain('BAKER_hair');
+export { BakerHair };
 export const BakerGlyphAtlas = plain('BAKER_glyph_atlas');
 export const BakerText = plain('BAKER_text');
 export const BakerCaustics = plain('BAKER_caustics');

@@ -1,0 +1,18 @@
+// glTF-Transform CLI config that keeps baker's bake through the CLI's steps:
+//   gltf-transform optimize in.glb out.glb --compress meshopt \
+//     --config runtime-shaders/gltf-transform/gltf-transform.config.mjs
+// The CLI replaces its extension list with this one, so Khronos' extensions are listed next to baker's; and
+// EXT_meshopt_compression is told to store byte-sized extension data as it is (src/meshopt.js) and the edge data
+// follows the triangle rotation meshopt's index codec makes (src/topology.js).
+import { ALL_EXTENSIONS, EXTMeshoptCompression } from '@gltf-transform/extensions';
+import { BAKER_EXTENSIONS } from './src/index.js';
+import { MeshoptDecoder, MeshoptEncoder } from 'meshoptimizer';
+import { keepBytesUncompressed } from './src/meshopt.js';
+import { setMeshoptIndexCodec } from './src/topology.js';
+
+keepBytesUncompressed(EXTMeshoptCompression);
+// meshopt's index codec may rotate triangles: the edge data follows the rotation it will make
+await Promise.all([MeshoptEncoder.ready, MeshoptDecoder.ready]);
+setMeshoptIndexCodec({ encoder: MeshoptEncoder, decoder: MeshoptDecoder });
+
+export default { extensions: [...ALL_EXTENSIONS, ...BAKER_EXTENSIONS] };
