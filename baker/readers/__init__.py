@@ -15,6 +15,7 @@ from pathlib import Path
 from baker.errors import BakerError
 from baker.geometry.asset import Asset
 from baker.readers.groom import Groom
+from baker.readers.sniff import check_input
 from baker.technique import load
 
 READERS = {
@@ -54,8 +55,8 @@ def read(path, allow_outside=None, max_memory: int | None = None, require_triang
     takes a glTF of lines or points only (a groom), which ``baker inspect`` lists but no bake can use."""
     path = Path(path)
     suffix = path.suffix.lower()
-    if not path.exists():
-        raise BakerError(path, "file not found")
+    # a directory, a named pipe, an empty file, a PNG renamed .obj: one line saying what it is (sniff)
+    check_input(path, suffix if suffix in READERS else None, "an input baker reads")
     if suffix not in READERS:
         raise BakerError(path, f"unsupported input type '{suffix}' (use one of {', '.join(sorted(INPUT_SUFFIXES))})")
     asset = Asset(doc=load(READERS[suffix])(path, allow_outside, max_memory), source=path)
@@ -68,9 +69,9 @@ def read_groom(path) -> Groom:
     """Any groom file's curves as a :class:`baker.readers.groom.Groom` in world space (unchecked curves:
     :func:`baker.readers.groom.clean_groom` drops or refuses the bad ones)."""
     path = Path(path)
-    if not path.is_file():
-        raise BakerError(path, "file not found")
-    reader = GROOM_READERS.get(path.suffix.lower())
+    suffix = path.suffix.lower()
+    check_input(path, suffix if suffix in GROOM_READERS else None, "a groom")
+    reader = GROOM_READERS.get(suffix)
     if reader is None:
         raise BakerError(path, f"unsupported groom type (use one of {' '.join(GROOM_SUFFIXES)})")
     return load(reader)(path)

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from baker.errors import BakerError
+from baker.readers.sniff import check_input
 
 DIRECTIONS = ("ltr", "rtl")
 ALIGNMENTS = ("left", "center", "right")
@@ -102,8 +103,7 @@ class ShapingFace:
         import uharfbuzz as hb
 
         path = Path(source.path)
-        if not path.is_file():
-            raise BakerError(path, "font file not found")
+        check_input(path, "font")
         try:
             blob = hb.Blob.from_file_path(str(path))
             count = _face_count(path)
