@@ -494,7 +494,7 @@ def check_validate_input(path: Path) -> None:
     kind = identify(head)
     if kind in ("glb", "json"):  # a glTF under another name: read it as before
         return
-    what = describe(kind) if kind not in ("text", "binary") else EXPECTED.get(suffix, (f"a {suffix or 'suffix-less'} file",))[0]
+    what = EXPECTED[suffix][0] if kind == "text" and suffix in EXPECTED else describe(kind)
     raise BakerError(path, f"{what}: {VALIDATE_READS}")
 
 

@@ -15,7 +15,7 @@ from pathlib import Path
 from baker.errors import BakerError
 from baker.geometry.asset import Asset
 from baker.readers.groom import Groom
-from baker.readers.sniff import check_input
+from baker.readers.sniff import DESCRIPTIONS, check_input, identify
 from baker.technique import load
 
 READERS = {
@@ -56,9 +56,10 @@ def read(path, allow_outside=None, max_memory: int | None = None, require_triang
     path = Path(path)
     suffix = path.suffix.lower()
     # a directory, a named pipe, an empty file, a PNG renamed .obj: one line saying what it is (sniff)
-    check_input(path, suffix if suffix in READERS else None, "an input baker reads")
+    head = check_input(path, suffix if suffix in READERS else None, "an input baker reads")
     if suffix not in READERS:
-        raise BakerError(path, f"unsupported input type '{suffix}' (use one of {', '.join(sorted(INPUT_SUFFIXES))})")
+        raise BakerError(path, f"unsupported input type '{suffix}' ({content_note(head)}use one of "
+                               f"{', '.join(sorted(INPUT_SUFFIXES))})")
     asset = Asset(doc=load(READERS[suffix])(path, allow_outside, max_memory), source=path)
     if require_triangles:
         asset.check_has_triangles()
@@ -70,11 +71,17 @@ def read_groom(path) -> Groom:
     :func:`baker.readers.groom.clean_groom` drops or refuses the bad ones)."""
     path = Path(path)
     suffix = path.suffix.lower()
-    check_input(path, suffix if suffix in GROOM_READERS else None, "a groom")
+    head = check_input(path, suffix if suffix in GROOM_READERS else None, "a groom")
     reader = GROOM_READERS.get(suffix)
     if reader is None:
-        raise BakerError(path, f"unsupported groom type (use one of {' '.join(GROOM_SUFFIXES)})")
+        raise BakerError(path, f"unsupported groom type ({content_note(head)}use one of {' '.join(GROOM_SUFFIXES)})")
     return load(reader)(path)
+
+
+def content_note(head: bytes) -> str:
+    """``"a PNG image; "`` when the first bytes of a file of an unsupported suffix say what it is, else ``""``."""
+    kind = identify(head)
+    return f"{DESCRIPTIONS[kind]}; " if kind in DESCRIPTIONS else ""
 
 
 def references(path, allow_outside=None) -> list[Path]:

@@ -89,6 +89,8 @@ def face_source(spec: str, default_index: int = 0) -> FaceSource:
 
 
 def is_collection(path) -> bool:
+    if not Path(path).is_file():  # a named pipe is not opened (it would block); open_font says what it is
+        return False
     try:
         with open(path, "rb") as f:
             return f.read(4) == b"ttcf"
