@@ -293,3 +293,40 @@ def test_validate_says_what_it_reads(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert err == [f"baker: error: {png}: a PNG image, not a glTF (JSON) file"]
     assert "JSON" not in capsys.readouterr().out
+
+
+def test_inspect_lists_tam_textures_and_summarises_edges(tmp_path, capsys):
+    """spot baked with tam,edges (+ fins): inspect lists every tonal-art-map level texture at its level's size and
+    gives BAKER_edges a summary whose numbers hold independently: a closed triangle mesh has 3F/2 edges, the
+    creases are the edges whose stored dihedral angle reaches the crease angle, a fin is two triangles per edge."""
+    spot = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
+    out = tmp_path / "spot.glb"
+    assert main(["bake", str(spot), "-o", str(out), "--bakes", "tam,edges", "--edges-fins", "true",
+                 "--tam-size", "64", "-q"]) == 0
+    capsys.readouterr()
+    assert main(["inspect", str(out), "--format", "json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    doc = GltfDocument.load(out)
+    tam = doc.json["materials"][0]["extensions"]["BAKER_tonal_art_map"]
+    expected = {}
+    for level in tam["levels"]:
+        for info_ in level.get("textures") or [level["texture"]]:
+            expected[info_["index"]] = [level["size"], level["size"]]
+    listed = {t["texture"]: t["size"] for t in info["materials"][0]["textures"]
+              if t["slot"].startswith("BAKER_tonal_art_map.levels[")}
+    assert listed == expected and len(listed) == len(doc.json["textures"]) >= 2
+    rows = {(r["primitive"], name): data for r in info["meshes"] for name, data in r["extensions"].items()}
+    edges = rows[(0, "BAKER_edges")]
+    prim = doc.json["meshes"][0]["primitives"][0]
+    triangles = doc.json["accessors"][prim["indices"]]["count"] // 3
+    assert edges["edges"] == 3 * triangles // 2  # spot is closed and manifold
+    ext = prim["extensions"]["BAKER_edges"]
+    dihedral = np.abs(np.asarray(doc.accessor(ext["dihedralAngles"]), np.float64).reshape(-1))
+    assert edges["crease"] == int((dihedral >= ext["creaseAngle"] - 1e-6).sum()) > 0
+    assert edges["creaseAngleDeg"] == pytest.approx(np.degrees(ext["creaseAngle"]))
+    fins = edges["finPrimitive"]
+    assert rows[(fins, "BAKER_edges")] == {"finsOf": 0, "fins": edges["edges"]}
+    assert main(["inspect", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert f"edges {edges['edges']}  crease {edges['crease']}" in text
+    assert "BAKER_tonal_art_map.levels[0].textures[0]" in text

@@ -498,3 +498,30 @@ def read(doc: GltfDocument, mesh: int, primitive: int) -> EdgesPrimitive | None:
         wireframe_mask=accessor("wireframeMask"), wireframe_hides=ext.get("wireframeHides"),
         edges=accessor("edges"), opposite_vertices=accessor("oppositeVertices"), flags=accessor("flags"),
         dihedral_angles=accessor("dihedralAngles"))
+
+
+def summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
+    """What ``baker inspect`` shows of a ``BAKER_edges`` primitive. A triangle primitive: its edge count and the
+    number of edges of each class present (counted from the stored flags when the edge list was written, else the
+    extension's ``counts``), the crease angle in degrees, the fin primitive and what the wireframe mask hides. A fin
+    primitive: its source primitive and fin count (two triangles per edge)."""
+    edges = read(doc, mesh, primitive)
+    if edges is None:
+        return None
+    if edges.fins_of is not None:
+        return {"finsOf": edges.fins_of, "fins": len(edges.fin_indices) // 2}
+    if edges.flags is not None:
+        flags = np.asarray(edges.flags).reshape(-1).astype(np.int64)
+        counts = {"edges": int(len(flags)), **{name: int(np.count_nonzero(flags & bit))
+                                               for bit, name in edge_codes.FLAG_NAMES.items()}}
+    else:
+        counts = {k: int(v) for k, v in edges.counts.items() if isinstance(v, (int, float))}
+    out = {"edges": counts.get("edges", 0)}
+    out.update({name: n for name, n in counts.items() if name != "edges" and n})  # the classes present
+    if edges.crease_angle is not None:
+        out["creaseAngleDeg"] = round(math.degrees(edges.crease_angle), 6)
+    if edges.fins is not None:
+        out["finPrimitive"] = edges.fins
+    if edges.wireframe_hides:
+        out["wireframeHides"] = edges.wireframe_hides
+    return out
