@@ -81,20 +81,20 @@ def describe(kind: str) -> str:
     return {"empty": "an empty file", "text": "a text file", "binary": "binary data"}.get(kind) or DESCRIPTIONS[kind]
 
 
-def check_path(path) -> os.stat_result:
-    """Refuse a path that names no readable regular file, saying what it names; the file's status otherwise.
-    Nothing is opened (a named pipe would block)."""
+def check_path(path, missing: str = "file not found") -> os.stat_result:
+    """Refuse a path that names no readable regular file, saying what it names (``missing``: the words for nothing
+    there); the file's status otherwise. Nothing is opened (a named pipe would block)."""
     path = Path(path)
     try:
         status = os.stat(path)
     except FileNotFoundError:
         if path.is_symlink():
             raise BakerError(path, f"a symbolic link to a missing file ({os.readlink(path)})") from None
-        raise BakerError(path, "file not found") from None
+        raise BakerError(path, missing) from None
     except NotADirectoryError:
         parent = next((p for p in reversed(path.parents) if p.is_file()), None)
-        raise BakerError(path, f"file not found ({parent} is a file, not a folder)" if parent else
-                         "file not found (a part of the path is not a folder)") from None
+        raise BakerError(path, f"{missing} ({parent} is a file, not a folder)" if parent else
+                         f"{missing} (a part of the path is not a folder)") from None
     except PermissionError:
         raise BakerError(path, "cannot be read: permission denied (on a folder of the path)") from None
     except OSError as exc:
@@ -126,7 +126,7 @@ def check_input(path, expected: str | None, label: str | None = None) -> bytes:
     takes) it is checked only for being a readable, non-empty file; ``label`` names what was wanted instead."""
     path = Path(path)
     wanted, allowed = EXPECTED.get(expected, (label or "a file baker reads", None))
-    status = check_path(path)
+    status = check_path(path, "font file not found" if expected == "font" else "file not found")
     if stat.S_ISDIR(status.st_mode):
         raise BakerError(path, f"a directory, not {wanted}")
     head = read_head(path)
