@@ -30,7 +30,7 @@ SIGNATURES = (
     ("usdc", "a USD crate (.usdc) file", lambda h: h.startswith(b"PXR-USDC")),
     ("usda", "a USDA text file", lambda h: h.startswith(b"#usda")),
     ("zip", "a ZIP archive", lambda h: h.startswith(b"PK\x03\x04")),
-    ("ply", "a PLY mesh", lambda h: h.startswith((b"ply\n", b"ply\r\n"))),
+    ("ply", "a PLY mesh", lambda h: h.startswith(b"ply") and h[3:4] in (b"\n", b"\r", b" ", b"\t")),
     ("font", "a TrueType/OpenType font", lambda h: h[:4] in (b"\x00\x01\x00\x00", b"OTTO", b"true", b"typ1", b"ttcf")),
     ("woff", "a WOFF web font", lambda h: h[:4] in (b"wOFF", b"wOF2")),
     ("pdf", "a PDF document", lambda h: h.startswith(b"%PDF")),

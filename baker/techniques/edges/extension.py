@@ -504,8 +504,14 @@ def summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
     """What ``baker inspect`` shows of a ``BAKER_edges`` primitive. A triangle primitive: its edge count and the
     number of edges of each class present (counted from the stored flags when the edge list was written, else the
     extension's ``counts``), the crease angle in degrees, the fin primitive and what the wireframe mask hides. A fin
-    primitive: its source primitive and fin count (two triangles per edge)."""
-    edges = read(doc, mesh, primitive)
+    primitive: its source primitive and fin count (two triangles per edge). None when the extension cannot be read
+    (inspect shows "-"; ``baker validate`` says why)."""
+    from baker.errors import BakerError
+
+    try:
+        edges = read(doc, mesh, primitive)
+    except (BakerError, ValueError, TypeError, KeyError, IndexError, AttributeError):
+        return None
     if edges is None:
         return None
     if edges.fins_of is not None:
