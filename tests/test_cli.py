@@ -324,6 +324,11 @@ def test_inspect_lists_tam_textures_and_summarises_edges(tmp_path, capsys):
     dihedral = np.abs(np.asarray(doc.accessor(ext["dihedralAngles"]), np.float64).reshape(-1))
     assert edges["crease"] == int((dihedral >= ext["creaseAngle"] - 1e-6).sum()) > 0
     assert edges["creaseAngleDeg"] == pytest.approx(np.degrees(ext["creaseAngle"]))
+    visibility = rows[(0, "EXT_mesh_primitive_edge_visibility")]
+    # every edge but the planar ones can draw: as a silhouette candidate, or always (hard: spot's creases)
+    assert visibility["hard"] == edges["crease"]
+    assert visibility["silhouette"] + visibility["hard"] + edges["planar"] == edges["edges"]
+    assert visibility["silhouetteMates"] == visibility["silhouette"]
     fins = edges["finPrimitive"]
     assert rows[(fins, "BAKER_edges")] == {"finsOf": 0, "fins": edges["edges"]}
     assert main(["inspect", str(out)]) == 0

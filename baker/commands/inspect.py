@@ -45,6 +45,8 @@ def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
     check_bake(asset, (), None, max_memory, "inspecting this asset")
     doc = asset.doc
     summaries = {name: ext.summary for name, ext in registry.extensions().items() if hasattr(ext, "summary")}
+    for ext in registry.extensions().values():  # an extension module's summaries of the others it writes
+        summaries.update(getattr(ext, "ALSO_SUMMARIES", {}))
     meshes = []
     for m, mesh in enumerate(asset.meshes()):
         triangle_prims = asset.triangle_primitives(m)

@@ -531,3 +531,25 @@ def summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
     if edges.wireframe_hides:
         out["wireframeHides"] = edges.wireframe_hides
     return out
+
+
+def visibility_summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
+    """What ``baker inspect`` shows of ``EXT_mesh_primitive_edge_visibility``: the edges each code marks, counted
+    from the packed ``visibility`` (a hard edge is counted once: its second triangle's code is "repeated"), and the
+    silhouette mates. None when it cannot be read."""
+    prim = doc.json["meshes"][mesh]["primitives"][primitive]
+    ext = (prim.get("extensions") or {}).get(EXT_VISIBILITY)
+    try:
+        triangles = doc.json["accessors"][prim["indices"]]["count"] // 3 if "indices" in prim else \
+            doc.json["accessors"][prim["attributes"]["POSITION"]]["count"] // 3
+        codes = np.bincount(edge_codes.unpack_visibility(doc.accessor(ext["visibility"]), triangles).reshape(-1),
+                            minlength=4)
+        mates = doc.json["accessors"][ext["silhouetteMates"]]["count"] if "silhouetteMates" in ext else 0
+    except (ValueError, TypeError, KeyError, IndexError, AttributeError):
+        return None
+    return {"silhouette": int(codes[edge_codes.VIS_SILHOUETTE]), "hard": int(codes[edge_codes.VIS_HARD]),
+            "silhouetteMates": int(mates)}
+
+
+# inspect's summaries of the other extensions this module writes
+ALSO_SUMMARIES = {EXT_VISIBILITY: visibility_summary}
