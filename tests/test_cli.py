@@ -335,3 +335,28 @@ def test_inspect_lists_tam_textures_and_summarises_edges(tmp_path, capsys):
     text = capsys.readouterr().out
     assert f"edges {edges['edges']}  crease {edges['crease']}" in text
     assert "BAKER_tonal_art_map.levels[0].textures[0]" in text
+
+
+def test_bad_output_paths_and_text_files_are_one_line(tmp_path, capsys, sphere_glb):
+    """An output that is a directory or lies under a file, and a --text-file that is a directory, a FIFO or a PNG:
+    exit 2, one line naming it, nothing written."""
+    import os
+
+    (tmp_path / "adir.glb").mkdir()
+    (tmp_path / "image.png").write_bytes(PNG_BYTES)
+    os.mkfifo(tmp_path / "pipe.txt")
+    font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
+    cases = [(["bake", sphere_glb, "-o", tmp_path / "adir.glb", "--bakes", "edges", "-q"], "adir.glb",
+              "a directory"),
+             (["bake", sphere_glb, "-o", tmp_path / "image.png" / "x.glb", "--bakes", "edges", "-q"], "x.glb",
+              "image.png is a file, not a folder"),
+             (["glyphs", font, "--text-file", tmp_path / "adir.glb", "-o", tmp_path / "a"], "adir.glb", "a directory"),
+             (["glyphs", font, "--text-file", tmp_path / "pipe.txt", "-o", tmp_path / "a"], "pipe.txt", "named pipe"),
+             (["glyphs", font, "--text-file", tmp_path / "image.png", "-o", tmp_path / "a"], "image.png",
+              "a PNG image, not a UTF-8 text file")]
+    for argv, name, what in cases:
+        assert main([str(a) for a in argv]) == 2, argv
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and name in err[0] and what in err[0], err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["adir.glb", "image.png", "pipe.txt"]
+    assert not list((tmp_path / "adir.glb").iterdir())
