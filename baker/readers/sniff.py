@@ -120,13 +120,14 @@ def read_head(path, size: int = HEAD) -> bytes:
         raise BakerError(path, f"cannot be read: {exc.strerror or exc}") from None
 
 
-def check_input(path, expected: str | None, label: str | None = None) -> bytes:
+def check_input(path, expected: str | None, label: str | None = None, missing: str | None = None) -> bytes:
     """Refuse ``path`` unless it is a readable regular file that may hold ``expected`` (a key of :data:`EXPECTED`: a
     suffix such as ``".obj"``, or ``"font"``); its first bytes otherwise. With ``expected`` None (a suffix no reader
-    takes) it is checked only for being a readable, non-empty file; ``label`` names what was wanted instead."""
+    takes) it is checked only for being a readable, non-empty file; ``label`` names what was wanted instead.
+    ``missing``: the words for nothing at ``path`` (default ``file not found``)."""
     path = Path(path)
     wanted, allowed = EXPECTED.get(expected, (label or "a file baker reads", None))
-    status = check_path(path, "font file not found" if expected == "font" else "file not found")
+    status = check_path(path, missing or ("font file not found" if expected == "font" else "file not found"))
     if stat.S_ISDIR(status.st_mode):
         raise BakerError(path, f"a directory, not {wanted}")
     head = read_head(path)
