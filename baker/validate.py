@@ -482,6 +482,27 @@ def _merge_khronos(report: dict, issues: Issues, validated: set, referenced: set
 
 
 
+VALIDATE_SUFFIXES = (".gltf", ".glb", ".usd", ".usda", ".usdc", ".usdz")
+VALIDATE_READS = "validate reads .gltf/.glb (and baker's USD)"
+
+
+def check_validate_input(path: Path) -> None:
+    """Refuse, in one line, what validate does not read: a directory, a named pipe, an empty file, a file of another
+    format (an OBJ, a PNG renamed .gltf), rather than report it as broken JSON."""
+    from baker.readers.sniff import EXPECTED, check_input, describe, identify
+
+    suffix = path.suffix.lower()
+    if suffix in VALIDATE_SUFFIXES:
+        check_input(path, suffix)
+        return
+    head = check_input(path, None, "a glTF, GLB or USD file")
+    kind = identify(head)
+    if kind in ("glb", "json"):  # a glTF under another name: read it as before
+        return
+    what = EXPECTED[suffix][0] if kind == "text" and suffix in EXPECTED else describe(kind)
+    raise BakerError(path, f"{what}: {VALIDATE_READS}")
+
+
 def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
     """Validate one .gltf/.glb file; return a report shaped like Khronos glTF-Validator's.
 
@@ -493,6 +514,7 @@ def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
     inside the file is a message.
     """
     path = Path(path)
+    check_validate_input(path)
     if not path.is_file():
         raise BakerError(path, "file not found")
     if path.suffix.lower() in USD_SUFFIXES:

@@ -200,3 +200,163 @@ def test_inspect_lists_lines_strips_and_points(tmp_path, capsys):
     assert "LINE_STRIP" in text and "POINTS" in text
     assert main(["bake", str(path), "-o", str(tmp_path / "o.glb"), "-q"]) == 2  # a bake still needs triangles
     assert "no triangle faces" in capsys.readouterr().err
+
+
+# ---------------------------------------------------------------------------------------------------- bad paths
+# Every command that reads a file, given something that is not that file: exit 2 and ONE line naming the file and
+# what it is (issue 47, item 2). Run in this process (main()), so the whole matrix takes a few seconds.
+PNG_BYTES = (b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\x00\x00\x00\x02\x00\x00\x00\x02\x08\x02\x00\x00\x00\xfd\xd4\x9as"
+             b"\x00\x00\x00\x0cIDATx\x9cc`\x80\x01\x00\x00\x0e\x00\x01\xa2\xd6\x8b\xe6\x00\x00\x00\x00IEND\xaeB`\x82")
+BAD_PATH_COMMANDS = {  # command -> (argv for an input, suffixes it reads)
+    "bake": (lambda f, o: ["bake", f, "-o", o / "o.glb", "-q"], ("obj", "ply", "stl", "glb", "gltf", "usda", "usdz")),
+    "inspect": (lambda f, o: ["inspect", f], ("obj", "ply", "stl", "glb", "gltf", "usdc")),
+    "preview": (lambda f, o: ["preview", f, "-o", o / "o.png", "-q"], ("obj", "glb", "usda")),
+    "validate": (lambda f, o: ["validate", f, "--no-khronos"], ("obj", "ply", "glb", "gltf", "usda")),
+    "lines": (lambda f, o: ["lines", f, "-o", o / "o.svg", "--quiet"], ("obj", "stl", "glb")),
+    "hair": (lambda f, o: ["hair", f, "-o", o / "o.glb", "-q"], ("obj", "ply", "glb")),
+    "guides": (lambda f, o: ["guides", f, "-o", o / "o.glb", "-q"], ("glb", "usdc", "tfx")),
+    "cards": (lambda f, o: ["cards", f, "-o", o / "o.glb", "-q"], ("gltf", "usda", "tfx")),
+    "glyphs": (lambda f, o: ["glyphs", f, "-o", o / "atlas", "-q"], ("ttf", "otf")),
+    "text": (lambda f, o: ["text", "Hi", "--font", f, "-o", o / "o.glb", "-q"], ("ttf",)),
+}
+
+
+def make_bad_inputs(folder: Path, suffix: str) -> dict:
+    """name -> (path, what the one line must say it is) of inputs that are not a ``suffix`` file."""
+    import os
+    import random
+
+    folder.mkdir(parents=True, exist_ok=True)
+    bad = {}
+    directory = folder / f"adir.{suffix}"
+    directory.mkdir()
+    bad["directory"] = (directory, "a directory")
+    png = folder / f"image.{suffix}"
+    png.write_bytes(PNG_BYTES)
+    bad["png"] = (png, "a PNG image")
+    empty = folder / f"empty.{suffix}"
+    empty.write_bytes(b"")
+    bad["empty"] = (empty, "an empty file")
+    noise = folder / f"noise.{suffix}"
+    noise.write_bytes(random.Random(7).randbytes(2000))
+    if suffix not in ("stl", "tfx"):  # raw bytes are what those formats hold: their readers check the counts
+        bad["random"] = (noise, "binary data" if suffix in ("obj", "glb", "gltf", "ply", "usda", "usdc", "usdz",
+                                                            "ttf", "otf") else "")
+    pipe = folder / f"pipe.{suffix}"
+    os.mkfifo(pipe)  # never opened: opening a FIFO blocks until a writer comes
+    bad["fifo"] = (pipe, "a named pipe")
+    dangling = folder / f"dangling.{suffix}"
+    dangling.symlink_to(folder / "nowhere")
+    bad["dangling link"] = (dangling, "a symbolic link to a missing file")
+    bad["through a file"] = (png / f"x.{suffix}", "is a file, not a folder")  # unopenable, also for root
+    return bad
+
+
+BAD_PATH_CASES = [(command, suffix) for command, (_, suffixes) in BAD_PATH_COMMANDS.items() for suffix in suffixes]
+
+
+@pytest.mark.parametrize("command,suffix", BAD_PATH_CASES, ids=[f"{c}-{s}" for c, s in BAD_PATH_CASES])
+def test_bad_paths_are_one_line_exit_2(command, suffix, tmp_path, capsys):
+    import signal
+
+    argv_of, _ = BAD_PATH_COMMANDS[command]
+
+    def blocked(signum, frame):
+        raise AssertionError(f"{command} blocked on a bad {suffix} input (opened a FIFO?)")
+
+    previous = signal.signal(signal.SIGALRM, blocked)
+    try:
+        for name, (path, what) in make_bad_inputs(tmp_path / "in", suffix).items():
+            signal.alarm(30)
+            code = main([str(a) for a in argv_of(path, tmp_path)])
+            signal.alarm(0)
+            err = capsys.readouterr().err.strip().splitlines()
+            assert code == 2 and len(err) == 1, (name, code, err)
+            assert err[0].startswith(f"baker: error: {path}: "), (name, err)
+            assert what in err[0], (name, what, err)
+            assert not list(tmp_path.glob("o.*")) and not list(tmp_path.glob("atlas*")), (name, "wrote output")
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def test_validate_says_what_it_reads(tmp_path, capsys):
+    """An OBJ (or a PNG under any name) is not validated as broken JSON: one line saying what validate reads."""
+    obj = tmp_path / "tri.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    assert main(["validate", str(obj), "--no-khronos"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"baker: error: {obj}: an OBJ mesh: validate reads .gltf/.glb (and baker's USD)"]
+    png = tmp_path / "x.gltf"
+    png.write_bytes(PNG_BYTES)
+    assert main(["validate", str(png), "--no-khronos"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"baker: error: {png}: a PNG image, not a glTF (JSON) file"]
+    assert "JSON" not in capsys.readouterr().out
+
+
+def test_inspect_lists_tam_textures_and_summarises_edges(tmp_path, capsys):
+    """spot baked with tam,edges (+ fins): inspect lists every tonal-art-map level texture at its level's size and
+    gives BAKER_edges a summary whose numbers hold independently: a closed triangle mesh has 3F/2 edges, the
+    creases are the edges whose stored dihedral angle reaches the crease angle, a fin is two triangles per edge."""
+    spot = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
+    out = tmp_path / "spot.glb"
+    assert main(["bake", str(spot), "-o", str(out), "--bakes", "tam,edges", "--edges-fins", "true",
+                 "--tam-size", "64", "-q"]) == 0
+    capsys.readouterr()
+    assert main(["inspect", str(out), "--format", "json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    doc = GltfDocument.load(out)
+    tam = doc.json["materials"][0]["extensions"]["BAKER_tonal_art_map"]
+    expected = {}
+    for level in tam["levels"]:
+        for info_ in level.get("textures") or [level["texture"]]:
+            expected[info_["index"]] = [level["size"], level["size"]]
+    listed = {t["texture"]: t["size"] for t in info["materials"][0]["textures"]
+              if t["slot"].startswith("BAKER_tonal_art_map.levels[")}
+    assert listed == expected and len(listed) == len(doc.json["textures"]) >= 2
+    rows = {(r["primitive"], name): data for r in info["meshes"] for name, data in r["extensions"].items()}
+    edges = rows[(0, "BAKER_edges")]
+    prim = doc.json["meshes"][0]["primitives"][0]
+    triangles = doc.json["accessors"][prim["indices"]]["count"] // 3
+    assert edges["edges"] == 3 * triangles // 2  # spot is closed and manifold
+    ext = prim["extensions"]["BAKER_edges"]
+    dihedral = np.abs(np.asarray(doc.accessor(ext["dihedralAngles"]), np.float64).reshape(-1))
+    assert edges["crease"] == int((dihedral >= ext["creaseAngle"] - 1e-6).sum()) > 0
+    assert edges["creaseAngleDeg"] == pytest.approx(np.degrees(ext["creaseAngle"]))
+    visibility = rows[(0, "EXT_mesh_primitive_edge_visibility")]
+    # every edge but the planar ones can draw: as a silhouette candidate, or always (hard: spot's creases)
+    assert visibility["hard"] == edges["crease"]
+    assert visibility["silhouette"] + visibility["hard"] + edges["planar"] == edges["edges"]
+    assert visibility["silhouetteMates"] == visibility["silhouette"]
+    fins = edges["finPrimitive"]
+    assert rows[(fins, "BAKER_edges")] == {"finsOf": 0, "fins": edges["edges"]}
+    assert main(["inspect", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert f"edges {edges['edges']}  crease {edges['crease']}" in text
+    assert "BAKER_tonal_art_map.levels[0].textures[0]" in text
+
+
+def test_bad_output_paths_and_text_files_are_one_line(tmp_path, capsys, sphere_glb):
+    """An output that is a directory or lies under a file, and a --text-file that is a directory, a FIFO or a PNG:
+    exit 2, one line naming it, nothing written."""
+    import os
+
+    (tmp_path / "adir.glb").mkdir()
+    (tmp_path / "image.png").write_bytes(PNG_BYTES)
+    os.mkfifo(tmp_path / "pipe.txt")
+    font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
+    cases = [(["bake", sphere_glb, "-o", tmp_path / "adir.glb", "--bakes", "edges", "-q"], "adir.glb",
+              "a directory"),
+             (["bake", sphere_glb, "-o", tmp_path / "image.png" / "x.glb", "--bakes", "edges", "-q"], "x.glb",
+              "image.png is a file, not a folder"),
+             (["glyphs", font, "--text-file", tmp_path / "adir.glb", "-o", tmp_path / "a"], "adir.glb", "a directory"),
+             (["glyphs", font, "--text-file", tmp_path / "pipe.txt", "-o", tmp_path / "a"], "pipe.txt", "named pipe"),
+             (["glyphs", font, "--text-file", tmp_path / "image.png", "-o", tmp_path / "a"], "image.png",
+              "a PNG image, not a UTF-8 text file")]
+    for argv, name, what in cases:
+        assert main([str(a) for a in argv]) == 2, argv
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and name in err[0] and what in err[0], err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["adir.glb", "image.png", "pipe.txt"]
+    assert not list((tmp_path / "adir.glb").iterdir())

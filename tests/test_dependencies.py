@@ -79,3 +79,90 @@ def test_benchmark_and_test_peers_are_not_runtime_dependencies():
     extras = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["optional-dependencies"]
     assert "pymeshlab" in {normalized(requirement_name(r)) for r in extras["benchmark"]}
     assert "scikit-image" in {normalized(requirement_name(r)) for r in extras["test"]}
+
+
+def declared_closure() -> set[str]:
+    """The runtime dependencies and, recursively, what each requires outside any extra (markers evaluated here)."""
+    from packaging.requirements import Requirement
+
+    found, todo = set(), list(runtime_dependencies())
+    while todo:
+        name = normalized(todo.pop())
+        if name in found:
+            continue
+        found.add(name)
+        for text in metadata.requires(name) or ():
+            requirement = Requirement(text)
+            if requirement.marker is None or requirement.marker.evaluate({"extra": ""}):
+                todo.append(requirement.name)
+    return found
+
+
+# Every reader module, what baker imports lazily for a format, and reads that take the fallback paths (trimesh's
+# OBJ and STL readers on text that is not UTF-8, where trimesh would import charset_normalizer, which no declared
+# dependency installs), run in a venv holding only the declared dependencies.
+READ_EVERY_FORMAT = r'''
+import importlib, pkgutil, struct, sys, tempfile, warnings
+from pathlib import Path
+import baker.readers
+from baker.errors import BakerError
+for info in pkgutil.iter_modules(baker.readers.__path__):
+    importlib.import_module(f"baker.readers.{info.name}")
+for name in ("trimesh.exchange.obj", "trimesh.exchange.ply", "trimesh.exchange.stl", "trimesh.exchange.gltf",
+             "pxr.Usd", "pxr.UsdGeom", "pxr.UsdShade", "DracoPy", "meshopt", "fontTools.ttLib", "uharfbuzz",
+             "OpenImageIO", "baker.gltf.compression", "baker.gltf.usd", "baker.techniques.glyphs.shaping"):
+    importlib.import_module(name)
+from baker import readers
+folder = Path(tempfile.mkdtemp())
+files = {
+    "latin1.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nusemtl caf\xe9\nf 1 2 3\n".encode("latin-1"),
+    "latin1.stl": ("solid caf\xe9\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                   "endloop\nendfacet\nendsolid\n").encode("latin-1"),
+    "header.stl": b"\xe9" * 80 + struct.pack("<I12fH", 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0),
+    "ascii.ply": b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                 b"element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+    "tri.usda": b'#usda 1.0\ndef Mesh "m" {\n  int[] faceVertexCounts = [3]\n  int[] faceVertexIndices = [0, 1, 2]\n'
+                b'  point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]\n}\n',
+}
+for name, data in files.items():
+    (folder / name).write_bytes(data)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        asset = readers.read(folder / name)
+    assert sum(len(asset.primitive(m, p).faces) for m, _ in enumerate(asset.meshes())
+               for p in asset.triangle_primitives(m)) == 1, name
+(folder / "image.obj").write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(40))
+try:
+    readers.read(folder / "image.obj")
+except BakerError as exc:
+    assert "a PNG image" in str(exc), exc
+print("read", len(files), "formats with", sorted({m.split(".")[0] for m in sys.modules}))
+'''
+
+
+def test_readers_need_only_declared_dependencies(tmp_path):
+    """The venv: made with ``venv --without-pip``; its site-packages links to the installed files of the declared
+    dependencies' closure only (what ``pip install baker`` would bring), so a reader that imports anything else,
+    directly or through a library's lazy import, fails here with ImportError."""
+    import subprocess
+    import sys
+
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(tmp_path / "venv")], check=True)
+    site = next((tmp_path / "venv" / "lib").glob("python3*/site-packages"))
+    linked = set()
+    for distribution in sorted(declared_closure()):
+        dist = metadata.distribution(distribution)
+        for file in dist.files or ():
+            top = file.parts[0]
+            if top in ("..", "__pycache__") or top.endswith(".pth") or top in linked:
+                continue
+            target = Path(dist.locate_file(top))
+            if target.exists():
+                (site / top).symlink_to(target)
+                linked.add(top)
+    (site / "baker").symlink_to(REPO / "baker")
+    python = tmp_path / "venv" / "bin" / "python"
+    result = subprocess.run([str(python), "-I", "-c", READ_EVERY_FORMAT], capture_output=True, text=True,
+                            cwd=tmp_path, timeout=300)
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert "charset_normalizer" not in result.stdout

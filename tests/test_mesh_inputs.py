@@ -363,8 +363,8 @@ def fonts(tmp_path_factory):
 
 
 @pytest.mark.parametrize("name, words", [
-    ("text.ttf", ("not a readable TrueType/OpenType font",)),
-    ("empty.otf", ("not a readable",)),
+    ("text.ttf", ("a text file, not a TrueType/OpenType font",)),
+    ("empty.otf", ("an empty file, not a TrueType/OpenType font",)),
     ("head-cut.ttf", ("not a readable",)),
     ("glyf-cut.ttf", ("damaged or truncated font", "glyf")),
     ("glyf-garbled.ttf", ("damaged or truncated font",)),
@@ -391,3 +391,55 @@ def test_empty_charset(fonts, tmp_path, capsys, charset):
 def test_empty_text(fonts, tmp_path, capsys):
     refused(["text", "", "--font", FONT, "-o", tmp_path / "t.glb"], capsys, "empty charset")
     assert not list(tmp_path.iterdir())
+
+
+# ------------------------------------------------------------------------------------------ text that is not UTF-8
+def test_latin1_obj_and_stl_read_as_their_utf8_twins(tmp_path, capsys):
+    """An OBJ whose material name and an ASCII STL whose solid name are Latin-1 (not UTF-8: trimesh's fallback
+    would guess the encoding with charset_normalizer, which baker does not install) read as the same file written in
+    UTF-8: the same vertices, faces and names; a binary STL whose 80-byte header is not text reads as with a blank
+    header."""
+    from baker import readers
+
+    obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nl 1 2\nusemtl caf\xe9\nf 1 2 3\nf 1 3 4\n"
+    stl = ("solid caf\xe9\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+           "endfacet\nendsolid caf\xe9\n")
+    for name, text in (("m.obj", obj), ("m.stl", stl)):
+        (tmp_path / "latin1").mkdir(exist_ok=True)
+        (tmp_path / "utf8").mkdir(exist_ok=True)
+        (tmp_path / "latin1" / name).write_bytes(text.encode("latin-1"))
+        (tmp_path / "utf8" / name).write_bytes(text.encode("utf-8"))
+        a, b = (readers.read(tmp_path / enc / name) for enc in ("latin1", "utf8"))
+        assert [m.get("name") for m in a.meshes()] == [m.get("name") for m in b.meshes()]
+        for m in range(len(b.meshes())):
+            for p in b.triangle_primitives(m):
+                assert np.array_equal(a.primitive(m, p).positions, b.primitive(m, p).positions)
+                assert np.array_equal(a.primitive(m, p).faces, b.primitive(m, p).faces)
+    tri = [TETRA[[0, 1, 2]], TETRA[[0, 1, 3]]]
+    blank = binary_stl(tri)
+    (tmp_path / "blank.stl").write_bytes(blank)
+    (tmp_path / "header.stl").write_bytes(bytes(range(128, 208)) + blank[80:])
+    a, b = readers.read(tmp_path / "header.stl"), readers.read(tmp_path / "blank.stl")
+    assert np.array_equal(a.primitive(0, 0).positions, b.primitive(0, 0).positions)
+
+
+SPOT = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
+
+
+@pytest.mark.parametrize("suffix", ["ply", "stl", "glb", "usdc"])
+def test_truncated_real_files_are_one_line(tmp_path, capsys, suffix):
+    """spot written as a binary PLY, STL, GLB and USD crate, then cut at half its length: bake and inspect exit 2 with
+    one line naming the file, nothing written."""
+    import trimesh
+
+    whole = tmp_path / f"whole.{suffix}"
+    if suffix == "usdc":
+        assert main(["bake", str(SPOT), "-o", str(whole), "--bakes", "edges", "-q"]) == 0
+    else:
+        trimesh.load(str(SPOT), process=False, force="mesh").export(str(whole))
+    data = whole.read_bytes()
+    cut = tmp_path / f"cut.{suffix}"
+    cut.write_bytes(data[: len(data) // 2])
+    capsys.readouterr()
+    refused(["inspect", cut], capsys, str(cut))
+    bake(cut, tmp_path / "out.glb", capsys, str(cut))

@@ -45,6 +45,8 @@ def describe(path, allow_outside=None, max_memory: int | None = None) -> dict:
     check_bake(asset, (), None, max_memory, "inspecting this asset")
     doc = asset.doc
     summaries = {name: ext.summary for name, ext in registry.extensions().items() if hasattr(ext, "summary")}
+    for ext in registry.extensions().values():  # an extension module's summaries of the others it writes
+        summaries.update(getattr(ext, "ALSO_SUMMARIES", {}))
     meshes = []
     for m, mesh in enumerate(asset.meshes()):
         triangle_prims = asset.triangle_primitives(m)
@@ -125,17 +127,21 @@ def coverage_mips(doc) -> list[dict]:
 
 
 def material_textures(doc, material: dict) -> list[dict]:
-    """The textures a material references (``slot``: where, e.g. ``KHR_materials_volume.thicknessTexture``) with
-    their image's width and height when the image is a PNG or JPEG (read from its header), else None."""
+    """The textures a material references (``slot``: where, e.g. ``KHR_materials_volume.thicknessTexture``,
+    ``BAKER_tonal_art_map.levels[1].textures[0]``: any ``*Texture``/``texture`` textureInfo and ``*Textures``/``textures``
+    list, in lists too) with their image's width and height when the image is a PNG or JPEG (read from its header), else None."""
     found = []
 
     def walk(value, path):
-        if isinstance(value, dict):
+        if isinstance(value, list):  # e.g. BAKER_tonal_art_map's levels[i].textures
+            for i, item in enumerate(value):
+                walk(item, path[:-1] + [f"{path[-1]}[{i}]"] if path else [f"[{i}]"])
+        elif isinstance(value, dict):
             for key, item in value.items():
-                if key.endswith("Texture") and isinstance(item, dict) and isinstance(item.get("index"), int):
+                if key.lower().endswith("texture") and isinstance(item, dict) and isinstance(item.get("index"), int):
                     found.append({"slot": ".".join(path + [key]), "texture": item["index"],
                                   "size": _texture_size(doc, item["index"])})
-                elif key.endswith("Textures") and isinstance(item, list):  # a list of textureInfos (frames, channels)
+                elif key.lower().endswith("textures") and isinstance(item, list):  # textureInfos (frames, channels)
                     for i, entry in enumerate(item):
                         if isinstance(entry, dict) and isinstance(entry.get("index"), int):
                             found.append({"slot": ".".join(path + [f"{key}[{i}]"]), "texture": entry["index"],

@@ -102,13 +102,22 @@ def atomic_files(paths):
     place. When it fails (any exception, KeyboardInterrupt, SIGTERM), remove every temporary file and every folder
     made for them."""
     paths = [Path(p) for p in paths]
+    for path in paths:  # before anything is made: one line, not a traceback at the rename
+        if path.is_dir():
+            raise BakerError(path, "a directory: the output must name a file")
+        blocking = next((p for p in reversed(path.parents) if p.exists() and not p.is_dir()), None)
+        if blocking is not None:
+            raise BakerError(path, f"cannot write the output here: {blocking} is a file, not a folder")
     temps: list[Path] = []
     created: list[Path] = []
     try:
         with deferred_signals():
             for path in paths:
-                created += _make_parents(path.parent)
-                temps.append(_temporary(path))
+                try:
+                    created += _make_parents(path.parent)
+                    temps.append(_temporary(path))
+                except OSError as exc:  # a file where a folder should be, no permission, a read-only disk
+                    raise BakerError(path, f"cannot write the output here: {exc.strerror or exc}") from None
         yield list(temps)
         with deferred_signals():
             for tmp, path in zip(temps, paths):

@@ -15,6 +15,7 @@ from pathlib import Path
 from baker.errors import BakerError
 from baker.geometry.asset import Asset
 from baker.readers.groom import Groom
+from baker.readers.sniff import DESCRIPTIONS, check_input, identify
 from baker.technique import load
 
 READERS = {
@@ -54,10 +55,11 @@ def read(path, allow_outside=None, max_memory: int | None = None, require_triang
     takes a glTF of lines or points only (a groom), which ``baker inspect`` lists but no bake can use."""
     path = Path(path)
     suffix = path.suffix.lower()
-    if not path.exists():
-        raise BakerError(path, "file not found")
+    # a directory, a named pipe, an empty file, a PNG renamed .obj: one line saying what it is (sniff)
+    head = check_input(path, suffix if suffix in READERS else None, "an input baker reads")
     if suffix not in READERS:
-        raise BakerError(path, f"unsupported input type '{suffix}' (use one of {', '.join(sorted(INPUT_SUFFIXES))})")
+        raise BakerError(path, f"unsupported input type '{suffix}' ({content_note(head)}use one of "
+                               f"{', '.join(sorted(INPUT_SUFFIXES))})")
     asset = Asset(doc=load(READERS[suffix])(path, allow_outside, max_memory), source=path)
     if require_triangles:
         asset.check_has_triangles()
@@ -68,12 +70,18 @@ def read_groom(path) -> Groom:
     """Any groom file's curves as a :class:`baker.readers.groom.Groom` in world space (unchecked curves:
     :func:`baker.readers.groom.clean_groom` drops or refuses the bad ones)."""
     path = Path(path)
-    if not path.is_file():
-        raise BakerError(path, "file not found")
-    reader = GROOM_READERS.get(path.suffix.lower())
+    suffix = path.suffix.lower()
+    head = check_input(path, suffix if suffix in GROOM_READERS else None, "a groom")
+    reader = GROOM_READERS.get(suffix)
     if reader is None:
-        raise BakerError(path, f"unsupported groom type (use one of {' '.join(GROOM_SUFFIXES)})")
+        raise BakerError(path, f"unsupported groom type ({content_note(head)}use one of {' '.join(GROOM_SUFFIXES)})")
     return load(reader)(path)
+
+
+def content_note(head: bytes) -> str:
+    """``"a PNG image; "`` when the first bytes of a file of an unsupported suffix say what it is, else ``""``."""
+    kind = identify(head)
+    return f"{DESCRIPTIONS[kind]}; " if kind in DESCRIPTIONS else ""
 
 
 def references(path, allow_outside=None) -> list[Path]:

@@ -45,9 +45,9 @@ def check_stl(path: Path) -> dict:
 
 def non_finite_location(path: Path) -> str | None:
     """The STL triangle holding the first NaN, infinite or beyond-float32 coordinate, or None."""
-    import trimesh
+    from baker.readers.trimesh_scene import load_trimesh
 
-    loaded = trimesh.load(str(path), process=False)
+    loaded = load_trimesh(path)
     vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), np.float64)
     with np.errstate(invalid="ignore"):
         bad = ~np.isfinite(vertices).all(axis=1) | (np.abs(vertices) > FLOAT32_MAX).any(axis=1)

@@ -21,7 +21,7 @@ class LibraryResolver:
     (:mod:`baker.readers.mtl`), under the same policy."""
 
     def __init__(self, libraries: list):
-        self.text = b"\n".join(p.read_bytes() for p in libraries)
+        self.text = utf8(b"\n".join(p.read_bytes() for p in libraries))
 
     def __getitem__(self, name: str) -> bytes:  # trimesh asks for the mtllib this way
         return self.text
@@ -30,16 +30,57 @@ class LibraryResolver:
         raise OSError(f"{name}: read by baker.readers.mtl")
 
 
+def utf8(data: bytes) -> bytes:
+    """Text bytes as UTF-8: unchanged when they are, else read as Latin-1 (every byte is a character there). trimesh
+    decodes text that is not UTF-8 by guessing its encoding with ``charset_normalizer``, which baker does not
+    depend on (a PNG renamed .obj failed with "No module named 'charset_normalizer'"); this way it never guesses,
+    and the same bytes always give the same names."""
+    try:
+        data.decode("utf-8")
+        return data
+    except UnicodeDecodeError:
+        return data.decode("latin-1").encode("utf-8")
+
+
+def utf8_copy(path: Path, folder: Path) -> Path:
+    """``path`` itself when trimesh can decode its text as UTF-8, else a copy of the same name in ``folder`` that it
+    can: an OBJ or ASCII STL transcoded (:func:`utf8`); a binary STL's 80-byte header (which trimesh decodes as its
+    name) with its non-ASCII bytes made ``?``."""
+    data = path.read_bytes()
+    suffix = path.suffix.lower()
+    if suffix == ".stl" and len(data) >= 84 and 84 + 50 * int.from_bytes(data[80:84], "little") == len(data):
+        header = data[:80]
+        fixed = bytes(b if b < 128 else 63 for b in header)
+        if fixed == header:
+            return path
+        data = fixed + data[80:]
+    elif suffix in (".obj", ".stl"):
+        fixed = utf8(data)
+        if fixed is data:
+            return path
+        data = fixed
+    else:
+        return path
+    copy = folder / path.name
+    copy.write_bytes(data)
+    return copy
+
+
 def load_trimesh(path: Path, **kwargs):
     """The mesh file read by trimesh (``kwargs``: trimesh's, e.g. an OBJ's ``resolver``). Its header, when it has
-    one, was checked by the format's reader first."""
+    one, was checked by the format's reader first; text that is not UTF-8 is handed over as UTF-8
+    (:func:`utf8_copy`)."""
+    import tempfile
+
     import trimesh
 
-    try:
-        # process=False keeps the file's vertices (no merging); OBJ vertices are split where UVs differ
-        return trimesh.load(str(path), process=False, **kwargs)
-    except Exception as exc:  # trimesh raises many types for malformed files
-        raise BakerError(path, f"cannot read mesh: {exc}") from None
+    with tempfile.TemporaryDirectory(prefix=".baker-utf8-") as folder:
+        source = utf8_copy(path, Path(folder))
+        try:
+            # process=False keeps the file's vertices (no merging); OBJ vertices are split where UVs differ
+            return trimesh.load(str(source), process=False, **kwargs)
+        except Exception as exc:  # trimesh raises many types for malformed files
+            raise BakerError(path, f"cannot read mesh: {exc}") from None
 
 
 def doc_from_trimesh_scene(path: Path, loaded, materials: dict | None = None, locate=None) -> GltfDocument:

@@ -505,3 +505,58 @@ def read(doc: GltfDocument, mesh: int, primitive: int) -> EdgesPrimitive | None:
         wireframe_mask=accessor("wireframeMask"), wireframe_hides=ext.get("wireframeHides"),
         edges=accessor("edges"), opposite_vertices=accessor("oppositeVertices"), flags=accessor("flags"),
         dihedral_angles=accessor("dihedralAngles"))
+
+
+def summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
+    """What ``baker inspect`` shows of a ``BAKER_edges`` primitive. A triangle primitive: its edge count and the
+    number of edges of each class present (counted from the stored flags when the edge list was written, else the
+    extension's ``counts``), the crease angle in degrees, the fin primitive and what the wireframe mask hides. A fin
+    primitive: its source primitive and fin count (two triangles per edge). None when the extension cannot be read
+    (inspect shows "-"; ``baker validate`` says why)."""
+    from baker.errors import BakerError
+
+    try:
+        edges = read(doc, mesh, primitive)
+    except (BakerError, ValueError, TypeError, KeyError, IndexError, AttributeError):
+        return None
+    if edges is None:
+        return None
+    if edges.fins_of is not None:
+        return {"finsOf": edges.fins_of, "fins": len(edges.fin_indices) // 2}
+    if edges.flags is not None:
+        flags = np.asarray(edges.flags).reshape(-1).astype(np.int64)
+        counts = {"edges": int(len(flags)), **{name: int(np.count_nonzero(flags & bit))
+                                               for bit, name in edge_codes.FLAG_NAMES.items()}}
+    else:
+        counts = {k: int(v) for k, v in edges.counts.items() if isinstance(v, (int, float))}
+    out = {"edges": counts.get("edges", 0)}
+    out.update({name: n for name, n in counts.items() if name != "edges" and n})  # the classes present
+    if edges.crease_angle is not None:
+        out["creaseAngleDeg"] = round(math.degrees(edges.crease_angle), 6)
+    if edges.fins is not None:
+        out["finPrimitive"] = edges.fins
+    if edges.wireframe_hides:
+        out["wireframeHides"] = edges.wireframe_hides
+    return out
+
+
+def visibility_summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
+    """What ``baker inspect`` shows of ``EXT_mesh_primitive_edge_visibility``: the edges each code marks, counted
+    from the packed ``visibility`` (a hard edge is counted once: its second triangle's code is "repeated"), and the
+    silhouette mates. None when it cannot be read."""
+    prim = doc.json["meshes"][mesh]["primitives"][primitive]
+    ext = (prim.get("extensions") or {}).get(EXT_VISIBILITY)
+    try:
+        triangles = doc.json["accessors"][prim["indices"]]["count"] // 3 if "indices" in prim else \
+            doc.json["accessors"][prim["attributes"]["POSITION"]]["count"] // 3
+        codes = np.bincount(edge_codes.unpack_visibility(doc.accessor(ext["visibility"]), triangles).reshape(-1),
+                            minlength=4)
+        mates = doc.json["accessors"][ext["silhouetteMates"]]["count"] if "silhouetteMates" in ext else 0
+    except (ValueError, TypeError, KeyError, IndexError, AttributeError):
+        return None
+    return {"silhouette": int(codes[edge_codes.VIS_SILHOUETTE]), "hard": int(codes[edge_codes.VIS_HARD]),
+            "silhouetteMates": int(mates)}
+
+
+# inspect's summaries of the other extensions this module writes
+ALSO_SUMMARIES = {EXT_VISIBILITY: visibility_summary}

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from baker.errors import BakerError
+from baker.readers.sniff import check_input
 from baker.techniques.glyphs.shape import Shape, from_contours
 
 ASCII = tuple(range(0x20, 0x7F))
@@ -128,8 +129,7 @@ def open_font(path, font_number: int = 0, instance: str | None = None):
     from fontTools.ttLib import TTFont, TTLibError
 
     path = Path(path)
-    if not path.is_file():
-        raise BakerError(path, "font file not found")
+    check_input(path, "font")  # a directory, a named pipe, a PNG: one line saying what it is
     try:
         font = TTFont(str(path), fontNumber=font_number, lazy=True)
         font["head"]

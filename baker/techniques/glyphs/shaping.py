@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from baker.errors import BakerError
+from baker.readers.sniff import check_input
 
 DIRECTIONS = ("ltr", "rtl")
 ALIGNMENTS = ("left", "center", "right")
@@ -88,6 +89,8 @@ def face_source(spec: str, default_index: int = 0) -> FaceSource:
 
 
 def is_collection(path) -> bool:
+    if not Path(path).is_file():  # a named pipe is not opened (it would block); open_font says what it is
+        return False
     try:
         with open(path, "rb") as f:
             return f.read(4) == b"ttcf"
@@ -102,8 +105,7 @@ class ShapingFace:
         import uharfbuzz as hb
 
         path = Path(source.path)
-        if not path.is_file():
-            raise BakerError(path, "font file not found")
+        check_input(path, "font")
         try:
             blob = hb.Blob.from_file_path(str(path))
             count = _face_count(path)

@@ -17,6 +17,7 @@ from baker.techniques.glyphs.layout import layout_text, quads_of_shaped
 from baker.techniques.glyphs.outline import face_metrics, load_fonts, variation_location
 from baker.techniques.glyphs.shaping import face_source, open_faces, parse_features, shape_text
 from baker.errors import BakerError
+from baker.readers.sniff import check_input, describe, identify
 from baker.options import from_args
 from baker.techniques.glyphs import extension as ext
 from baker.gltf.atomic import write_files_atomic
@@ -159,6 +160,9 @@ def run_glyphs(args) -> int:
     fonts = ([args.font] if args.font else []) + list(args.fallback_fonts)
     glyph_ids = parse_glyph_ids(args.glyph_ids) if args.glyph_ids else []
     if args.text_file:
+        head = check_input(args.text_file, None, "a UTF-8 text file")  # a directory, a FIFO, a PNG: one line
+        if identify(head) not in ("text", "json"):
+            raise BakerError(args.text_file, f"{describe(identify(head))}, not a UTF-8 text file")
         try:
             text = Path(args.text_file).read_text("utf-8")
         except (OSError, UnicodeDecodeError) as exc:

@@ -17,6 +17,7 @@ from baker.geometry.welding import weld
 from baker.techniques.hair.kernel import Emitter, HairResult, SurfaceField, generate_hair
 from baker.techniques.hair.options import HairOptions
 from baker.errors import BakerError
+from baker.readers.sniff import check_input
 
 from baker.techniques.hair.command import OUTPUT_SUFFIXES
 
@@ -49,8 +50,8 @@ def _field(asset: Asset, spec: str | None, prims, inverse_parts) -> SurfaceField
     from baker.gltf.images import read_image
 
     path = Path(spec)
-    if not path.is_file():
-        raise BakerError(path, "map image not found (use COLOR_0 or an image file)")
+    # a directory, a named pipe, an empty file: one line saying what it is
+    check_input(path, None, "an image", missing="map image not found (use COLOR_0 or an image file)")
     image = read_image(path)
     if image.dtype.kind in "ui":
         image = image.astype(np.float64) / np.iinfo(image.dtype).max
