@@ -28,7 +28,7 @@ FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 BAKES = ("thickness", "curvature", "edges", "fur", "skin", "tam", "toon")
 # smaller than the defaults where a bake's cost is in its own resolution (the layouts written are the same)
 CHEAP = {"thickness": ("--thickness-rays", "32", "--thickness-texture-size", "128"),
-         "fur": ("--fur-shells", "4", "--fur-texture-size", "64"), "tam": ("--tam-size", "64"),
+         "fur": ("--fur-fins", "true", "--fur-shells", "4", "--fur-texture-size", "64"), "tam": ("--tam-size", "64"),
          "skin": ("--skin-width", "64", "--skin-height", "64")}
 
 

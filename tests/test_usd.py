@@ -355,7 +355,7 @@ def test_every_bake_on_spot_gives_clean_usd(tmp_path):
 
     fast = {"thickness": {"rays": 8, "texture_size": 64}, "curvature": {"per_texel": True, "texture_size": 64},
             "skin": {"width": 32, "height": 32, "penumbra_size": 16, "encoding": "srgb"}, "edges": {"fins": True},
-            "tam": {"size": 64, "levels": 2}, "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
+            "tam": {"size": 64, "levels": 2}, "fur": {"fins": True, "shells": 4, "texture_size": 32, "hairs": 100},
             "caustics": {"size": 32, "frames": 4, "waves": 16}, "normal-blur": {"texture_size": 64}}
     names = list(bakes())
     asset = baker.bake(_textured_spot(), bakes=names, options={k: v for k, v in fast.items() if k in names})
