@@ -71,7 +71,8 @@ def baked(tmp_path_factory) -> dict:
     files["edges_fins"] = out / "spot_edges_fins.glb"
     bake("bake", SPOT, "--bakes", "edges", "--edges-fins", "true", "-o", files["edges_fins"])
     files["all"] = out / "spot_all.glb"
-    bake("bake", SPOT, "--bakes", ",".join(BAKES), "--edges-fins", "true", *sum(CHEAP.values(), ()), "-o", files["all"])
+    bake("bake", SPOT, "--bakes", ",".join(BAKES), "--edges-fins", "true", "--edges-opposite-vertices", "true",
+         *sum(CHEAP.values(), ()), "-o", files["all"])
     files["fandisk"] = out / "fandisk_edges.glb"
     bake("bake", FANDISK, "--bakes", "edges", "-o", files["fandisk"])
     files["hair"] = out / "spot_hair.glb"

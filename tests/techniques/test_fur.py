@@ -107,8 +107,9 @@ def test_fur_unwraps_a_mesh_without_uvs(tmp_path):
     out = tmp_path / "out.glb"
     cli = [sys.executable, "-m", "baker.cli"]
     result = subprocess.run(cli + ["bake", str(bare), "-o", str(out), "--bakes", "thickness,fur,edges", "-q",
-                                   "--thickness-rays", "4", "--thickness-texture-size", "32", "--fur-fins", "true", "--fur-shells", "2",
-                                   "--fur-texture-size", "16", "--fur-hairs", "50"], capture_output=True, text=True)
+                                   "--thickness-rays", "4", "--thickness-texture-size", "32", "--fur-fins", "true",
+                                   "--fur-shells", "2", "--fur-texture-size", "16", "--fur-hairs", "50"],
+                            capture_output=True, text=True)
     assert result.returncode == 0 and result.stderr == "", result.stderr
     checked = subprocess.run(cli + ["validate", "--no-khronos", str(out)], capture_output=True, text=True)
     assert checked.returncode == 0, checked.stdout + checked.stderr
