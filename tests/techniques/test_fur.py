@@ -89,6 +89,12 @@ def test_fur_without_fins(tmp_path):
     assert len(doc.json["meshes"][0]["primitives"]) == 1
     ext = doc.json["materials"][0]["extensions"]["BAKER_fur"]
     assert ext["fins"] == []
+    # no fins, no fin texture: only the shells and their coverage-preserving chains
+    assert "finTexture" not in ext and len(doc.json["textures"]) == 2
+    assert sorted(chain["texture"] for chain in ext["coverageMips"]) == [t["index"] for t in ext["shellTextures"]]
+    out = tmp_path / "no_fins.glb"
+    save(asset, out)
+    assert validate_file(out, khronos=False)["issues"]["numErrors"] == 0
 
 
 def test_fur_unwraps_a_mesh_without_uvs(tmp_path):
