@@ -56,11 +56,11 @@ def test_thickness_round_trip(baked_sphere, tmp_path, suffix):
 
     primvar = UsdGeom.PrimvarsAPI(mesh.GetPrim()).GetPrimvar("baker:thickness")
     assert primvar and primvar.GetInterpolation() == UsdGeom.Tokens.vertex
-    # the data's own width, not the glTF's blender-layout padding (FLOAT VEC3, thickness in x, y = z = 0)
-    assert doc.json["accessors"][prim["attributes"]["_THICKNESS"]]["type"] == "VEC3"
+    # the data's own width (a thickness-only bake's blender layout is SCALAR too; beside vectors it pads to VEC3)
+    assert doc.json["accessors"][prim["attributes"]["_THICKNESS"]]["type"] == "SCALAR"
     assert primvar.GetTypeName() == Sdf.ValueTypeNames.FloatArray
     values = np.asarray(primvar.Get())
-    np.testing.assert_array_equal(values, thickness[:, 0])
+    np.testing.assert_array_equal(values, thickness)
     # mean chord of a ball of radius r, cosine-weighted rays from the surface: 4r/3
     assert abs(values.mean() - 4 * RADIUS / 3) < 0.05 * 4 * RADIUS / 3
 
