@@ -46,6 +46,7 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
     options = options or {}
     resolved = {name: resolve_options(name, options.get(name)) for name in order}
     memory.check_bake(asset, order, resolved, max_memory)
+    layout.width = registry.vertex_attribute_width(order)
     asset.doc.attribute_layout = layout
     asset.doc.vertex_index_members = registry.vertex_index_members()
     from baker.validate import referenced_accessors

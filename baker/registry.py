@@ -104,6 +104,15 @@ def vertex_attribute_widths() -> dict:
     return widths
 
 
+def vertex_attribute_width(names) -> int:
+    """The widest custom attribute data the bakes ``names`` can write (each extension's ``VERTEX_ATTRIBUTES``,
+    whatever the options): the width the ``blender`` layout gives every custom attribute of a mesh
+    (:mod:`baker.gltf.vertex_attributes`); 1 when they write only scalars or no attributes at all."""
+    known = techniques()
+    return max([1] + [width for name in names for ext in known[name].extension_objects()
+                      for width in getattr(ext, "VERTEX_ATTRIBUTES", {}).values()])
+
+
 def usd_texture_color_spaces() -> dict:
     """Extension name -> its ``usd_color_space(params, json_path)`` ("sRGB" or "raw") for the extensions whose
     textures are not all data (the USD writer reads every other extension's textures as ``raw``)."""

@@ -29,7 +29,7 @@ def workload(work: Path) -> list[list[str]]:
     baked = work / "spot_all.glb"
     hair = work / "hair.glb"
     commands = [
-        ["bake", SPOT, "-o", baked, "--bakes", ALL_BAKES, "-q"],
+        ["bake", SPOT, "-o", baked, "--bakes", ALL_BAKES, "--fur-fins", "true", "-q"],  # fins: their kernels too
         ["bake", SPOT, "-o", work / "spot_thickness.glb", "--bakes", "thickness", "-q"],
         ["bake", SPOT, "-o", work / "spot_blur.glb", "--bakes", "normal-blur", "-q"],
         ["text", "Hello", "--font", FONT, "-o", work / "label.glb", "-q"],

@@ -36,7 +36,7 @@ SPOT_PAGE_OPTIONS = {
     "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
     "edges": {"fins": True},
     "tam": {"size": 64, "levels": 3},
-    "fur": {"shells": 4, "texture_size": 64},
+    "fur": {"fins": True, "shells": 4, "texture_size": 64},
     # the spot (y -0.74 to 0.95) under 2.5 m of water, within the fade: the caustics show on all of it
     "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
                  "fade_distance": 2.0},

@@ -18,7 +18,7 @@ FAST = {
     "skin": {"width": 32, "height": 32, "penumbra_size": 16},
     "edges": {"fins": True},
     "tam": {"size": 64, "levels": 2},
-    "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
+    "fur": {"fins": True, "shells": 4, "texture_size": 32, "hairs": 100},
     "caustics": {"size": 32, "frames": 4, "waves": 16},
 }
 

@@ -209,11 +209,11 @@ console.log(JSON.stringify({{vkFormat: c.vkFormat, width: c.pixelWidth, height: 
 @pytest.fixture(scope="module")
 def fur_files(tmp_path_factory):
     folder = tmp_path_factory.mktemp("fur_mips")
-    asset = baker.bake(SPOT, bakes=["fur"], options={"fur": {"shells": 4, "texture_size": 64, "hairs": 400}}, seed=2)
+    asset = baker.bake(SPOT, bakes=["fur"], options={"fur": {"fins": True, "shells": 4, "texture_size": 64, "hairs": 400}}, seed=2)
     paths = [folder / "fur.glb", folder / "fur.gltf"]
     for p in paths:
         save(asset, p)
-    plain = baker.bake(SPOT, bakes=["fur"], options={"fur": {"shells": 4, "texture_size": 64, "hairs": 400,
+    plain = baker.bake(SPOT, bakes=["fur"], options={"fur": {"fins": True, "shells": 4, "texture_size": 64, "hairs": 400,
                                                               "coverage_mips": False}}, seed=2)
     save(plain, folder / "plain.glb")
     return paths + [folder / "plain.glb"]

@@ -67,6 +67,22 @@ def test_native_layout_writes_each_attribute_at_its_width(baked):
     assert baked["native"].stat().st_size < baked["blender"].stat().st_size
 
 
+def test_blender_layout_is_as_wide_as_the_widest_baked_data(sphere, baked, tmp_path):
+    """One width per mesh, no wider than the run needs: scalar bakes alone stay SCALAR (a third of the bytes), and a
+    bake that writes a vector widens every attribute of the mesh (the fixture's curvature + edges: all VEC3)."""
+    out = tmp_path / "thickness.glb"
+    save(baker.bake(sphere, bakes=["thickness", "toon"], options=OPTIONS), out)
+    gltf = glb_json(out)
+    assert attribute_types(gltf) == {"_THICKNESS": "SCALAR"}
+    assert_khronos_clean(out)
+    assert validate_file(out, khronos=False)["issues"]["numErrors"] == 0
+    wide = GltfDocument.load(baked["blender"])
+    narrow = GltfDocument.load(out)
+    np.testing.assert_array_equal(
+        narrow.accessor(gltf["meshes"][0]["primitives"][0]["attributes"]["_THICKNESS"]),
+        wide.accessor(wide.json["meshes"][0]["primitives"][0]["attributes"]["_THICKNESS"])[:, 0])
+
+
 @pytest.mark.parametrize("layout", ["blender", "native"])
 def test_both_validators_accept_both_layouts(baked, layout):
     assert_khronos_clean(baked[layout])

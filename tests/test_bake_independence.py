@@ -22,7 +22,7 @@ FAST = {
     "skin": {"width": 32, "height": 32, "penumbra_size": 16},
     "edges": {"fins": True},
     "tam": {"size": 32, "levels": 1},
-    "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
+    "fur": {"fins": True, "shells": 4, "texture_size": 32, "hairs": 100},
     "caustics": {"size": 32, "frames": 2, "waves": 8},
 }
 # primitive extension members that are not accessors (the fins primitive's index and its mesh's)

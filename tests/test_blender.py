@@ -28,7 +28,7 @@ FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 BAKES = ("thickness", "curvature", "edges", "fur", "skin", "tam", "toon")
 # smaller than the defaults where a bake's cost is in its own resolution (the layouts written are the same)
 CHEAP = {"thickness": ("--thickness-rays", "32", "--thickness-texture-size", "128"),
-         "fur": ("--fur-shells", "4", "--fur-texture-size", "64"), "tam": ("--tam-size", "64"),
+         "fur": ("--fur-fins", "true", "--fur-shells", "4", "--fur-texture-size", "64"), "tam": ("--tam-size", "64"),
          "skin": ("--skin-width", "64", "--skin-height", "64")}
 
 
@@ -71,7 +71,8 @@ def baked(tmp_path_factory) -> dict:
     files["edges_fins"] = out / "spot_edges_fins.glb"
     bake("bake", SPOT, "--bakes", "edges", "--edges-fins", "true", "-o", files["edges_fins"])
     files["all"] = out / "spot_all.glb"
-    bake("bake", SPOT, "--bakes", ",".join(BAKES), "--edges-fins", "true", *sum(CHEAP.values(), ()), "-o", files["all"])
+    bake("bake", SPOT, "--bakes", ",".join(BAKES), "--edges-fins", "true", "--edges-opposite-vertices", "true",
+         *sum(CHEAP.values(), ()), "-o", files["all"])
     files["fandisk"] = out / "fandisk_edges.glb"
     bake("bake", FANDISK, "--bakes", "edges", "-o", files["fandisk"])
     files["hair"] = out / "spot_hair.glb"
@@ -135,7 +136,9 @@ def test_stock_blender_imports_every_bake(label, baked, stock_report):
         for name, parts in attrs.items():
             assert name in obj["attributes"], f"{label}: {obj['name']} lacks {name} in Blender"
             got = obj["attributes"][name]
-            assert got["domain"] == "POINT" and got["data_type"] == "FLOAT_VECTOR", (name, got["data_type"])
+            # one width per mesh: VEC3 once a bake writes a vector, SCALAR when only scalars are baked (thickness)
+            data_type = {1: "FLOAT", 2: "FLOAT2", 3: "FLOAT_VECTOR"}[parts[0][1].shape[1]]
+            assert got["domain"] == "POINT" and got["data_type"] == data_type, (name, got["data_type"])
             assert_values_follow_positions(f"{label}/{name}", obj["positions"], got["values"], parts)
     baked_names = {n for attrs in expected.values() for n in attrs}
     imported = {n for o in meshes for n in o["attributes"] if n.startswith("_")}

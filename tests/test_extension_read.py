@@ -22,7 +22,7 @@ OPTIONS = {"thickness": {"rays": 8, "per_texel": True, "texture_size": 32},
            "edges": {"fins": True, "edge_list": True},
            "tam": {"size": 32, "levels": 2, "candidates": 2},
            "toon": {"bands": 3, "xtoon": "depth", "depth_range": (2.0, 20.0)},
-           "fur": {"shells": 4, "texture_size": 32, "hairs": 50},
+           "fur": {"fins": True, "shells": 4, "texture_size": 32, "hairs": 50},
            "caustics": {"size": 16, "frames": 3, "waves": 8, "tile_size": 3.0, "water_level": 2.0}}
 
 

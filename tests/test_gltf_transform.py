@@ -127,9 +127,9 @@ def assets(tmp_path_factory):
     }), spot)
     fins = folder / "spot_fins.glb"
     save(baker.bake(SPOT, bakes=["edges", "fur", "caustics"], options={
-        "edges": {"fins": True},
+        "edges": {"fins": True, "opposite_vertices": True},
         "caustics": {"size": 16, "frames": 2, "waves": 8},
-        "fur": {"shells": 3, "texture_size": 16, "hairs": 50},
+        "fur": {"fins": True, "shells": 3, "texture_size": 16, "hairs": 50},
     }), fins)
     from tests.techniques.test_normal_blur import bump_sphere
 

@@ -99,7 +99,8 @@ def test_validate_and_inspect_import_no_kernel(tmp_path):
     subprocess.run([sys.executable, "-m", "baker.cli", "bake", str(spot), "-o", str(baked), "-q", "--bakes",
                     "thickness,curvature,skin,edges,tam,toon,fur", "--thickness-rays", "4", "--thickness-per-texel",
                     "false", "--curvature-per-texel", "false", "--tam-size", "32", "--tam-levels", "1",
-                    "--fur-texture-size", "32", "--fur-shells", "2", "--edges-fins", "true"], check=True)
+                    "--fur-texture-size", "32", "--fur-fins", "true", "--fur-shells", "2", "--edges-fins", "true"],
+                   check=True)
     probe = ("import sys, io, contextlib\nfrom baker.validate import validate_file\nfrom baker.commands.inspect import "
              f"main\nassert validate_file({str(baked)!r}, khronos=False)['issues']['numErrors'] == 0\n"
              f"with contextlib.redirect_stdout(io.StringIO()):\n    main({str(baked)!r})\n"

@@ -27,7 +27,8 @@ from conftest import assert_khronos_clean
 BAKES = "thickness,curvature,skin,edges,tam,toon,fur"
 SMALL = ["--thickness-rays", "4", "--thickness-texture-size", "32", "--skin-width", "16", "--skin-height", "16",
          "--skin-penumbra", "false", "--tam-size", "32", "--tam-levels", "1", "--toon-width", "16",
-         "--fur-shells", "2", "--fur-texture-size", "16", "--fur-hairs", "20", "--edges-fins", "true"]
+         "--fur-fins", "true", "--fur-shells", "2", "--fur-texture-size", "16", "--fur-hairs", "20",
+         "--edges-fins", "true"]
 
 DTYPES = {5120: "<i1", 5121: "<u1", 5122: "<i2", 5123: "<u2", 5125: "<u4", 5126: "<f4"}
 COMPONENTS = {np.dtype(v): k for k, v in DTYPES.items()}
@@ -484,7 +485,8 @@ def test_fins_of_a_skinned_mesh_carry_its_joints_and_weights(rich, tmp_path):
 
     out = tmp_path / "fins.glb"
     result = subprocess.run([sys.executable, "-m", "baker.cli", "bake", str(rich), "-o", str(out), "--bakes",
-                             "edges,fur", "--edges-fins", "true", "-q"], capture_output=True, text=True)
+                             "edges,fur", "--edges-fins", "true", "--fur-fins", "true", "-q"],
+                            capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
     assert_khronos_clean(out)
     codes = {m["code"] for m in khronos_validate(out)["issues"]["messages"]}

@@ -78,7 +78,7 @@ OPTIONS = {"thickness": {"rays": 16, "per_texel": False},
            "skin": {"width": 64, "height": 64, "samples": 32, "unit_scale": 2.0},  # spot as a 2 mm miniature: wide scattering
            "tam": {"size": 64, "levels": 3, "candidates": 4, "scale": 256.0},
            "toon": {"bands": 3},
-           "fur": {"shells": 6, "texture_size": 64, "hairs": 200},
+           "fur": {"fins": True, "shells": 6, "texture_size": 64, "hairs": 200},
            "caustics": {"size": 64, "frames": 2, "waves": 16, "tile_size": 0.5}}
 SIZE = 192
 

@@ -58,11 +58,11 @@ def test_thickness_round_trip(baked_sphere, tmp_path, suffix):
 
     primvar = UsdGeom.PrimvarsAPI(mesh.GetPrim()).GetPrimvar("baker:thickness")
     assert primvar and primvar.GetInterpolation() == UsdGeom.Tokens.vertex
-    # the data's own width, not the glTF's blender-layout padding (FLOAT VEC3, thickness in x, y = z = 0)
-    assert doc.json["accessors"][prim["attributes"]["_THICKNESS"]]["type"] == "VEC3"
+    # the data's own width (a thickness-only bake's blender layout is SCALAR too; beside vectors it pads to VEC3)
+    assert doc.json["accessors"][prim["attributes"]["_THICKNESS"]]["type"] == "SCALAR"
     assert primvar.GetTypeName() == Sdf.ValueTypeNames.FloatArray
     values = np.asarray(primvar.Get())
-    np.testing.assert_array_equal(values, thickness[:, 0])
+    np.testing.assert_array_equal(values, thickness)
     # mean chord of a ball of radius r, cosine-weighted rays from the surface: 4r/3
     assert abs(values.mean() - 4 * RADIUS / 3) < 0.05 * 4 * RADIUS / 3
 
@@ -358,7 +358,7 @@ def test_every_bake_on_spot_gives_clean_usd(tmp_path):
 
     fast = {"thickness": {"rays": 8, "texture_size": 64}, "curvature": {"per_texel": True, "texture_size": 64},
             "skin": {"width": 32, "height": 32, "penumbra_size": 16, "encoding": "srgb"}, "edges": {"fins": True},
-            "tam": {"size": 64, "levels": 2}, "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
+            "tam": {"size": 64, "levels": 2}, "fur": {"fins": True, "shells": 4, "texture_size": 32, "hairs": 100},
             "caustics": {"size": 32, "frames": 4, "waves": 16}, "normal-blur": {"texture_size": 64}}
     names = list(bakes())
     asset = baker.bake(_textured_spot(), bakes=names, options={k: v for k, v in fast.items() if k in names})

@@ -169,8 +169,9 @@ def test_negative_thickness(copy):
 
 def test_non_finite_and_too_large_thickness(copy):
     a = copy.primitive["attributes"]["_THICKNESS"]
-    # _THICKNESS is FLOAT VEC3 (blender attribute layout) with the value in x: vertex 0 gets NaN, vertex 1 a value far above maxDistance
-    struct.pack_into("<f8xf", copy.bin, copy.accessor_offset(a), float("nan"), 1e6)
+    # _THICKNESS is FLOAT SCALAR (a thickness-only bake): vertex 0 gets NaN, vertex 1 a value far above maxDistance
+    assert copy.json["accessors"][a]["type"] == "SCALAR"
+    struct.pack_into("<ff", copy.bin, copy.accessor_offset(a), float("nan"), 1e6)
     report = validate.validate_file(copy.save(), khronos=False)
     assert "BAKER_THICKNESS_VALUE_NOT_FINITE" in codes(report, 0)
     assert "BAKER_THICKNESS_VALUE_ABOVE_MAX" in codes(report, 1)

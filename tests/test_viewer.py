@@ -107,7 +107,7 @@ def assets(site):
         "skin": {"width": 64, "height": 64, "penumbra_size": 32},
         "edges": {"fins": True},
         "tam": {"size": 64, "levels": 3},
-        "fur": {"shells": 4, "texture_size": 64},
+        "fur": {"fins": True, "shells": 4, "texture_size": 64},
     })
     save(asset, root / "spot_all.glb")
     write_label_and_groom(root)

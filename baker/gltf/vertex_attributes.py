@@ -2,9 +2,11 @@
 
 Two layouts (``--attribute-layout``, recipe key ``attribute-layout``, ``baker.bake(attribute_layout=...)``):
 
-- ``blender`` (the default while Blender 4.5 LTS is supported): every custom attribute of a mesh gets one width, FLOAT
-  VEC3 unless the mesh already carries custom attributes of its own that all share another width W that the data
-  fits in (then W). Scalar data sits in x and pairs in x, y; the other components are zero.
+- ``blender`` (the default while Blender 4.5 LTS is supported): every custom attribute of a mesh gets one width: the
+  widest data the run's bakes write (:attr:`AttributeLayout.width`: SCALAR when only scalars are baked, e.g.
+  ``--bakes thickness``; VEC3 as soon as one bake writes a vector), unless the mesh already carries custom attributes
+  of its own that all share another width W that the data fits in (then W). Scalar data sits in x and pairs in x, y;
+  the other components are zero.
 - ``native``: each attribute at its data's width (SCALAR, VEC2, VEC3): a third of the bytes for a scalar.
 
 Why ``blender``: Blender's glTF importer (io_scene_gltf2 4.5, ``blender/imp/mesh.py`` ``do_primitives``) keeps a
@@ -61,6 +63,9 @@ class AttributeLayout:
     conflicts met on the way (reported once by :meth:`warn`)."""
 
     layout: Layout = DEFAULT
+    # blender layout: the width of baker's attributes on a mesh without custom attributes of its own, the widest data
+    # of the bakes in the run (pipeline.bake sets it from each extension's VERTEX_ATTRIBUTES; compact when narrow)
+    width: int = BLENDER_WIDTH
     # (mesh index, mesh name, attribute written, its data width, {other attribute: width}, option that leaves it out)
     conflicts: list = field(default_factory=list)
     written: set = field(default_factory=set)  # names this bake wrote (not the mesh's own)
@@ -167,7 +172,7 @@ def add_vertex_attribute(doc, mesh: int | None, attributes: dict, name: str, val
     if layout.layout is Layout.BLENDER:
         others = _widths_beside(doc, mesh, attributes, name)
         shared = set(others.values())
-        target = shared.pop() if len(shared) == 1 and max(others.values()) >= width else BLENDER_WIDTH
+        target = shared.pop() if len(shared) == 1 and max(others.values()) >= width else max(layout.width, width)
         if any(w != target for w in others.values()):
             mesh_name = doc.json["meshes"][mesh].get("name") if mesh is not None else None
             layout.conflicts.append((mesh, mesh_name, name, width, others, leave_out))

@@ -18,6 +18,7 @@ import trimesh
 import baker
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import decode_image
+from baker.gltf.vertex_attributes import unpadded
 from baker.pipeline import save
 
 from . import twins_translucency as twins
@@ -199,9 +200,10 @@ def baked_sphere(tmp_path_factory):
     return {
         "positions": doc.accessor(attributes["POSITION"]).astype(np.float32),
         "normals": doc.accessor(attributes["NORMAL"]).astype(np.float32),
-        "thickness": doc.accessor(attributes[params["attribute"]]).astype(np.float32)[:, 0],
-        # as written: FLOAT VEC3 with the thickness in x, bound as "3f" to `in float _THICKNESS` (GL reads x)
-        "thickness_vec3": doc.accessor(attributes[params["attribute"]]).astype(np.float32),
+        "thickness": unpadded(doc.accessor(attributes[params["attribute"]]), 1).astype(np.float32),
+        # as written (a thickness-only bake: SCALAR, the widest data of the run; VEC3 beside vectors, the value in
+        # x), bound at its width to `in float _THICKNESS` (GL reads x of a wider buffer)
+        "thickness_written": doc.accessor(attributes[params["attribute"]]).astype(np.float32),
         "thickness_range": (thickness_accessor["min"][0], thickness_accessor["max"][0]),
         "indices": doc.accessor(primitive["indices"]).astype(np.uint32),
         "params": params,
@@ -263,9 +265,11 @@ def renders(gl_context, baked_sphere):
     view_projection = perspective(35.0, 1.0, 0.5, 10.0) @ look_at(EYE, np.zeros(3), np.array([0.0, 1.0, 0.0]))
     matrix = view_projection.T.astype(np.float32).tobytes()  # GLSL matrices are column-major
 
-    buffers = [ctx.buffer(b[k].tobytes()) for k in ("positions", "normals", "thickness_vec3")]
+    buffers = [ctx.buffer(b[k].tobytes()) for k in ("positions", "normals", "thickness_written")]
     index_buffer = ctx.buffer(b["indices"].tobytes())
-    layout = list(zip(buffers, ("3f", "3f", "3f"), ("POSITION", "NORMAL", "_THICKNESS")))
+    written = b["thickness_written"]
+    formats = ("3f", "3f", f"{1 if written.ndim == 1 else written.shape[1]}f")
+    layout = list(zip(buffers, formats, ("POSITION", "NORMAL", "_THICKNESS")))
     size = (SIZE, SIZE)
     depth = ctx.depth_renderbuffer(size)
     ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)

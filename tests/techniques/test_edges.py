@@ -76,7 +76,7 @@ def primitive_data(doc: GltfDocument, p: int = 0) -> dict:
 def cube(tmp_path_factory):
     mesh = split_cube()
     assert len(mesh.vertices) == 24
-    _, doc = bake_file(mesh, tmp_path_factory.mktemp("cube"), "cube", {"fins": True})
+    _, doc = bake_file(mesh, tmp_path_factory.mktemp("cube"), "cube", {"fins": True, "opposite_vertices": True})
     return primitive_data(doc)
 
 
@@ -136,8 +136,40 @@ def test_cube_fins_carry_the_edge_and_its_faces(cube, tmp_path):
         assert tuple(np.roll(tri, -int(np.argmin(tri)))) in face_set
 
 
+def opposite_from_triangles(faces: np.ndarray, positions: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """v2, v3 of each edge rebuilt as a reader does without oppositeVertices: v2 the third vertex of the face holding
+    (v0, v1) in its winding, v3 that of the face holding (v1, v0) by position (this cube's copies are exact); 65535
+    where no face has it."""
+    _, weld = np.unique(positions, axis=0, return_inverse=True)
+    weld = weld.reshape(-1)
+    by_index, by_position = {}, {}
+    for f in faces.tolist():
+        for k in range(3):
+            a, b, c = f[k], f[(k + 1) % 3], f[(k + 2) % 3]
+            by_index[(a, b)] = c
+            by_position.setdefault((weld[a], weld[b]), c)
+    return np.array([[by_index[(v0, v1)], by_position.get((weld[v1], weld[v0]), 0xFFFF)]
+                     for v0, v1 in edges.tolist()], np.int64)
+
+
+def test_opposite_vertices_are_left_out_by_default_and_rebuilt_from_the_triangles(cube, tmp_path):
+    """Compact by default: oppositeVertices (as large as the edge list) only on request; what it holds is what the
+    triangles and the edge list give, on the closed cube and on the open one (65535 beyond its rim)."""
+    _, doc = bake_file(split_cube(), tmp_path, "plain")
+    plain = primitive_data(doc)
+    assert "oppositeVertices" not in plain["ext"] and "edges" in plain["ext"]
+    np.testing.assert_array_equal(plain["edges"], cube["edges"])
+    rebuilt = opposite_from_triangles(plain["faces"], plain["positions"], plain["edges"].astype(np.int64))
+    np.testing.assert_array_equal(rebuilt, cube["oppositeVertices"].astype(np.int64))
+    _, doc = bake_file(split_cube(open_top=True), tmp_path, "open", {"opposite_vertices": True})
+    open_cube = primitive_data(doc)
+    rebuilt = opposite_from_triangles(open_cube["faces"], open_cube["positions"], open_cube["edges"].astype(np.int64))
+    np.testing.assert_array_equal(rebuilt, open_cube["oppositeVertices"].astype(np.int64))
+    assert np.count_nonzero(rebuilt[:, 1] == 0xFFFF) == 4
+
+
 def test_open_cube_has_4_boundary_edges(tmp_path):
-    out, doc = bake_file(split_cube(open_top=True), tmp_path, "open")
+    out, doc = bake_file(split_cube(open_top=True), tmp_path, "open", {"opposite_vertices": True})
     data = primitive_data(doc)
     flags = data["flags"].astype(np.int64)
     assert np.count_nonzero(flags & E.BOUNDARY) == 4 and data["ext"]["counts"]["boundary"] == 4

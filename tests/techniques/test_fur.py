@@ -44,7 +44,7 @@ def test_tileable():
 
 
 def test_fur_bake_writes_valid_gltf(tmp_path):
-    opts = {"shells": 4, "texture_size": 32, "hairs": 200}
+    opts = {"fins": True, "shells": 4, "texture_size": 32, "hairs": 200}
     asset = baker.bake(SPOT, bakes=["fur"], options={"fur": opts}, seed=2)
     out = tmp_path / "fur.glb"
     save(asset, out)
@@ -83,12 +83,18 @@ def test_fur_bake_writes_valid_gltf(tmp_path):
 
 
 def test_fur_without_fins(tmp_path):
-    asset = baker.bake(SPOT, bakes=["fur"], options={"fur": {"shells": 2, "texture_size": 16, "hairs": 50,
-                                                             "fins": False}})
+    """Fins are opt-in (compact by default: on the bunny they are 40 of the 54 MB of all bakes)."""
+    asset = baker.bake(SPOT, bakes=["fur"], options={"fur": {"shells": 2, "texture_size": 16, "hairs": 50}})
     doc = asset.doc
     assert len(doc.json["meshes"][0]["primitives"]) == 1
     ext = doc.json["materials"][0]["extensions"]["BAKER_fur"]
     assert ext["fins"] == []
+    # no fins, no fin texture: only the shells and their coverage-preserving chains
+    assert "finTexture" not in ext and len(doc.json["textures"]) == 2
+    assert sorted(chain["texture"] for chain in ext["coverageMips"]) == [t["index"] for t in ext["shellTextures"]]
+    out = tmp_path / "no_fins.glb"
+    save(asset, out)
+    assert validate_file(out, khronos=False)["issues"]["numErrors"] == 0
 
 
 def test_fur_unwraps_a_mesh_without_uvs(tmp_path):
@@ -107,8 +113,9 @@ def test_fur_unwraps_a_mesh_without_uvs(tmp_path):
     out = tmp_path / "out.glb"
     cli = [sys.executable, "-m", "baker.cli"]
     result = subprocess.run(cli + ["bake", str(bare), "-o", str(out), "--bakes", "thickness,fur,edges", "-q",
-                                   "--thickness-rays", "4", "--thickness-texture-size", "32", "--fur-shells", "2",
-                                   "--fur-texture-size", "16", "--fur-hairs", "50"], capture_output=True, text=True)
+                                   "--thickness-rays", "4", "--thickness-texture-size", "32", "--fur-fins", "true",
+                                   "--fur-shells", "2", "--fur-texture-size", "16", "--fur-hairs", "50"],
+                            capture_output=True, text=True)
     assert result.returncode == 0 and result.stderr == "", result.stderr
     checked = subprocess.run(cli + ["validate", "--no-khronos", str(out)], capture_output=True, text=True)
     assert checked.returncode == 0, checked.stdout + checked.stderr

@@ -3,8 +3,9 @@
 Where the data goes (see ``schemas/BAKER_edges/README.md``):
 - ``EXT_mesh_primitive_edge_visibility`` on the triangle primitive (Bentley's vendor extension, Khronos registry):
   ``visibility`` (2 bits per triangle edge, LSB first, ceil(6N/8) bytes) and ``silhouetteMates``;
-- ``BAKER_edges`` on the primitive: accessors for the edge list, opposite vertices, flags, dihedral angles and the
-  wireframe mask, the settings, per-class counts, and the index of the optional fin primitive;
+- ``BAKER_edges`` on the primitive: accessors for the edge list, flags, dihedral angles and the wireframe mask
+  (opposite vertices only with the ``opposite_vertices`` option: the triangles and the edge list give them), the
+  settings, per-class counts, and the index of the optional fin primitive;
 - the vertex attribute ``_OUTLINE_NORMAL`` (FLOAT VEC3): one averaged unit normal per welded position, zero at
   positions on a boundary or non-manifold edge (the shell outline is pinned to open boundaries);
 - optionally a fin primitive in the same mesh (4 vertices, 2 degenerate triangles per edge) whose ``BAKER_edges``
@@ -118,10 +119,10 @@ def write_primitive_edges(doc: GltfDocument, mesh: int, primitive: int, pe: Prim
     }
     if options.edge_list:
         dtype = index_dtype(vertex_count)
-        sentinel = np.iinfo(dtype).max
-        opposite = np.where(pe.opposite < 0, sentinel, pe.opposite)
         ext["edges"] = doc.add_accessor(pe.edges.astype(dtype), target=None, name="edges v0 v1")
-        ext["oppositeVertices"] = doc.add_accessor(opposite.astype(dtype), target=None, name="edges v2 v3")
+        if options.opposite_vertices:  # derivable from the triangles and the edge list: only on request
+            opposite = np.where(pe.opposite < 0, np.iinfo(dtype).max, pe.opposite)
+            ext["oppositeVertices"] = doc.add_accessor(opposite.astype(dtype), target=None, name="edges v2 v3")
         ext["flags"] = doc.add_accessor(pe.flags.astype(np.uint16), target=None, name="edge flags")
         ext["dihedralAngles"] = doc.add_accessor(pe.angle.astype(np.float32), target=None, min_max=True,
                                                  name="edge dihedral angles")

@@ -20,7 +20,11 @@ class EdgesOptions:
                                   "mask, in degrees", min=0.0, max=180.0)
     hard_uv_seams: bool = opt(False, "draw UV seams as hard edges in EXT_mesh_primitive_edge_visibility")
     visibility: bool = opt(True, "write EXT_mesh_primitive_edge_visibility (2 bits per triangle edge)")
-    edge_list: bool = opt(True, "write the BAKER_edges edge list: vertex pairs, opposite vertices, flags, angles")
+    edge_list: bool = opt(True, "write the BAKER_edges edge list: vertex pairs, flags, angles")
+    # off by default (compact files): v2, v3 are the third vertices of the faces holding (v0, v1) and (v1, v0), so a
+    # reader rebuilds them from the triangles and the edge list; stored they are as large as the edge list itself
+    opposite_vertices: bool = opt(False, "also write BAKER_edges oppositeVertices (each edge's two opposite vertices, "
+                                         "derivable from the triangles and the edge list)")
     outline_normals: bool = opt(True, "write _OUTLINE_NORMAL: one averaged normal per welded position")
     wireframe: str = opt("quad-diagonals", "edges the wireframe mask hides", choices=("quad-diagonals", "planar",
                                                                                       "none", "off"))

@@ -42,20 +42,24 @@ def encode_rgba_png(pixels: np.ndarray) -> bytes:
     return encode_image(np.ascontiguousarray(pixels, np.uint8), ".png")
 
 
-def write_fur_textures(doc: GltfDocument, shells: np.ndarray, fin: np.ndarray, alpha_cutoff: float | None = None
-                       ) -> tuple[list, int, list]:
-    """Add the shell textures and the fin texture, and with ``alpha_cutoff`` each one's coverage-preserving mip
-    chain (:mod:`baker.texels.alpha_mips`); returns ([shell texture indices], fin texture index, coverageMips)."""
+def write_fur_textures(doc: GltfDocument, shells: np.ndarray, fin: np.ndarray | None,
+                       alpha_cutoff: float | None = None) -> tuple[list, int | None, list]:
+    """Add the shell textures and the fin texture (None: no fins, so no fin texture), and with ``alpha_cutoff`` each
+    one's coverage-preserving mip chain (:mod:`baker.texels.alpha_mips`); returns ([shell texture indices], fin
+    texture index or None, coverageMips)."""
     out, mips = [], []
     for i, shell in enumerate(shells):
         image = doc.add_image(encode_rgba_png(shell), "image/png", f"fur_shell{i:02d}")
         out.append(doc.add_texture(image, sampler=SAMPLER_REPEAT, name=f"baker fur shell {i}"))
-    image = doc.add_image(encode_rgba_png(fin), "image/png", "fur_fin")
-    fin_texture = doc.add_texture(image, sampler=SAMPLER_FIN, name="baker fur fin")
+    fin_texture = None
+    if fin is not None:
+        image = doc.add_image(encode_rgba_png(fin), "image/png", "fur_fin")
+        fin_texture = doc.add_texture(image, sampler=SAMPLER_FIN, name="baker fur fin")
     if alpha_cutoff is not None:
         # the kernel encodes colour with the power 1 / 2.2: the chain filters it in linear light the same way
+        textures = out + ([fin_texture] if fin is not None else [])
         mips = [write_coverage_mips(doc, t, pixels, alpha_cutoff, transfer="gamma2.2")
-                for t, pixels in zip(out + [fin_texture], [*shells, fin])]
+                for t, pixels in zip(textures, [*shells, fin])]
     return out, fin_texture, mips
 
 
@@ -99,7 +103,7 @@ def write_fin_primitive(doc: GltfDocument, mesh: int, primitive: int, corners: n
 
 
 def write_material(doc: GltfDocument, material: int, *, options, length: float, shell_textures: list,
-                   fin_texture: int, fins: list, coverage: np.ndarray, tile_size: float,
+                   fin_texture: int | None, fins: list, coverage: np.ndarray, tile_size: float,
                    coverage_mips: list = ()) -> dict:
     ext = {
         "shellCount": int(options.shells),
@@ -109,10 +113,11 @@ def write_material(doc: GltfDocument, material: int, *, options, length: float, 
         "tileSize": float(tile_size),
         "shellTextures": [{"index": int(t)} for t in shell_textures],
         "shellCoverage": [float(c) for c in coverage],
-        "finTexture": {"index": int(fin_texture)},
         "fins": [{"mesh": int(m), "primitive": int(p)} for m, p in fins],
         "alphaCutoff": float(options.alpha_cutoff),
     }
+    if fin_texture is not None:  # only with fins: nothing else samples it
+        ext["finTexture"] = {"index": int(fin_texture)}
     if coverage_mips:
         ext["coverageMips"] = [dict(entry) for entry in coverage_mips]
     return doc.set_material_extension(material, NAME, ext)
@@ -135,7 +140,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
             if len(shells) != ext.get("shellCount"):
                 issues.error("BAKER_FUR_SHELL_COUNT", f"{len(shells)} shell textures for shellCount "
                              f"{ext.get('shellCount')}", ptr + "/shellTextures")
-            for i, info in enumerate(shells + [ext.get("finTexture") or {}]):
+            for i, info in enumerate(shells + ([ext["finTexture"]] if "finTexture" in ext else [])):
                 if not is_index(info.get("index"), textures):
                     issues.error("UNRESOLVED_REFERENCE", f"texture {info.get('index')!r} does not exist", ptr)
             spacing, length, count = ext.get("shellSpacing"), ext.get("length"), ext.get("shellCount")
@@ -146,7 +151,7 @@ def check(doc: GltfDocument, places: list, issues) -> None:
                 check_coverage_mips(doc, ext["coverageMips"], ptr + "/coverageMips", issues)
                 mipped = {e.get("texture") for e in ext["coverageMips"] if isinstance(e, dict)} \
                     if isinstance(ext["coverageMips"], list) else set()
-                missing = [info.get("index") for info in shells + [ext.get("finTexture") or {}]
+                missing = [info.get("index") for info in shells + ([ext["finTexture"]] if "finTexture" in ext else [])
                            if isinstance(info, dict) and info.get("index") not in mipped]
                 if missing:
                     issues.warning("BAKER_FUR_COVERAGE_MIPS", f"textures {missing} have no coverage-preserving mip "

@@ -23,7 +23,10 @@ class FurOptions:
     root_color: tuple = opt((0.20, 0.13, 0.08), "hair colour at the root (linear RGB, 0..1)", min=0.0, max=1.0)
     tip_color: tuple = opt((0.75, 0.62, 0.45), "hair colour at the tip (linear RGB, 0..1)", min=0.0, max=1.0)
     fin_depth: float = opt(0.1, "thickness of the volume slab seen on a fin, in tile widths", min=1e-3, max=1.0)
-    fins: bool = opt(True, "write fin geometry along every mesh edge (needs the edge adjacency of the edges bake)")
+    # off by default (compact files): a fin is 4 vertices of 8 VEC3 attributes per mesh edge, 6x the base mesh's
+    # bytes (bunny, all bakes: 40 of 54 MB; benchmarks/RESULTS.md "Compact by default")
+    fins: bool = opt(False, "write fin geometry along every mesh edge (needs the edge adjacency of the edges bake; "
+                            "about 6x the base mesh's bytes)")
     alpha_cutoff: float = opt(0.5, "alpha-test threshold of the shells and fins (coverage above it is drawn)",
                               min=0.0, max=1.0)
     coverage_mips: bool = opt(True, "also write each shell and fin texture's coverage-preserving mip chain (KTX2 "

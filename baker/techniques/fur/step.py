@@ -70,7 +70,8 @@ def run(asset: Asset, options: FurOptions, seed: int = 0, progress: Progress = Q
         advance(1)
     with progress.task("fur coverage mips", 1) as advance:
         shell_tex, fin_tex, mips = ext.write_fur_textures(
-            doc, textures.shells, textures.fin, options.alpha_cutoff if options.coverage_mips else None)
+            doc, textures.shells, textures.fin if options.fins else None,
+            options.alpha_cutoff if options.coverage_mips else None)
         advance(1)
     for material, (members, geoms) in furred.items():
         # world size of one tile: sqrt(surface area / UV area) / tiling
