@@ -14,6 +14,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from baker.techniques.cards.atlas import closest_on_cards
 from baker.techniques.cards.clumps import Clumps, cluster_strands, describe_clumps, split_by_depth
@@ -122,3 +123,75 @@ def fit_clumps(strands: np.ndarray, lengths: np.ndarray, *, target: float, local
         moved = np.flatnonzero(np.isin(labels, changed))
         distance[moved] = card_distances(strands[moved], labels[moved], triangles)
     return Fit(clumps, cards, rounds, first, cap, near)
+
+
+# ------------------------------------------------------------------------------------- a fixed number of cards
+CANDIDATES = 4  # cards a strand may move to in a refinement round: the nearest clump curves to it
+REFINE_ROUNDS = 4
+
+
+def strand_scores(strands: np.ndarray, candidates: np.ndarray, triangles: list, tolerance: float) -> np.ndarray:
+    """(S, C) how well each candidate card (``candidates`` (S, C) card numbers) holds each strand: the points within
+    ``tolerance`` of the card, less a small share of their mean distance (ties go to the closer card)."""
+    s, v, _ = strands.shape
+    c = candidates.shape[1]
+    points = np.broadcast_to(strands[:, None], (s, c, v, 3)).reshape(-1, 3)
+    distance = card_distances(np.ascontiguousarray(points).reshape(s * c, v, 3), candidates.reshape(-1),
+                              triangles).reshape(s, c, v)
+    return (distance <= tolerance).sum(axis=2) - 1e-3 * np.minimum(distance / tolerance, 4.0).mean(axis=2)
+
+
+def refine_clumps(strands: np.ndarray, lengths: np.ndarray, clumps: Clumps, *, card_options: dict,
+                  rounds: int = REFINE_ROUNDS) -> tuple[Clumps, list]:
+    """Lloyd iterations over card surfaces at a fixed card count (k-means with ribbons for centres, as k-planes
+    clustering fits planes: Bradley & Mangasarian 2000): every strand moves to the card among the ``CANDIDATES``
+    nearest clump curves that holds most of its points within ``NEAR`` x the mean strand length, then the cards are
+    rebuilt from their new members. A clump left empty restarts as the deeper half (:func:`.clumps.split_by_depth`)
+    of the clump with the most points off its card. Stops when no strand moves or the held share stops rising;
+    returns the best (clumps, cards) seen."""
+    s, v, _ = strands.shape
+    tolerance = NEAR * float(lengths.mean())
+    labels = clumps.labels.copy()
+    count = clumps.count
+
+    def cards_of(found: Clumps) -> list:
+        return [build_card(found.curves[k], strands[labels == k], found.scalp_normals[k], **card_options)
+                for k in range(count)]
+
+    cards = cards_of(clumps)
+    best = None
+    for _ in range(rounds + 1):
+        triangles = [card_triangles(c) for c in cards]
+        own = card_distances(strands, labels, triangles)
+        near = float((own <= tolerance).mean())
+        if best is not None and near <= best[0]:
+            break
+        best = (near, clumps, cards)
+        # only strands with a point off their card look for another (a strand held whole stays)
+        loose = np.flatnonzero((own > tolerance).any(axis=1))
+        flat = clumps.curves.reshape(count, -1)
+        _, candidates = cKDTree(flat).query(strands[loose].reshape(len(loose), -1), k=min(CANDIDATES, count))
+        candidates = np.concatenate([labels[loose, None], candidates.reshape(len(loose), -1)], axis=1)
+        scores = strand_scores(strands[loose], candidates, triangles, tolerance)
+        chosen = candidates[np.arange(len(loose)), np.argmax(scores, axis=1)]  # first best: own card wins ties
+        if np.array_equal(chosen, labels[loose]):
+            break
+        labels = labels.copy()
+        labels[loose] = chosen
+        far = np.zeros(count)
+        np.add.at(far, labels, (own > tolerance).sum(axis=1))
+        for k in np.flatnonzero(np.bincount(labels, minlength=count) == 0).tolist():
+            for donor in np.lexsort((np.arange(count), -far)).tolist():
+                members = np.flatnonzero(labels == donor)
+                card = cards[donor]
+                side = split_by_depth(np.einsum("nvi,vi->nv", strands[members] - card.centre[None, :v],
+                                                card.normal[:v])) if len(members) > 1 else None
+                far[donor] = -1.0  # one restart per donor a round
+                if side is not None:
+                    labels[members[side]] = k
+                    break
+            else:  # nothing splits: keep one strand of the largest clump
+                labels[np.flatnonzero(labels == int(np.argmax(np.bincount(labels, minlength=count))))[0]] = k
+        clumps = describe_clumps(strands, lengths, labels)
+        cards = cards_of(clumps)
+    return best[1], best[2]

@@ -90,13 +90,29 @@ def run_cards(args) -> int:
             "cardCountFrom": s["cardCountFrom"], "quads": s["quadCount"],
             "atlasSize": options.atlas_size, "clusteringError": s["clusteringError"],
             "cardDistance": s["cardDistance"], "pointsOnOpaqueTexels": s["pointsOnOpaqueTexels"],
+            "fit": fit_verdict(s["cardDistance"]["within5Percent"], options.fit),
             "seconds": {k: round(v, 3) for k, v in seconds.items()}}
     if args.format == "json":
         print(json.dumps(info, indent=2, sort_keys=True))
     elif not args.quiet:
         chosen = " (count from the groom)" if s["cardCountFrom"]["source"] == "groom" else ""
         print(f"cards: {info['strands']} strands -> {info['cards']} cards{chosen}, {info['quads']} quads, atlas "
-              f"{options.atlas_size}², {100 * s['cardDistance']['within5Percent']:.1f} % of strand points within "
-              f"5 % of the mean length of a card, {100 * s['pointsOnOpaqueTexels']:.1f} % on opaque texels -> "
-              f"{args.output}", file=sys.stderr)
+              f"{options.atlas_size}², fit {fit_text(info['fit'])}, {100 * s['pointsOnOpaqueTexels']:.1f} % on "
+              f"opaque texels -> {args.output}", file=sys.stderr)
+        if not info["fit"]["met"]:
+            print(f"cards: fit target MISSED: {fit_text(info['fit'])}" + (
+                  f" ({info['cards']} cards: the cap of one card per 8 strands)" if chosen else
+                  " (raise --cards, or --cards 0 to split clumps until the target is met)"), file=sys.stderr)
     return 0
+
+
+def fit_verdict(within: float, target: float) -> dict:
+    """The fit figure against its target (``--fit``): the summary says when the cards miss it."""
+    return {"within5Percent": float(within), "target": float(target), "met": bool(within >= target)}
+
+
+def fit_text(fit: dict) -> str:
+    """'75.4 % of strand points within 5 % of the mean strand length of their card, target 90.0 %: MISSED'."""
+    verdict = "met" if fit["met"] else "MISSED, below target"
+    return (f"{100 * fit['within5Percent']:.1f} % of strand points within 5 % of the mean strand length of their "
+            f"card, target {100 * fit['target']:.1f} %: {verdict}")
