@@ -57,11 +57,24 @@ def make_cards_from_file(groom_path, options: CardsOptions):
     return result, counts, seconds
 
 
-def build_document(result, counts: dict, options: CardsOptions):
+def scalp_document(groom_path, options: CardsOptions, max_memory: int | None = None):
+    """(the scalp as a one-mesh document in world space, or None; where it came from): ``--scalp MESH``, else the
+    groom file's own triangle mesh (a ``baker hair`` output holds its emitter)."""
+    from baker.readers.groom import read_scalp
+
+    source = options.scalp or groom_path
+    doc = read_scalp(source, max_memory=max_memory)
+    if doc is None and options.scalp:
+        raise BakerError(options.scalp, "no triangle mesh found (--scalp needs a mesh)")
+    return doc, (str(source) if doc is not None else None)
+
+
+def build_document(result, counts: dict, options: CardsOptions, scalp=None):
+    """The cards' document: the scalp's (when there is one: the cards are added beside its mesh) or a new one."""
     from baker.gltf.document import GltfDocument
     from baker.techniques.cards.extension import write_cards
 
-    doc = GltfDocument()
+    doc = scalp if scalp is not None else GltfDocument()
     write_cards(doc, result, groom=counts, options=options)
     return doc
 
@@ -80,13 +93,14 @@ def write_output(doc, output) -> None:
 def run_cards(args) -> int:
     """``baker cards GROOM -o OUT``: the cards of a groom file, written as glTF or USD, and a summary."""
     options = checked_options(args)
+    scalp, scalp_source = scalp_document(args.input, options)  # before the bake: a bad --scalp fails at once
     result, counts, seconds = make_cards_from_file(args.input, options)
     start = time.perf_counter()
-    write_output(build_document(result, counts, options), args.output)
+    write_output(build_document(result, counts, options, scalp), args.output)
     seconds["write"] = time.perf_counter() - start
     s = result.stats
     info = {"input": str(args.input), "output": str(args.output), "strands": counts["strandCount"],
-            "skippedCurves": counts["skippedCurves"], "cards": result.card_count,
+            "skippedCurves": counts["skippedCurves"], "cards": result.card_count, "scalp": scalp_source,
             "cardCountFrom": s["cardCountFrom"], "quads": s["quadCount"],
             "atlasSize": options.atlas_size, "clusteringError": s["clusteringError"],
             "cardDistance": s["cardDistance"], "pointsOnOpaqueTexels": s["pointsOnOpaqueTexels"],
@@ -98,7 +112,8 @@ def run_cards(args) -> int:
         chosen = " (count from the groom)" if s["cardCountFrom"]["source"] == "groom" else ""
         print(f"cards: {info['strands']} strands -> {info['cards']} cards{chosen}, {info['quads']} quads, atlas "
               f"{options.atlas_size}², fit {fit_text(info['fit'])}, {100 * s['pointsOnOpaqueTexels']:.1f} % on "
-              f"opaque texels -> {args.output}", file=sys.stderr)
+              f"opaque texels{', scalp from ' + scalp_source if scalp_source else ''} -> {args.output}",
+              file=sys.stderr)
         if not info["fit"]["met"]:
             print(f"cards: fit target MISSED: {fit_text(info['fit'])}" + (
                   f" ({info['cards']} cards: the cap of one card per 8 strands)" if chosen else
