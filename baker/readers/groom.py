@@ -79,10 +79,11 @@ def clean_groom(groom: Groom, path, bad_curves: str = "skip") -> Groom:
                  None if groom.widths is None else groom.widths[keep_point], skipped)
 
 
-def read_scalp(path, max_memory: int | None = None):
+def read_scalp(path, max_memory: int | None = None, required: bool = False):
     """The scalp (emitter) mesh a file holds, as a one-mesh glTF document in world space (its node has no
     transform, like the groom's curves): the triangles of the first mesh with any, primitives merged, positions and
-    (when every primitive has them) normals. None when the file has no triangles (a groom of curves only).
+    (when every primitive has them) normals. None when the file has no triangles (a groom of curves only); with
+    ``required`` a file that cannot be read as a mesh is an error.
 
     A ``baker hair`` output holds its emitter mesh beside the strands; ``baker guides`` and ``baker cards`` carry it
     to their outputs from here (or from ``--scalp MESH``)."""
@@ -93,7 +94,12 @@ def read_scalp(path, max_memory: int | None = None):
 
     if Path(path).suffix.lower() not in readers.READERS:  # TressFX: strands only
         return None
-    asset = readers.read(path, max_memory=max_memory, require_triangles=False)
+    try:
+        asset = readers.read(path, max_memory=max_memory, require_triangles=False)
+    except BakerError:
+        if required:
+            raise
+        return None  # a groom of curves only (the USD reader finds no mesh): no scalp
     gltf = asset.doc.json
     drawn = {}
     for node, matrix in world_nodes(gltf):  # the first node drawing a mesh places it

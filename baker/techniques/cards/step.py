@@ -63,7 +63,7 @@ def scalp_document(groom_path, options: CardsOptions, max_memory: int | None = N
     from baker.readers.groom import read_scalp
 
     source = options.scalp or groom_path
-    doc = read_scalp(source, max_memory=max_memory)
+    doc = read_scalp(source, max_memory=max_memory, required=bool(options.scalp))
     if doc is None and options.scalp:
         raise BakerError(options.scalp, "no triangle mesh found (--scalp needs a mesh)")
     return doc, (str(source) if doc is not None else None)
