@@ -60,7 +60,7 @@ def make_cards_from_file(groom_path, options: CardsOptions):
 def scalp_document(groom_path, options: CardsOptions, max_memory: int | None = None):
     """(the scalp as a one-mesh document in world space, or None; where it came from): ``--scalp MESH``, else the
     groom file's own triangle mesh (a ``baker hair`` output holds its emitter)."""
-    from baker.readers.groom import read_scalp
+    from baker.readers.scalp import read_scalp
 
     source = options.scalp or groom_path
     doc = read_scalp(source, max_memory=max_memory, required=bool(options.scalp))

@@ -123,7 +123,7 @@ def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET,
         asset = readers.read(scalp, max_memory=max_memory)
     else:  # the groom file's own emitter mesh (a ``baker hair`` output holds it), when it has one
         from baker.geometry.asset import Asset
-        from baker.readers.groom import read_scalp
+        from baker.readers.scalp import read_scalp
 
         doc = read_scalp(groom_path, max_memory=max_memory)
         asset, scalp = (Asset(doc=doc, source=Path(groom_path)), groom_path) if doc is not None else (None, None)
