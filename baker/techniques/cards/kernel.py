@@ -98,7 +98,7 @@ def make_cards(strands: np.ndarray, lengths: np.ndarray, widths: np.ndarray | No
                         max_segments=options.max_segments)
     if options.cards:  # an explicit count: one clustering, one card per clump
         clumps = cluster_strands(strands, lengths, options.cards, locality=options.locality, seed=options.seed)
-        clumps, cards = refine_clumps(strands, lengths, clumps, card_options=card_options)
+        clumps, cards = refine_clumps(strands, lengths, clumps, card_options=card_options, rounds=options.refine)
         count_from = {"source": "option"}
     else:  # from the groom: split clumps until the cards hold the strands
         fit = fit_clumps(strands, lengths, target=options.fit, locality=options.locality, seed=options.seed,
