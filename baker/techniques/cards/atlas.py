@@ -217,10 +217,20 @@ def points_held(strands, candidates, tri_start, tri_count, corners, tri_first, t
             for j in range(v):
                 p = strands[i, j]
                 best = np.inf
+                reach = np.inf  # sqrt(best): a triangle whose bounding sphere lies farther cannot be nearer
                 for t in range(tri_start[card], tri_start[card] + tri_count[card]):
                     if tri_last[t] < j - window or tri_first[t] > j + window:
                         continue
                     q = corners[t]
+                    cx = (q[0, 0] + q[1, 0] + q[2, 0]) / 3.0 - p[0]
+                    cy = (q[0, 1] + q[1, 1] + q[2, 1]) / 3.0 - p[1]
+                    cz = (q[0, 2] + q[1, 2] + q[2, 2]) / 3.0 - p[2]
+                    r = 0.0
+                    for m in range(3):
+                        ex, ey, ez = q[m, 0] - p[0] - cx, q[m, 1] - p[1] - cy, q[m, 2] - p[2] - cz
+                        r = max(r, ex * ex + ey * ey + ez * ez)
+                    if math.sqrt(cx * cx + cy * cy + cz * cz) - math.sqrt(r) >= reach:
+                        continue
                     a, b, w = _closest_on_triangle(p, q)
                     dx = p[0] - (a * q[0, 0] + b * q[1, 0] + w * q[2, 0])
                     dy = p[1] - (a * q[0, 1] + b * q[1, 1] + w * q[2, 1])
@@ -228,7 +238,8 @@ def points_held(strands, candidates, tri_start, tri_count, corners, tri_first, t
                     d = dx * dx + dy * dy + dz * dz
                     if d < best:
                         best = d
-                d = math.sqrt(best) / tolerance
+                        reach = math.sqrt(d)
+                d = reach / tolerance
                 if d <= 1.0:
                     count += 1
                 total += min(d, 4.0)
