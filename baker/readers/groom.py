@@ -77,4 +77,3 @@ def clean_groom(groom: Groom, path, bad_curves: str = "skip") -> Groom:
     keep_point = keep_curve[curve_of_point]
     return Groom(groom.points[keep_point], counts[keep_curve],
                  None if groom.widths is None else groom.widths[keep_point], skipped)
-

@@ -202,7 +202,7 @@ def refine_clumps(strands: np.ndarray, lengths: np.ndarray, clumps: Clumps, *, c
         retired = [k for k in np.lexsort((np.arange(count), worth)).tolist()[:moves]]
         donors = [k for k in np.lexsort((np.arange(count), -far)).tolist() if k not in retired]
         for r in retired:
-            if far[donors[0]] <= 4.0 * worth[r]:  # a split would not win back what retiring this card loses
+            if not donors or far[donors[0]] <= 4.0 * worth[r]:  # a split would not win back what retiring loses
                 continue
             members = np.flatnonzero(labels == r)
             labels[members] = np.where(np.isfinite(other[members]), candidates[members, np.argmax(
