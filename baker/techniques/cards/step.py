@@ -115,8 +115,12 @@ def run_cards(args) -> int:
               f"opaque texels{', scalp from ' + scalp_source if scalp_source else ''} -> {args.output}",
               file=sys.stderr)
         if not info["fit"]["met"]:
-            print(f"cards: fit target MISSED: {fit_text(info['fit'])}" + (
-                  f" ({info['cards']} cards: the cap of one card per 8 strands)" if chosen else
+            fit = info["fit"]
+            print(f"cards: fit target MISSED: {100 * fit['within5Percent']:.1f} % of the strand points held, below "
+                  f"the target {100 * fit['target']:.1f} %" + (
+                  (f" ({info['cards']} cards: the cap of one card per 8 strands)"
+                   if info["cards"] >= s["cardCountFrom"]["cap"] else
+                   f" ({info['cards']} cards: no clump splits further)") if chosen else
                   " (raise --cards, or --cards 0 to split clumps until the target is met)"), file=sys.stderr)
     return 0
 
