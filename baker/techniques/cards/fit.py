@@ -127,7 +127,7 @@ def fit_clumps(strands: np.ndarray, lengths: np.ndarray, *, target: float, local
 
 # ------------------------------------------------------------------------------------- a fixed number of cards
 CANDIDATES = 6  # cards a strand may move to in a refinement round: the nearest clump curves to it
-REFINE_ROUNDS = 8
+REFINE_ROUNDS = 12
 STATION_WINDOW = 4  # a strand point is measured against the card triangles within this many stations of it
 
 
@@ -198,7 +198,7 @@ def refine_clumps(strands: np.ndarray, lengths: np.ndarray, clumps: Clumps, *, c
         worth = np.bincount(labels, weights=scores[every, pick] - other, minlength=count)
         held = np.floor(scores[every, pick] + 0.01)
         far = np.bincount(labels, weights=v - held, minlength=count)
-        moves = max(1, count // 16)
+        moves = max(1, count // 6)
         retired = [k for k in np.lexsort((np.arange(count), worth)).tolist()[:moves]]
         donors = [k for k in np.lexsort((np.arange(count), -far)).tolist() if k not in retired]
         for r in retired:

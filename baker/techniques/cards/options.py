@@ -15,7 +15,7 @@ class CardsOptions:
                         "card per 8 strands)", min=0, max=65536)
     fit: float = opt(0.9, "the share of strand points the cards must hold (with --cards 0 clumps split until it "
                           "is met; the summary says when it is missed, at any count)", min=0.5, max=1.0)
-    refine: int = opt(8, "with --cards N: rounds moving strands to the card that holds most of their points and "
+    refine: int = opt(12, "with --cards N: rounds moving strands to the card that holds most of their points and "
                          "rebuilding the cards (Lloyd over card surfaces; stops early when nothing improves); 0: "
                          "the clustering alone", min=0, max=64)
     atlas_size: int = opt(1024, "atlas width and height in texels (a power of two)", min=64, max=4096)
