@@ -229,8 +229,11 @@ def test_unknown_panel_is_an_error(baked_spot):
 
 
 def test_hair_cards_panel_is_alpha_tested_and_shaded_along_the_flow(tmp_path):
-    """The cards panel draws the cards alpha-tested: inside the reference's silhouette of the card quads (no
-    alpha test) and cutting a good part of it."""
+    """The cards panel draws the cards alpha-tested: inside the silhouette of the card quads (the same file with
+    alphaMode OPAQUE) and cutting a good part of it; the reference panel honours the material's MASK alike."""
+    import json
+
+    from baker.gltf.document import GltfDocument
     from techniques.cards_groom import make_groom, write_groom_usd
 
     curves, widths = make_groom(strands=600, clumps=24, seed=6)
@@ -239,11 +242,22 @@ def test_hair_cards_panel_is_alpha_tested_and_shaded_along_the_flow(tmp_path):
     assert main(["cards", str(groom), "-o", str(cards), "--cards", "24", "--atlas-size", "512", "-q"]) == 0
     result = preview(cards, size=192, azimuth=20, elevation=10)
     assert [n for n, _, _ in result.panels] == ["lambert", "cards"]
-    solid = _covered(_panel(result, "lambert"))
+    doc = GltfDocument.load(cards)
+    (material,) = doc.json["materials"]
+    assert material["alphaMode"] == "MASK"
+    material["alphaMode"] = "OPAQUE"
+    doc.save(tmp_path / "opaque.glb")
+    solid = _covered(_panel(preview(tmp_path / "opaque.glb", size=192, azimuth=20, elevation=10), "lambert"))
     cut = _covered(_panel(result, "cards"))
-    print("card pixels", int(solid.sum()), "after the alpha test", int(cut.sum()))
+    reference = _covered(_panel(result, "lambert"))
+    print("card pixels", int(solid.sum()), "after the alpha test", int(cut.sum()), "reference", int(reference.sum()))
     assert cut.sum() > 300 and (cut & ~ndimage.binary_dilation(solid, iterations=1)).sum() < 0.02 * cut.sum()
     assert cut.sum() < 0.9 * solid.sum()
+    # the reference panel cuts at the same alphaCutoff as the cards panel: about as many pixels, mostly the same
+    iou = (reference & cut).sum() / (reference | cut).sum()
+    print("reference against cards panel: IoU", iou)
+    assert reference.sum() < 0.9 * solid.sum() and abs(int(reference.sum()) - int(cut.sum())) < 0.15 * cut.sum()
+    assert iou > 0.5  # not the same texels: the cards panel samples the coverage mips, the reference level 0
 
 
 def test_hair_cards_panel_keeps_coverage_when_small(tmp_path):
@@ -265,11 +279,15 @@ def test_hair_cards_panel_keeps_coverage_when_small(tmp_path):
     box = alpha_mip_chain(read_coverage_mips(doc, entry)[0], entry["alphaCutoff"], preserve_coverage=False)
     entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels), np.uint8), target=None)
     doc.save(tmp_path / "box.glb")
+    (material,) = doc.json["materials"]
+    material["alphaMode"] = "OPAQUE"  # the card quads, drawn whole by the reference panel
+    doc.save(tmp_path / "opaque.glb")
     kept = {}
     for name, path in (("chain", cards), ("box", tmp_path / "box.glb")):
         for size in (384, 128, 64):
             result = preview(path, size=size, azimuth=20, elevation=10)
-            solid, cut = _covered(_panel(result, "lambert")), _covered(_panel(result, "cards"))
+            quads = preview(tmp_path / "opaque.glb", size=size, azimuth=20, elevation=10)
+            solid, cut = _covered(_panel(quads, "lambert")), _covered(_panel(result, "cards"))
             assert (cut & ~ndimage.binary_dilation(solid, iterations=1)).sum() <= 0.02 * cut.sum() + 1
             kept[name, size] = float(cut.sum() / solid.sum())
     print("share of the card pixels kept by the alpha test", kept)
@@ -650,3 +668,50 @@ def test_outline_leaves_openings_clear(tmp_path):
         # the ring between lid and body is narrow: most of it is the lid's own contour, drawn either way
         assert openings.sum() > 500
         assert counts["baked"] <= counts["double-sided"] + 0.01 * openings.sum()
+
+
+def _alpha_plane(path, alpha_mode, alpha_left, alpha_right, cutoff=0.5):
+    """A square facing +Z whose base colour texture is white with alpha ``alpha_left`` on its left half (u < 0.5)
+    and ``alpha_right`` on the right, drawn with glTF alphaMode ``alpha_mode``."""
+    import trimesh
+    from PIL import Image
+
+    pixels = np.full((8, 8, 4), 255, np.uint8)
+    pixels[:, :4, 3], pixels[:, 4:, 3] = alpha_left, alpha_right
+    plane = trimesh.Trimesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2], [0, 2, 3]], process=False)
+    material = trimesh.visual.material.PBRMaterial(
+        baseColorTexture=Image.fromarray(pixels, "RGBA"), metallicFactor=0.0, roughnessFactor=0.5,
+        alphaMode=alpha_mode, alphaCutoff=cutoff if alpha_mode == "MASK" else None)
+    plane.visual = trimesh.visual.TextureVisuals(uv=[[0, 0], [1, 0], [1, 1], [0, 1]], material=material)
+    plane.export(str(path))
+    return path
+
+
+def test_reference_panel_honours_alpha_mode(tmp_path):
+    """glTF alphaMode as every viewer draws it: OPAQUE ignores alpha; MASK cuts the half whose alpha is below the
+    cutoff (and keeps the half at or above it); BLEND mixes the surface with the background by the alpha."""
+    def halves(alpha_mode, left, right):
+        path = _alpha_plane(tmp_path / f"{alpha_mode}_{left}_{right}.glb", alpha_mode, left, right)
+        image = _panel(preview(path, size=128, azimuth=0, elevation=0), "lambert")
+        covered = _covered(image)
+        xs = np.flatnonzero(covered.any(axis=0))
+        middle = (xs.min() + xs.max()) // 2
+        return image, covered, middle
+
+    opaque, covered, middle = halves("OPAQUE", 0, 255)
+    assert covered.mean() > 0.1 and covered[:, :middle].sum() > 0.4 * covered.sum()
+    _, masked, _ = halves("MASK", 64, 192)  # 0.25 and 0.75 against the cutoff 0.5
+    print("opaque pixels", int(covered.sum()), "masked", int(masked.sum()))
+    assert 0.35 * covered.sum() < masked.sum() < 0.65 * covered.sum()
+    # the pixels the test kept lie on one side: the one whose alpha passes (u > 0.5 shows on the screen's right or
+    # left depending on the view; either way one side is empty)
+    left, right = masked[:, :middle].sum(), masked[:, middle + 1:].sum()
+    assert min(left, right) < 0.03 * max(left, right)
+    blended, _, _ = halves("BLEND", 128, 128)
+    background = np.array(BACKGROUND)
+    inside = covered & ndimage.binary_erosion(covered, iterations=2)
+    # half alpha: halfway (within rounding and the light) between the opaque surface and the background
+    mix = (blended[inside] - background) / np.where(np.abs(opaque[inside] - background) > 0.05,
+                                                     opaque[inside] - background, np.nan)
+    print("blend fraction", np.nanmedian(mix))
+    assert 0.4 < np.nanmedian(mix) < 0.6

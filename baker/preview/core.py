@@ -102,8 +102,10 @@ class Scene:
         key = ("gl", id(ctx), texture_index, repeat, srgb)
         if key not in self.cache:
             pixels = self.image(texture_index)
-            if srgb:
-                pixels = srgb_to_linear(pixels).astype(np.float32)
+            if srgb:  # colour only: alpha (the 4th channel, or the 2nd of grey + alpha) is linear coverage
+                colour = pixels.shape[2] - (pixels.shape[2] in (2, 4))
+                pixels = np.concatenate([srgb_to_linear(pixels[..., :colour]), pixels[..., colour:]],
+                                        axis=2).astype(np.float32)
             h, w, c = pixels.shape
             tex = ctx.texture((w, h), c, pixels.tobytes(), dtype="f4")
             tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
@@ -534,9 +536,23 @@ class ReferencePanel(Panel):
     def available(self, scene) -> bool:
         return super().available(scene) or (isinstance(scene, Scene) and bool(scene.part("lines")))
 
+    def uniforms(self, item):
+        return alpha_mode_uniforms(item.material)
+
     def draw(self, ctx, scene, camera, size):
         draw_surfaces(ctx, self, scene, camera, size)
         draw_lines(ctx, scene, camera, size, light_direction(camera, self.light))
+
+
+ALPHA_MODES = {"OPAQUE": 0, "MASK": 1, "BLEND": 2}
+
+
+def alpha_mode_uniforms(material) -> dict:
+    """The glTF material's alphaMode and alphaCutoff (defaults OPAQUE, 0.5) as the surface host's uniforms."""
+    material = material if isinstance(material, dict) else {}
+    cutoff = material.get("alphaCutoff", 0.5)
+    return {"u_alphaMode": ALPHA_MODES.get(material.get("alphaMode"), 0),
+            "u_alphaCutoff": float(cutoff) if isinstance(cutoff, (int, float)) else 0.5}
 
 
 REFERENCE = ReferencePanel("lambert", "shaded (reference)", (), "", LAMBERT, order=-math.inf)
@@ -644,7 +660,13 @@ def draw_surfaces(ctx, panel: Panel, scene, camera: Camera, size: int, extra: di
         else:
             ibo = ctx.buffer(corners.astype(np.uint32).tobytes())
             vao = ctx.vertex_array(program, content, index_buffer=ibo, index_element_size=4)
+        blend = use.uniforms(item).get("u_alphaMode") == ALPHA_MODES["BLEND"]
+        if blend:  # a glTF BLEND material: over what is drawn already (in file order, as a simple viewer does)
+            ctx.enable(ctx.BLEND)
+            ctx.blend_func = ctx.SRC_ALPHA, ctx.ONE_MINUS_SRC_ALPHA
         vao.render()
+        if blend:
+            ctx.disable(ctx.BLEND)
         for obj in [vao] + buffers + ([ibo] if ibo is not None else []):
             obj.release()
     for program in programs.values():

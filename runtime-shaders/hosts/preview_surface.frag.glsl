@@ -4,7 +4,9 @@
 // grey 0.8 without one). The normal map is read in the glTF tangent frame: TANGENT when the primitive has it, else the frame of the
 // screen-space derivatives of position and texture coordinates (as the Khronos glTF sample viewer does). Placeholders:
 // "@baker:modules", "@baker:line" (u_ink / u_width when the body draws lines), "@baker:declarations",
-// "@baker:inputs" (extra varyings) and "@baker:body".
+// "@baker:inputs" (extra varyings) and "@baker:body". u_alphaMode (0 OPAQUE, the default; 1 MASK: cut where the base
+// colour's alpha, factor x texture, is below u_alphaCutoff; 2 BLEND: that alpha is the output's) is the glTF
+// material's alphaMode, as every glTF viewer honours it; the reference panel sets it.
 // @baker:modules
 uniform vec3 u_eye;
 uniform vec3 u_light;
@@ -15,6 +17,8 @@ uniform int u_hasNormalTexture;
 uniform sampler2D u_normalTexture;
 uniform float u_normalScale;
 uniform int u_hasTangent;
+uniform int u_alphaMode;
+uniform float u_alphaCutoff;
 // @baker:line
 // @baker:declarations
 in vec3 v_position;
@@ -54,10 +58,16 @@ void main() {
         }
     }
     vec3 albedo = u_baseColorFactor.rgb;
-    if (u_hasBaseColorTexture != 0) albedo *= texture(u_baseColorTexture, v_baseUV).rgb;
+    float baseAlpha = u_baseColorFactor.a;
+    if (u_hasBaseColorTexture != 0) {
+        vec4 texel = texture(u_baseColorTexture, v_baseUV);
+        albedo *= texel.rgb;
+        baseAlpha *= texel.a;
+    }
+    if (u_alphaMode == 1 && baseAlpha < u_alphaCutoff) discard;
     float scalar = v_scalar;
     vec3 color;
-    float alpha = 1.0;
+    float alpha = u_alphaMode == 2 ? baseAlpha : 1.0;
     // @baker:body
     fragColor = vec4(clamp(color, 0.0, 1.0), alpha);
 }

@@ -196,3 +196,53 @@ def rasterize_strands(xy, attributes, radius, clip, height, width):
                                 attr, attributes[i, j], attributes[i, j + 1], pass_two, i, alpha, sums, weight, top,
                                 top_cov)
     return alpha, sums, weight, top
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def points_held(strands, candidates, tri_start, tri_count, corners, tri_first, tri_last, window, tolerance):
+    """(S, C) for each strand (S, V, 3) and candidate card (``candidates`` (S, C)): how many of its points lie within
+    ``tolerance`` of the card, and (second array) the mean of min(distance / tolerance, 4) over its points. Point j
+    is measured against the card's triangles spanning stations within ``window`` of j only (``tri_first`` /
+    ``tri_last``: the station numbers a triangle's quad spans): a strand runs beside its card station by station,
+    and a farther triangle would only be nearer for a strand that does not follow the card."""
+    s, v, _ = strands.shape
+    c = candidates.shape[1]
+    held = np.zeros((s, c), np.int64)
+    spread = np.zeros((s, c))
+    for i in numba.prange(s):
+        for k in range(c):
+            card = candidates[i, k]
+            count = 0
+            total = 0.0
+            for j in range(v):
+                p = strands[i, j]
+                best = np.inf
+                reach = np.inf  # sqrt(best): a triangle whose bounding sphere lies farther cannot be nearer
+                for t in range(tri_start[card], tri_start[card] + tri_count[card]):
+                    if tri_last[t] < j - window or tri_first[t] > j + window:
+                        continue
+                    q = corners[t]
+                    cx = (q[0, 0] + q[1, 0] + q[2, 0]) / 3.0 - p[0]
+                    cy = (q[0, 1] + q[1, 1] + q[2, 1]) / 3.0 - p[1]
+                    cz = (q[0, 2] + q[1, 2] + q[2, 2]) / 3.0 - p[2]
+                    r = 0.0
+                    for m in range(3):
+                        ex, ey, ez = q[m, 0] - p[0] - cx, q[m, 1] - p[1] - cy, q[m, 2] - p[2] - cz
+                        r = max(r, ex * ex + ey * ey + ez * ez)
+                    if math.sqrt(cx * cx + cy * cy + cz * cz) - math.sqrt(r) >= reach:
+                        continue
+                    a, b, w = _closest_on_triangle(p, q)
+                    dx = p[0] - (a * q[0, 0] + b * q[1, 0] + w * q[2, 0])
+                    dy = p[1] - (a * q[0, 1] + b * q[1, 1] + w * q[2, 1])
+                    dz = p[2] - (a * q[0, 2] + b * q[1, 2] + w * q[2, 2])
+                    d = dx * dx + dy * dy + dz * dz
+                    if d < best:
+                        best = d
+                        reach = math.sqrt(d)
+                d = reach / tolerance
+                if d <= 1.0:
+                    count += 1
+                total += min(d, 4.0)
+            held[i, k] = count
+            spread[i, k] = total / v
+    return held, spread

@@ -14,8 +14,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial import cKDTree
 
-from baker.techniques.cards.atlas import closest_on_cards
+from baker.techniques.cards.atlas import closest_on_cards, points_held
 from baker.techniques.cards.clumps import Clumps, cluster_strands, describe_clumps, split_by_depth
 from baker.techniques.cards.ribbon import Card, build_card
 
@@ -122,3 +123,102 @@ def fit_clumps(strands: np.ndarray, lengths: np.ndarray, *, target: float, local
         moved = np.flatnonzero(np.isin(labels, changed))
         distance[moved] = card_distances(strands[moved], labels[moved], triangles)
     return Fit(clumps, cards, rounds, first, cap, near)
+
+
+# ------------------------------------------------------------------------------------- a fixed number of cards
+CANDIDATES = 6  # cards a strand may move to in a refinement round: the nearest clump curves to it
+REFINE_ROUNDS = 12
+STATION_WINDOW = 4  # a strand point is measured against the card triangles within this many stations of it
+
+
+def card_station_spans(cards: list) -> tuple[np.ndarray, np.ndarray]:
+    """(first, last) station number of every triangle of :func:`card_triangles`, cards after each other."""
+    first, last = [], []
+    for card in cards:
+        j = card.kept
+        first.append(np.repeat(j[:-1], 2))
+        last.append(np.repeat(j[1:], 2))
+    return np.concatenate(first).astype(np.int64), np.concatenate(last).astype(np.int64)
+
+
+def strand_scores(strands: np.ndarray, candidates: np.ndarray, cards: list, triangles: list,
+                  tolerance: float) -> np.ndarray:
+    """(S, C) how well each candidate card (``candidates`` (S, C) card numbers) holds each strand: the points within
+    ``tolerance`` of the card, less a small share of their mean distance (ties go to the closer card)."""
+    count = np.array([len(t) for t in triangles], np.int64)
+    start = np.concatenate([[0], np.cumsum(count)[:-1]]).astype(np.int64)
+    first, last = card_station_spans(cards)
+    held, spread = points_held(np.ascontiguousarray(strands), np.ascontiguousarray(candidates, np.int64), start,
+                               count, np.concatenate(triangles), first, last, STATION_WINDOW, tolerance)
+    return held - 1e-3 * spread
+
+
+def refine_clumps(strands: np.ndarray, lengths: np.ndarray, clumps: Clumps, *, card_options: dict,
+                  rounds: int = REFINE_ROUNDS) -> tuple[Clumps, list]:
+    """Lloyd iterations over card surfaces at a fixed card count (k-means with ribbons for centres, as k-planes
+    clustering fits planes: Bradley & Mangasarian 2000): every strand moves to the card among the ``CANDIDATES``
+    nearest clump curves that holds most of its points within ``NEAR`` x the mean strand length, then the cards are
+    rebuilt from their new members. Each round also moves a few cards from where they are least needed to where
+    they are most (a split-merge step, as in ISODATA: Ball & Hall 1965): the cards whose strands lose the fewest
+    held points by going to their next-best card are retired and each restarts as the deeper half
+    (:func:`.clumps.split_by_depth`) of a clump with the most points off its card. Stops when the held share has
+    not risen for two rounds; returns the best (clumps, cards) seen."""
+    s, v, _ = strands.shape
+    tolerance = NEAR * float(lengths.mean())
+    labels = clumps.labels.copy()
+    count = clumps.count
+
+    def cards_of(found: Clumps) -> list:
+        return [build_card(found.curves[k], strands[labels == k], found.scalp_normals[k], **card_options)
+                for k in range(count)]
+
+    cards = cards_of(clumps)
+    best = None
+    stale = 0
+    every = np.arange(s)
+    for _ in range(rounds + 1):
+        triangles = [card_triangles(c) for c in cards]
+        own = card_distances(strands, labels, triangles)
+        near = float((own <= tolerance).mean())
+        if best is None or near > best[0]:
+            best, stale = (near, clumps, cards), 0
+        else:
+            stale += 1
+            if stale >= 2:
+                break
+        flat = clumps.curves.reshape(count, -1)
+        _, candidates = cKDTree(flat).query(strands.reshape(s, -1), k=min(CANDIDATES, count))
+        candidates = np.concatenate([labels[:, None], candidates.reshape(s, -1)], axis=1)
+        scores = strand_scores(strands, candidates, cards, triangles, tolerance)
+        pick = np.argmax(scores, axis=1)  # first best: the own card wins ties
+        labels = candidates[every, pick]
+        # what each card is worth: the points its strands would lose on their next-best other card
+        other = np.where(candidates == labels[:, None], -np.inf, scores).max(axis=1)
+        other = np.where(np.isfinite(other), other, 0.0)
+        worth = np.bincount(labels, weights=scores[every, pick] - other, minlength=count)
+        held = np.floor(scores[every, pick] + 0.01)
+        far = np.bincount(labels, weights=v - held, minlength=count)
+        moves = max(1, count // 6)
+        retired = [k for k in np.lexsort((np.arange(count), worth)).tolist()[:moves]]
+        donors = [k for k in np.lexsort((np.arange(count), -far)).tolist() if k not in retired]
+        for r in retired:
+            if not donors or far[donors[0]] <= 4.0 * worth[r]:  # a split would not win back what retiring loses
+                continue
+            members = np.flatnonzero(labels == r)
+            labels[members] = np.where(np.isfinite(other[members]), candidates[members, np.argmax(
+                np.where(candidates[members] == r, -np.inf, scores[members]), axis=1)], r)
+            while donors:
+                donor = donors.pop(0)
+                members = np.flatnonzero(labels == donor)
+                card = cards[donor]
+                side = split_by_depth(np.einsum("nvi,vi->nv", strands[members] - card.centre[None, :v],
+                                                card.normal[:v])) if len(members) > 1 else None
+                if side is not None:
+                    labels[members[side]] = r
+                    break
+        used = np.bincount(labels, minlength=count)
+        for k in np.flatnonzero(used == 0).tolist():  # a card left empty keeps one strand of the largest clump
+            labels[np.flatnonzero(labels == int(np.argmax(np.bincount(labels, minlength=count))))[0]] = k
+        clumps = describe_clumps(strands, lengths, labels)
+        cards = cards_of(clumps)
+    return best[1], best[2]

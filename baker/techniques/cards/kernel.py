@@ -10,7 +10,7 @@ import numpy as np
 
 from baker.techniques.cards.atlas import closest_on_cards, pack_regions, rasterize_strands
 from baker.techniques.cards.clumps import cluster_strands
-from baker.techniques.cards.fit import fit_clumps
+from baker.techniques.cards.fit import fit_clumps, refine_clumps
 from baker.techniques.cards.options import CardsOptions
 from baker.techniques.cards.ribbon import build_card, draw_order
 from baker.texels.color import linear_to_srgb
@@ -98,8 +98,7 @@ def make_cards(strands: np.ndarray, lengths: np.ndarray, widths: np.ndarray | No
                         max_segments=options.max_segments)
     if options.cards:  # an explicit count: one clustering, one card per clump
         clumps = cluster_strands(strands, lengths, options.cards, locality=options.locality, seed=options.seed)
-        cards = [build_card(clumps.curves[k], strands[clumps.labels == k], clumps.scalp_normals[k], **card_options)
-                 for k in range(clumps.count)]
+        clumps, cards = refine_clumps(strands, lengths, clumps, card_options=card_options, rounds=options.refine)
         count_from = {"source": "option"}
     else:  # from the groom: split clumps until the cards hold the strands
         fit = fit_clumps(strands, lengths, target=options.fit, locality=options.locality, seed=options.seed,

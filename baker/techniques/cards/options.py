@@ -13,7 +13,11 @@ class CardsOptions:
     cards: int = opt(0, "number of cards, one per clump of strands; 0: from the groom, clumps split until --fit of "
                         "the strand points lie within 5 % of the mean strand length of their card (at most one "
                         "card per 8 strands)", min=0, max=65536)
-    fit: float = opt(0.9, "with --cards 0: the share of strand points the cards must hold", min=0.5, max=1.0)
+    fit: float = opt(0.9, "the share of strand points the cards must hold (with --cards 0 clumps split until it "
+                          "is met; the summary says when it is missed, at any count)", min=0.5, max=1.0)
+    refine: int = opt(12, "with --cards N: rounds moving strands to the card that holds most of their points and "
+                         "rebuilding the cards (Lloyd over card surfaces; stops early when nothing improves); 0: "
+                         "the clustering alone", min=0, max=64)
     atlas_size: int = opt(1024, "atlas width and height in texels (a power of two)", min=64, max=4096)
     vertices_per_strand: int = opt(32, "vertices of every strand after resampling at equal arc-length steps "
                                        "(card segments are chosen among them)", min=4, max=256)
@@ -36,5 +40,7 @@ class CardsOptions:
     color: tuple = opt((0.30, 0.19, 0.10), "hair base colour (linear RGB); roots darker, per-strand variation",
                        min=0.0, max=1.0)
     seed: int = opt(0, "random seed; the same seed gives byte-identical output")
+    scalp: str | None = opt(None, "scalp (emitter) mesh written beside the cards; default: the groom file's own "
+                                  "triangle mesh when it has one (a baker hair output holds its emitter), else none")
     bad_curves: str = opt("skip", "curves with < 2 vertices, NaN/inf points or zero length: skip (counted in the "
                                   "summary) or error", choices=("skip", "error"))

@@ -57,11 +57,24 @@ def make_cards_from_file(groom_path, options: CardsOptions):
     return result, counts, seconds
 
 
-def build_document(result, counts: dict, options: CardsOptions):
+def scalp_document(groom_path, options: CardsOptions, max_memory: int | None = None):
+    """(the scalp as a one-mesh document in world space, or None; where it came from): ``--scalp MESH``, else the
+    groom file's own triangle mesh (a ``baker hair`` output holds its emitter)."""
+    from baker.readers.scalp import read_scalp
+
+    source = options.scalp or groom_path
+    doc = read_scalp(source, max_memory=max_memory, required=bool(options.scalp))
+    if doc is None and options.scalp:
+        raise BakerError(options.scalp, "no triangle mesh found (--scalp needs a mesh)")
+    return doc, (str(source) if doc is not None else None)
+
+
+def build_document(result, counts: dict, options: CardsOptions, scalp=None):
+    """The cards' document: the scalp's (when there is one: the cards are added beside its mesh) or a new one."""
     from baker.gltf.document import GltfDocument
     from baker.techniques.cards.extension import write_cards
 
-    doc = GltfDocument()
+    doc = scalp if scalp is not None else GltfDocument()
     write_cards(doc, result, groom=counts, options=options)
     return doc
 
@@ -80,23 +93,45 @@ def write_output(doc, output) -> None:
 def run_cards(args) -> int:
     """``baker cards GROOM -o OUT``: the cards of a groom file, written as glTF or USD, and a summary."""
     options = checked_options(args)
+    scalp, scalp_source = scalp_document(args.input, options)  # before the bake: a bad --scalp fails at once
     result, counts, seconds = make_cards_from_file(args.input, options)
     start = time.perf_counter()
-    write_output(build_document(result, counts, options), args.output)
+    write_output(build_document(result, counts, options, scalp), args.output)
     seconds["write"] = time.perf_counter() - start
     s = result.stats
     info = {"input": str(args.input), "output": str(args.output), "strands": counts["strandCount"],
-            "skippedCurves": counts["skippedCurves"], "cards": result.card_count,
+            "skippedCurves": counts["skippedCurves"], "cards": result.card_count, "scalp": scalp_source,
             "cardCountFrom": s["cardCountFrom"], "quads": s["quadCount"],
             "atlasSize": options.atlas_size, "clusteringError": s["clusteringError"],
             "cardDistance": s["cardDistance"], "pointsOnOpaqueTexels": s["pointsOnOpaqueTexels"],
+            "fit": fit_verdict(s["cardDistance"]["within5Percent"], options.fit),
             "seconds": {k: round(v, 3) for k, v in seconds.items()}}
     if args.format == "json":
         print(json.dumps(info, indent=2, sort_keys=True))
     elif not args.quiet:
         chosen = " (count from the groom)" if s["cardCountFrom"]["source"] == "groom" else ""
         print(f"cards: {info['strands']} strands -> {info['cards']} cards{chosen}, {info['quads']} quads, atlas "
-              f"{options.atlas_size}², {100 * s['cardDistance']['within5Percent']:.1f} % of strand points within "
-              f"5 % of the mean length of a card, {100 * s['pointsOnOpaqueTexels']:.1f} % on opaque texels -> "
-              f"{args.output}", file=sys.stderr)
+              f"{options.atlas_size}², fit {fit_text(info['fit'])}, {100 * s['pointsOnOpaqueTexels']:.1f} % on "
+              f"opaque texels{', scalp from ' + scalp_source if scalp_source else ''} -> {args.output}",
+              file=sys.stderr)
+        if not info["fit"]["met"]:
+            fit = info["fit"]
+            print(f"cards: fit target MISSED: {100 * fit['within5Percent']:.1f} % of the strand points held, below "
+                  f"the target {100 * fit['target']:.1f} %" + (
+                  (f" ({info['cards']} cards: the cap of one card per 8 strands)"
+                   if info["cards"] >= s["cardCountFrom"]["cap"] else
+                   f" ({info['cards']} cards: no clump splits further)") if chosen else
+                  " (raise --cards, or --cards 0 to split clumps until the target is met)"), file=sys.stderr)
     return 0
+
+
+def fit_verdict(within: float, target: float) -> dict:
+    """The fit figure against its target (``--fit``): the summary says when the cards miss it."""
+    return {"within5Percent": float(within), "target": float(target), "met": bool(within >= target)}
+
+
+def fit_text(fit: dict) -> str:
+    """'75.4 % of strand points within 5 % of the mean strand length of their card, target 90.0 %: MISSED'."""
+    verdict = "met" if fit["met"] else "MISSED, below target"
+    return (f"{100 * fit['within5Percent']:.1f} % of strand points within 5 % of the mean strand length of their "
+            f"card, target {100 * fit['target']:.1f} %: {verdict}")

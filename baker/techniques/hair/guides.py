@@ -116,18 +116,27 @@ def make_guides(groom_path, options: GuidesOptions, progress: Progress = QUIET,
     lengths = np.linalg.norm(np.diff(strands, axis=1), axis=2).sum(axis=1)  # errors are relative to these
     timings["read"] = time.perf_counter() - start
     asset, binding, inside, normals = None, None, 0, np.zeros((len(strands), 3))
-    if options.scalp:
+    scalp = options.scalp
+    if scalp:
         from baker import readers
+
+        asset = readers.read(scalp, max_memory=max_memory)
+    else:  # the groom file's own emitter mesh (a ``baker hair`` output holds it), when it has one
+        from baker.geometry.asset import Asset
+        from baker.readers.scalp import read_scalp
+
+        doc = read_scalp(groom_path, max_memory=max_memory)
+        asset, scalp = (Asset(doc=doc, source=Path(groom_path)), groom_path) if doc is not None else (None, None)
+    if asset is not None:
         from baker.memory import check_bake
 
-        asset = readers.read(options.scalp, max_memory=max_memory)
         check_bake(asset, (), None, max_memory, "binding roots to this scalp")
         # the hair is written under the scalp's node (glTF) or with its transform (USD): work in its mesh space
         from baker.techniques.hair.usd import emitter_world_matrix
 
         matrix = emitter_world_matrix(asset.doc.json, 0)
         if abs(np.linalg.det(matrix[:3, :3])) < 1e-300:
-            raise BakerError(options.scalp, "the node drawing the scalp mesh has a singular transform")
+            raise BakerError(scalp, "the node drawing the scalp mesh has a singular transform")
         inverse = np.linalg.inv(matrix)
         strands = strands @ inverse[:3, :3].T + inverse[:3, 3]
         binding, strands, normals, inside = bind_to_scalp(asset, strands, options.seed)

@@ -54,7 +54,8 @@ class GuidesOptions:
     iterations: int = opt(8, "k-medoids refinement iterations", min=0, max=100)
     seed: int = opt(0, "random seed; the same seed gives byte-identical output")
     scalp: str | None = opt(None, "emitter mesh: roots bind to its closest point (triangle + barycentrics written "
-                                  "as BAKER_hair rootBinding)")
+                                  "as BAKER_hair rootBinding); default: the groom file's own triangle mesh when it "
+                                  "has one (a baker hair output holds its emitter), else none")
     bad_curves: str = opt("skip", "curves with < 2 vertices, NaN/inf points or zero length: skip (counted in the "
                                   "summary) or error", choices=("skip", "error"))
     curve_type: str = opt("linear", "USD output curve type/basis", choices=("linear", "catmullRom", "bspline"))
