@@ -51,7 +51,7 @@ class FurPanel(Panel):
                 draw_surfaces(ctx, shell, one, camera, size, extra={
                     "u_shell": float(i), "u_shellCount": float(count),
                     "u_shellSpacing": fur.shell_spacing, "u_tiling": fur.tiling,
-                    "u_alphaCutoff": float(chain["alphaCutoff"]) if mipped else 0.01,
+                    "u_shellAlphaCutoff": float(chain["alphaCutoff"]) if mipped else 0.01,
                     "u_alphaTest": 1.0 if mipped else 0.0})
             ctx.depth_mask = True
             ctx.disable(ctx.BLEND)
@@ -64,9 +64,9 @@ class FurShellPanel(Panel):
         super().__init__(
             "fur-shell", "", ("baker_fur.glsl",),
             "uniform sampler2D u_shellTexture; uniform float u_shell; uniform float u_shellCount; uniform float u_tiling;"
-            " uniform float u_alphaCutoff; uniform float u_alphaTest;",
+            " uniform float u_shellAlphaCutoff; uniform float u_alphaTest;",
             "vec4 texel = texture(u_shellTexture, baker_fur_shell_uv(v_uv, u_tiling));\n"
-            "    if (texel.a < u_alphaCutoff) discard;\n"
+            "    if (texel.a < u_shellAlphaCutoff) discard;\n"
             "    vec4 shaded = baker_fur_shell_shade(texel, baker_fur_shell_height(u_shell, u_shellCount), 0.4);\n"
             "    color = shaded.rgb * (0.3 + 0.7 * max(dot(N, u_light), 0.0));\n"
             "    alpha = mix(shaded.a, 1.0, u_alphaTest);",
