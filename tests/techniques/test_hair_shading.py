@@ -1,0 +1,174 @@
+"""The hair fibre model (Chiang et al. 2016 as pbrt's HairBxDF) against its defining properties (white-furnace energy
+conservation by dense quadrature, reciprocity on the specular cone, d'Eon's M_p against scipy's Bessel function and
+its normalisation), and the baked tables (``baker hair-lut``, ``baker.api.hair_bsdf``) against the model with an
+independent quadrature over the fibre offset."""
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy import special
+
+import baker.api
+from baker.gltf.images import read_image
+from baker.techniques.hair_shading import kernel as K
+from baker.techniques.hair_shading.extension import read_lut
+from baker.techniques.hair_shading.tables import as_half, bake_tables
+
+
+def direction(theta_deg, phi_deg=0.0):
+    t, p = math.radians(theta_deg), math.radians(phi_deg)
+    return np.array([math.sin(t), math.cos(t) * math.cos(p), math.cos(t) * math.sin(p)])
+
+
+def sphere(n_theta, n_phi):
+    """Midpoint directions in (sin theta, phi): equal solid angle 4 pi / (n_theta n_phi) each."""
+    s = -1 + (np.arange(n_theta) + 0.5) * 2 / n_theta
+    p = -math.pi + (np.arange(n_phi) + 0.5) * 2 * math.pi / n_phi
+    s, p = np.meshgrid(s, p, indexing="ij")
+    c = np.sqrt(1 - s ** 2)
+    return np.stack([s.ravel(), (c * np.cos(p)).ravel(), (c * np.sin(p)).ravel()], -1)
+
+
+@pytest.mark.parametrize("beta", [0.2, 0.4])
+def test_white_hair_integrates_to_one(beta):
+    """No absorption: the integral of S over every light direction (d omega) is 1 at every incidence (R, TT, TRT
+    and the residual carry all the light), by a midpoint rule over (sin theta_i, phi_i, h) that knows nothing of
+    how the lobes are normalised."""
+    model = K.FibreModel([0.0, 0.0, 0.0], beta, beta, 2.0, 1.55, offsets=24)
+    for theta in (0.0, 30.0, 60.0, 80.0):
+        albedo = K.albedo_grid(direction(theta), model.sigma_a, model.eta, model.v, model.s, model.sin2k,
+                               model.cos2k, model.offsets, model.weights, 120, 180)
+        print(f"beta {beta} theta_o {theta}: albedo {albedo[0]:.4f}")
+        assert abs(albedo[0] - 1.0) <= 0.02
+
+
+def test_absorbing_hair_loses_light_in_order():
+    """Blond > brown > black, and red > green > blue in each (eumelanin absorbs blue most)."""
+    albedos = []
+    for eumelanin in (0.3, 1.3, 8.0):
+        model = K.FibreModel(K.sigma_a_from_melanin(eumelanin), 0.3, 0.3, 2.0, 1.55, offsets=16)
+        a = K.albedo_grid(direction(20.0), model.sigma_a, model.eta, model.v, model.s, model.sin2k, model.cos2k,
+                          model.offsets, model.weights, 60, 90)
+        assert a[0] > a[1] > a[2] > 0.0
+        albedos.append(a)
+    assert albedos[0][0] > albedos[1][0] > albedos[2][0]
+    assert albedos[2][2] < 0.1  # black: little but the R lobe's few percent of Fresnel
+
+
+def test_longitudinal_lobe_against_scipy_bessel():
+    """d'Eon's M_p = csch(1/v) / (2v) exp(-sin sin / v) I0(cos cos / v), by scipy's scaled I0 in log space, and its
+    normalisation: the integral over theta_i of M_p cos theta_i is 1."""
+    rng = np.random.default_rng(3)
+    for v in (0.005, 0.03, 0.09, 0.11, 0.4, 1.0):
+        for theta_i, theta_o in rng.uniform(-1.5, 1.5, (20, 2)):
+            a = math.cos(theta_i) * math.cos(theta_o) / v
+            b = math.sin(theta_i) * math.sin(theta_o) / v
+            log_sinh = 1 / v + math.log((1 - math.exp(-2 / v)) / 2)
+            expected = math.exp(math.log(special.i0e(a)) + a - b - math.log(2 * v) - log_sinh)
+            got = K.longitudinal(math.cos(theta_i), math.cos(theta_o), math.sin(theta_i), math.sin(theta_o), v)
+            assert got == pytest.approx(expected, rel=2e-3, abs=1e-12)
+        theta = np.linspace(-math.pi / 2, math.pi / 2, 20001)
+        for theta_o in (-1.0, 0.0, 0.7):
+            m = np.array([K.longitudinal(math.cos(t), math.cos(theta_o), math.sin(t), math.sin(theta_o), v)
+                          for t in theta])
+            assert np.trapezoid(m * np.cos(theta), theta) == pytest.approx(1.0, abs=2e-3)
+
+
+def test_reciprocal_on_the_specular_cone():
+    """With no tilt, the h-averaged far field is symmetric under swapping light and view wherever |theta_i| =
+    |theta_o| (pbrt's A_p and N_p depend on theta_o alone, so this is where the model is exactly reciprocal)."""
+    model = K.FibreModel(K.sigma_a_from_melanin(1.3), 0.3, 0.3, 0.0, 1.55, offsets=32)
+    rng = np.random.default_rng(5)
+    for theta, phi_o, phi_i, sign in zip(rng.uniform(-80, 80, 12), rng.uniform(-180, 180, 12),
+                                         rng.uniform(-180, 180, 12), rng.choice([-1, 1], 12)):
+        wo, wi = direction(theta, phi_o), direction(sign * theta, phi_i)
+        np.testing.assert_allclose(model(wo, wi), model(wi, wo), rtol=1e-9, atol=1e-12)
+
+
+def model_with_midpoints(model, wo, wi, count=384):
+    """S averaged over h by a fine midpoint rule (the tables use 64 Gauss-Legendre nodes): an independent quadrature
+    (384 nodes: narrow azimuthal lobes sweep across phi as h changes, and 48 midpoints alias by 8%)."""
+    h = -1 + (np.arange(count) + 0.5) * 2 / count
+    w = np.full(count, 1.0 / count)
+    wo = np.ascontiguousarray(np.broadcast_to(wo, wi.shape))
+    return K.scattering(wo, np.ascontiguousarray(wi), model.sigma_a, model.eta, model.v, model.s, model.sin2k,
+                        model.cos2k, h, w)
+
+
+@pytest.mark.parametrize("beta", [0.2, 0.4])
+def test_tables_match_the_model(beta):
+    """``baker.api.hair_bsdf`` (half-float tables, bilinear lookups) is within 5% relative L1 over the sphere of light
+    directions of the model, per view direction, for blond, brown and black hair."""
+    lights = sphere(24, 48)
+    worst = 0.0
+    for eumelanin in (0.3, 1.3, 8.0):
+        model = K.FibreModel(K.sigma_a_from_melanin(eumelanin), beta, beta, 2.0, 1.55)
+        for theta in (-50.0, 5.0, 75.0):
+            view = direction(theta, 20.0)
+            truth = model_with_midpoints(model, view, lights)
+            got = baker.api.hair_bsdf([1.0, 0.0, 0.0], lights, view, eumelanin=eumelanin, beta_m=beta,
+                                      beta_n=beta, alpha=2.0, eta=1.55)
+            error = np.abs(got - truth).sum(0) / truth.sum(0)
+            worst = max(worst, error.max())
+            assert error.max() <= 0.05, (eumelanin, theta, error)
+    print(f"beta {beta}: worst relative L1 {worst:.4f}")
+
+
+def test_any_tangent_frame():
+    """Rotating tangent, light and view together changes nothing (the twin builds its own fibre frame)."""
+    rng = np.random.default_rng(8)
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    lights = sphere(6, 8)
+    view = direction(25.0, 40.0)
+    a = baker.api.hair_bsdf([1.0, 0.0, 0.0], lights, view, eumelanin=0.3)
+    b = baker.api.hair_bsdf(q @ [1.0, 0.0, 0.0], lights @ q.T, q @ view, eumelanin=0.3)
+    np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-9)
+
+
+def _cli(*args):
+    from baker.cli import main
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        code = main([str(a) for a in args])
+    return code, err.getvalue()
+
+
+def test_hair_lut_command(tmp_path):
+    """The folder holds half-float EXRs of the sizes the sidecar names, whose values are the tables the twin
+    samples: the twin reads them back to the same BSDF."""
+    out = tmp_path / "lut"
+    code, err = _cli("hair-lut", "-o", out, "--hair-beta-m", "0.25", "--hair-beta-n", "0.35", "-q")
+    assert code == 0, err
+    meta = json.loads((out / "hair_lut.json").read_text())
+    m = read_image(out / meta["longitudinal"]["file"])
+    n = read_image(out / meta["azimuthal"]["file"])
+    assert m.dtype == np.float16 and m.shape == (meta["longitudinal"]["height"], meta["longitudinal"]["width"], 3)
+    assert n.dtype == np.float16 and n.shape == (meta["azimuthal"]["height"], meta["azimuthal"]["width"], 4)
+    assert meta["parameters"]["betaM"] == 0.25 and meta["azimuthal"]["slices"] * 32 == n.shape[0]
+    assert np.isfinite(m.astype(float)).all() and np.isfinite(n.astype(float)).all()
+    baked = as_half(bake_tables(0.25, 0.35, 1.55))
+    np.testing.assert_array_equal(m.astype(np.float32), baked.longitudinal)
+    lights = sphere(8, 16)
+    view = direction(10.0)
+    from_files = baker.api.hair_bsdf([1, 0, 0], lights, view, eumelanin=1.3, beta_m=0.25, beta_n=0.35,
+                                     tables=read_lut(out))
+    direct = baker.api.hair_bsdf([1, 0, 0], lights, view, eumelanin=1.3, beta_m=0.25, beta_n=0.35)
+    np.testing.assert_allclose(from_files, direct, rtol=1e-6)
+    again = tmp_path / "again"
+    assert _cli("hair-lut", "-o", again, "--hair-beta-m", "0.25", "--hair-beta-n", "0.35", "-q")[0] == 0
+    for name in ("hair_longitudinal.exr", "hair_azimuthal.exr", "hair_lut.json"):
+        assert (again / name).read_bytes() == (out / name).read_bytes()
+
+
+def test_hair_lut_command_errors(tmp_path):
+    code, err = _cli("hair-lut", "-o", tmp_path / "x", "--hair-beta-m", "2")
+    assert code == 2 and "beta_m" in err and len(err.strip().splitlines()) == 1 and not (tmp_path / "x").exists()
+    (tmp_path / "file").write_text("")
+    code, err = _cli("hair-lut", "-o", tmp_path / "file")
+    assert code == 2 and "file" in err and "not a folder" in err
