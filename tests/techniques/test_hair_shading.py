@@ -151,6 +151,8 @@ def test_hair_lut_command(tmp_path):
     assert m.dtype == np.float16 and m.shape == (meta["longitudinal"]["height"], meta["longitudinal"]["width"], 3)
     assert n.dtype == np.float16 and n.shape == (meta["azimuthal"]["height"], meta["azimuthal"]["width"], 4)
     assert meta["parameters"]["betaM"] == 0.25 and meta["azimuthal"]["slices"] * 32 == n.shape[0]
+    dual = read_image(out / meta["dualScattering"]["file"])
+    assert dual.dtype == np.float16 and dual.shape == (16, 32, 4)
     assert np.isfinite(m.astype(float)).all() and np.isfinite(n.astype(float)).all()
     baked = as_half(bake_tables(0.25, 0.35, 1.55))
     np.testing.assert_array_equal(m.astype(np.float32), baked.longitudinal)
@@ -162,7 +164,7 @@ def test_hair_lut_command(tmp_path):
     np.testing.assert_allclose(from_files, direct, rtol=1e-6)
     again = tmp_path / "again"
     assert _cli("hair-lut", "-o", again, "--hair-beta-m", "0.25", "--hair-beta-n", "0.35", "-q")[0] == 0
-    for name in ("hair_longitudinal.exr", "hair_azimuthal.exr", "hair_lut.json"):
+    for name in ("hair_longitudinal.exr", "hair_azimuthal.exr", "hair_dual_scattering.exr", "hair_lut.json"):
         assert (again / name).read_bytes() == (out / name).read_bytes()
 
 
@@ -172,3 +174,27 @@ def test_hair_lut_command_errors(tmp_path):
     (tmp_path / "file").write_text("")
     code, err = _cli("hair-lut", "-o", tmp_path / "file")
     assert code == 2 and "file" in err and "not a folder" in err
+
+
+def test_dual_scattering_averages_against_the_model():
+    """Zinke's a_f and a_b (from the h-averaged azimuthal integrals) against the model's S integrated by brute force
+    over the forward and backward halves of the sphere of light directions; white hair's halves sum to 1."""
+    from baker.techniques.hair_shading.tables import dual_scattering_table
+
+    dual = dual_scattering_table(0.3, 0.3, 1.55, 2.0, n_theta=7, slices=5)  # rows at x = 0, .25, .5, .75, 1
+    white = dual.table[0, :, 0] + dual.table[0, :, 1]
+    np.testing.assert_allclose(white, 1.0, atol=2e-3)
+    lights = sphere(90, 180)
+    back = np.abs(np.arctan2(lights[:, 2], lights[:, 1])) <= math.pi / 2  # the view sits at phi = 0
+    for row in (0, 2):
+        sigma = -2.0 * math.log(1.0 - row / 4)
+        model = K.FibreModel([sigma] * 3, 0.3, 0.3, 2.0, 1.55, offsets=32)
+        for col in (0, 3, 5):  # |theta| = col / 6 * 90 degrees
+            view = direction(col * 15.0)
+            s = model(np.broadcast_to(view, lights.shape), lights)[:, 0] * 4 * math.pi / len(lights)
+            a_f, a_b = s[~back].sum(), s[back].sum()
+            assert dual.table[row, col, 0] == pytest.approx(a_f, abs=0.01), (row, col)
+            assert dual.table[row, col, 1] == pytest.approx(a_b, abs=0.01), (row, col)
+    # opaque fibres pass little forward up to 45 degrees (R's grazing part; at grazing incidence Fresnel -> 1)
+    assert (dual.table[-1, :4, 0] < 0.1).all()
+    assert dual.alpha_f == pytest.approx(math.radians(2.0)) and 0.0 < dual.table[..., 3].min()

@@ -4,6 +4,8 @@
 - ``hair_longitudinal.exr``: the M table, RGB half float, row 0 (top) is theta_o' = -pi/2, column 0 theta_i = -pi/2;
 - ``hair_azimuthal.exr``: the N table, RGBA half float, ``slices`` stacked blocks of ``thetaSize`` rows (row 0 of a
   block is theta_o = 0), column 0 is phi = 0;
+- ``hair_dual_scattering.exr``: Zinke et al. 2008's per-fibre averages, RGBA half float (a_f, a_b, alpha_b,
+  beta_b), row = absorption slice, column = |theta|;
 - ``hair_lut.json``: axes, encodings, the model's parameters and how a shader combines the two.
 """
 from __future__ import annotations
@@ -20,10 +22,11 @@ from baker.techniques.hair_shading.tables import HairTables
 
 LONGITUDINAL_FILE = "hair_longitudinal.exr"
 AZIMUTHAL_FILE = "hair_azimuthal.exr"
+DUAL_FILE = "hair_dual_scattering.exr"
 SIDECAR_FILE = "hair_lut.json"
 
 
-def sidecar(tables: HairTables, options) -> dict:
+def sidecar(tables: HairTables, options, dual=None) -> dict:
     m_size = tables.longitudinal.shape[0]
     return {
         "generator": "baker hair-lut",
@@ -61,18 +64,33 @@ def sidecar(tables: HairTables, options) -> dict:
             "slice": {"quantity": "sigma_a of the colour channel", "mapping": "x = 1 - exp(-sigma_a / 2); slice = "
                       "x * (slices - 1), linear between the two nearest slices (one lookup per colour channel)"},
         },
+        "dualScattering": None if dual is None else {
+            "technique": "Zinke et al. 2008, Dual Scattering Approximation for Fast Multiple Scattering in Hair",
+            "file": DUAL_FILE, "format": "exr-half", "width": int(dual.table.shape[1]),
+            "height": int(dual.table.shape[0]),
+            "channels": ["a_f", "a_b", "alpha_b", "beta_b"],
+            "meaning": "a_f, a_b: fraction of light one fibre scatters into the forward (|phi| > pi/2) and backward "
+                       "half; alpha_b, beta_b (rad): longitudinal shift and width of the backward lobe (R and TRT "
+                       "weighted by their backward fractions); forward shift and width are TT's (alphaF, betaF)",
+            "alphaF": dual.alpha_f, "betaF": dual.beta_f,
+            "u": {"quantity": "|theta|", "unit": "rad", "range": [0.0, math.pi / 2], "mapping": "u = |theta| / (pi / 2)"},
+            "v": {"quantity": "sigma_a of the colour channel", "mapping": "row = x * (height - 1), x = 1 - exp(-sigma_a "
+                  "/ 2) (the azimuthal table's slices)"},
+        },
         "texels": "endpoint-aligned: texel i is at t = i / (size - 1); sample at (t * (size - 1) + 0.5) / size "
                   "with linear filtering",
     }
 
 
-def lut_files(tables: HairTables, options) -> list[tuple[str, bytes]]:
-    """(file name, bytes) of the tables and the sidecar, the sidecar last."""
+def lut_files(tables: HairTables, options, dual=None) -> list[tuple[str, bytes]]:
+    """(file name, bytes) of the tables (and Zinke's, if given) and the sidecar, the sidecar last."""
     from baker.gltf.images import encode_image
 
-    return [(LONGITUDINAL_FILE, encode_image(tables.longitudinal.astype(np.float16), ".exr")),
-            (AZIMUTHAL_FILE, encode_image(tables.azimuthal.astype(np.float16), ".exr")),
-            (SIDECAR_FILE, (json.dumps(sidecar(tables, options), indent=2) + "\n").encode("utf-8"))]
+    files = [(LONGITUDINAL_FILE, encode_image(tables.longitudinal.astype(np.float16), ".exr")),
+             (AZIMUTHAL_FILE, encode_image(tables.azimuthal.astype(np.float16), ".exr"))]
+    if dual is not None:
+        files.append((DUAL_FILE, encode_image(dual.table.astype(np.float16), ".exr")))
+    return files + [(SIDECAR_FILE, (json.dumps(sidecar(tables, options, dual), indent=2) + "\n").encode("utf-8"))]
 
 
 def read_lut(folder) -> HairTables:

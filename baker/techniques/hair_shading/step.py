@@ -12,7 +12,7 @@ from baker.techniques.hair_shading.options import HairShadingOptions
 def run_hair_lut(args) -> int:
     from baker.gltf.atomic import write_files_atomic
     from baker.techniques.hair_shading.extension import lut_files
-    from baker.techniques.hair_shading.tables import bake_tables
+    from baker.techniques.hair_shading.tables import bake_tables, dual_scattering_table
 
     try:
         options = from_args(HairShadingOptions, "hair", args)
@@ -24,7 +24,9 @@ def run_hair_lut(args) -> int:
     folder.mkdir(parents=True, exist_ok=True)
     tables = bake_tables(options.beta_m, options.beta_n, options.eta, options.m_size, options.phi_size,
                          options.theta_size, options.slices, options.offsets)
-    files = [(folder / name, data) for name, data in lut_files(tables, options)]
+    dual = dual_scattering_table(options.beta_m, options.beta_n, options.eta, options.alpha, options.theta_size,
+                                 options.slices, options.offsets)
+    files = [(folder / name, data) for name, data in lut_files(tables, options, dual)]
     write_files_atomic(files)  # the sidecar last: all new files or all earlier ones
     if not args.quiet:
         sizes = ", ".join(f"{p.name} {len(d) // 1024} KiB" for p, d in files)
