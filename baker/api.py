@@ -34,7 +34,8 @@ def hair_bsdf(tangent, light, view, **params):
     from the fibre, (n, 3) or (3,); ``tangent`` along the fibre), per RGB channel, shape (n, 3); integrated over light
     directions (no cosine) it is the fibre's albedo. ``params``: ``eumelanin``, ``pheomelanin`` (d'Eon et al. 2011
     concentrations, default 1.3 and 0), ``beta_m``, ``beta_n`` (roughness 0.05..1, default 0.3), ``alpha`` (cuticle
-    tilt, degrees, default 2), ``eta`` (default 1.55), or ``sigma_a`` (RGB absorption per fibre radius)."""
+    tilt, degrees, default 2), ``eta`` (default 1.55), or ``sigma_a`` (RGB absorption per fibre radius), or ``color`` (linear RGB, Chiang et al.
+    2016's inversion)."""
     from baker.techniques.hair_shading.tables import shade_from_tables
 
     return shade_from_tables(tangent, light, view, **params)

@@ -198,3 +198,14 @@ def test_dual_scattering_averages_against_the_model():
     # opaque fibres pass little forward up to 45 degrees (R's grazing part; at grazing incidence Fresnel -> 1)
     assert (dual.table[-1, :4, 0] < 0.1).all()
     assert dual.alpha_f == pytest.approx(math.radians(2.0)) and 0.0 < dual.table[..., 3].min()
+
+
+def test_colour_inversion():
+    """Chiang's inversion: white is clear, darker channels absorb more, and the hair it makes is, integrated over
+    the light sphere, ordered like the colour asked for (a brown colour gives red > green > blue)."""
+    assert np.allclose(K.sigma_a_from_color([1.0, 1.0, 1.0], 0.3), 0.0)
+    sigma = K.sigma_a_from_color([0.45, 0.25, 0.12], 0.3)
+    assert sigma[0] < sigma[1] < sigma[2]
+    lights = sphere(24, 48)
+    s = baker.api.hair_bsdf([1, 0, 0], lights, direction(10.0), color=[0.45, 0.25, 0.12]).sum(0)
+    assert s[0] > s[1] > s[2]

@@ -167,10 +167,11 @@ _BAKED: dict = {}  # (beta_m, beta_n, eta) -> tables: a shader's tables are bake
 
 def shade_from_tables(tangent, light, view, *, eumelanin: float = 1.3, pheomelanin: float = 0.0, beta_m: float = 0.3,
                       beta_n: float = 0.3, alpha: float = 2.0, eta: float = 1.55, sigma_a=None,
-                      tables: HairTables | None = None) -> np.ndarray:
+                      color=None, tables: HairTables | None = None) -> np.ndarray:
     """``baker.api.hair_bsdf``: the tables (default size, half float, baked once per (beta_m, beta_n, eta), or
-    ``tables``) sampled as the runtime samples them; ``sigma_a`` (RGB per fibre radius) overrides the melanin."""
-    from baker.techniques.hair_shading.kernel import sigma_a_from_melanin
+    ``tables``) sampled as the runtime samples them; ``sigma_a`` (RGB per fibre radius), or ``color`` (linear RGB,
+    through Chiang et al. 2016's inversion), overrides the melanin."""
+    from baker.techniques.hair_shading.kernel import sigma_a_from_color, sigma_a_from_melanin
 
     for name, value, lo, hi in (("eumelanin", eumelanin, 0.0, 50.0), ("pheomelanin", pheomelanin, 0.0, 50.0),
                                 ("beta_m", beta_m, 0.05, 1.0), ("beta_n", beta_n, 0.05, 1.0),
@@ -182,7 +183,12 @@ def shade_from_tables(tangent, light, view, *, eumelanin: float = 1.3, pheomelan
         if key not in _BAKED:
             _BAKED[key] = as_half(bake_tables(*key))
         tables = _BAKED[key]
-    sigma = sigma_a_from_melanin(eumelanin, pheomelanin) if sigma_a is None else np.asarray(sigma_a, float)
+    if sigma_a is not None:
+        sigma = np.asarray(sigma_a, float)
+    elif color is not None:
+        sigma = sigma_a_from_color(color, beta_n)
+    else:
+        sigma = sigma_a_from_melanin(eumelanin, pheomelanin)
     return evaluate(tables, tangent, light, view, sigma, alpha)
 
 
