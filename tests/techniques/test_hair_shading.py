@@ -209,3 +209,41 @@ def test_colour_inversion():
     lights = sphere(24, 48)
     s = baker.api.hair_bsdf([1, 0, 0], lights, direction(10.0), color=[0.45, 0.25, 0.12]).sum(0)
     assert s[0] > s[1] > s[2]
+
+
+def test_exit_azimuths_against_a_traced_circle():
+    """N_p's lobe centres Phi(p) = 2 p gamma_t - 2 gamma_o + p pi (and the internal path length in A_p's
+    transmittance) against a ray traced through the fibre's unit-circle cross-section with Snell's law and mirror
+    reflections, at perpendicular incidence and at theta_o = 40 degrees (Bravais' index for the projected ray)."""
+    for theta in (0.0, 40.0):
+        sin_o = math.sin(math.radians(theta))
+        etap = math.sqrt(1.55 ** 2 - sin_o ** 2) / math.cos(math.radians(theta))
+        for h in (-0.9, -0.4, 0.1, 0.6, 0.95):
+            gamma_o, gamma_t, path = K.fibre_geometry(sin_o, 1.55, h)
+            # the ray arrives travelling along -y at offset h; where it enters, the outward normal is at -gamma_o
+            point = np.array([math.cos(gamma_o), -math.sin(gamma_o)])
+            d = np.array([-1.0, 0.0])
+            reflected = d - 2 * d.dot(point) * point
+            inside = d / etap
+            cos_t = math.sqrt(1 - (1 - d.dot(point) ** 2) / etap ** 2)
+            inside = inside + (-d.dot(point) / etap - cos_t) * point
+            directions = [reflected]
+            chord = 0.0
+            for p in (1, 2):
+                t = -2 * point.dot(inside)  # to the far side of the unit circle
+                point = point + t * inside
+                chord = t if p == 1 else chord
+                n = point
+                cos_i = inside.dot(n)
+                sin_i2 = 1 - cos_i ** 2
+                out = etap * (inside - cos_i * n) + math.sqrt(1 - etap ** 2 * sin_i2) * n  # refract out
+                directions.append(out / np.linalg.norm(out))
+                inside = inside - 2 * cos_i * n  # reflect inside for the next segment
+            for p, out in enumerate(directions):
+                phi = math.atan2(out[1], out[0])
+                expected = 2 * p * gamma_t - 2 * gamma_o + p * math.pi
+                wrapped = (phi - expected + math.pi) % (2 * math.pi) - math.pi
+                assert abs(wrapped) < 1e-9, (theta, h, p, phi, expected)
+            # a chord of the projected circle is 2 cos gamma_t; the 3D path divides by cos theta_t
+            cos_theta_t = math.sqrt(1 - (sin_o / 1.55) ** 2)
+            assert chord / cos_theta_t == pytest.approx(path, rel=1e-9)
