@@ -28,6 +28,19 @@ def build(recipe_path=None, *, jobs: int = 1, scheduler: str | None = None, fail
                      progress=progress, max_memory=max_memory)
 
 
+def hair_bsdf(tangent, light, view, **params):
+    """The hair fibre BSDF a runtime computes from baked tables (``baker hair-lut``): sum_p M_p A_p N_p of Chiang et
+    al. 2016's far field, the radiance toward ``view`` per unit radiance arriving from ``light`` (unit vectors away
+    from the fibre, (n, 3) or (3,); ``tangent`` along the fibre), per RGB channel, shape (n, 3); integrated over light
+    directions (no cosine) it is the fibre's albedo. ``params``: ``eumelanin``, ``pheomelanin`` (d'Eon et al. 2011
+    concentrations, default 1.3 and 0), ``beta_m``, ``beta_n`` (roughness 0.05..1, default 0.3), ``alpha`` (cuticle
+    tilt, degrees, default 2), ``eta`` (default 1.55), or ``sigma_a`` (RGB absorption per fibre radius), or ``color`` (linear RGB, Chiang et al.
+    2016's inversion)."""
+    from baker.techniques.hair_shading.tables import shade_from_tables
+
+    return shade_from_tables(tangent, light, view, **params)
+
+
 def run_command(argv) -> int:
     """Run any ``baker`` command in this process, e.g. ``run_command(["tam", "-o", "tam"])``; returns its exit code
     and raises :class:`~baker.errors.BakerError` for bad input (where the CLI would print one line and exit 2)."""
@@ -36,4 +49,4 @@ def run_command(argv) -> int:
     return commands.run(list(argv))
 
 
-__all__ = ["bake", "save", "validate", "build", "run_command"]
+__all__ = ["bake", "save", "validate", "build", "hair_bsdf", "run_command"]

@@ -1,0 +1,9 @@
+"""Hair shaded like hair (RTR4 14.7.2): Chiang et al. 2016's fibre model as truth, its baked tables and
+``baker hair-lut``, and the table lookup ``baker.api.hair_bsdf`` twins."""
+from baker.technique import Technique
+
+TECHNIQUE = Technique(
+    name='hair-shading',
+    summary="Chiang et al. 2016's hair fibre BSDF (pbrt's HairBxDF) baked into M and N tables (baker hair-lut)",
+    commands=('baker.techniques.hair_shading.command',),
+)
