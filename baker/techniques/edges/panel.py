@@ -13,7 +13,7 @@ from baker.preview.core import (INK, LAMBERT, REFERENCE, Camera, DrawItem, Panel
 from baker.techniques.edges.extension import FIN_ATTRIBUTES, OUTLINE_NORMAL, read
 
 DEFAULT_CREASE = math.radians(60)
-WIRE_COVERAGE = 0.3  # the most of a triangle the wireframe panel's lines darken fully
+WIRE_COVERAGE = 0.4  # the most of a triangle the wireframe panel's lines darken fully
 
 
 @dataclass
