@@ -129,7 +129,7 @@ def write_tick_labels(image: np.ndarray, labels) -> np.ndarray:
 # the back light's colour: warm, as light through skin, wax or leaves reads (the runtime multiplies its result by the
 # light's colour and intensity, as here)
 BACK_LIGHT_TINT = (1.0, 0.78, 0.55)
-AMBIENT = 0.03  # x albedo: the silhouette and the thickest parts show dark, never black
+AMBIENT = 0.03  # x albedo: the floor under the light let through, so a part too thick for it shows dark, not black
 BRIGHTEST = 0.9  # what the translucency of the thinnest parts is exposed to (red channel), below white
 EXPOSED_PERCENTILE = 99.0  # of the vertices' largest translucency (their transmittance, the lobe at 1)
 
@@ -138,7 +138,7 @@ class TranslucencyPanel(Panel):
     """Translucency with the material's eq. 14.30 parameters (defaults where the material has none), lit from
     nearly straight behind (so the lobe (V . -L)^p is close to 1 over the whole view and the picture is the
     transmittance t_ss = exp(-thickness / attenuationDistance): thin parts glow, thick parts stay dark), by a warm
-    light whose intensity exposes the thinnest part of the asset to BRIGHTEST, over a dim ambient."""
+    light whose intensity exposes the thinnest 1% of the vertices to BRIGHTEST, never darker than a dim floor."""
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
@@ -189,7 +189,7 @@ PANELS = [
                    attribute=ATTRIBUTE, needs=(ATTRIBUTE,), order=10),
     TranslucencyPanel("translucency", "translucency, lit from behind", ("baker_translucency.glsl",),
                       "uniform BakerThickness u_thickness;\nuniform vec3 u_lightColor;",
-                      f"color = {AMBIENT} * albedo\n"
-                      "          + u_lightColor * baker_translucency(u_thickness, N, V, u_light, scalar);",
+                      "color = max(u_lightColor * baker_translucency(u_thickness, N, V, u_light, scalar),\n"
+                      f"                {AMBIENT} * albedo);",
                       attribute=ATTRIBUTE, light="back", needs=(ATTRIBUTE,), order=20),
 ]
