@@ -51,7 +51,8 @@ def main() -> None:
         shutil.copytree(VIEWER / "dist", root / "dist")
         save(baker.bake(SPOT, bakes=tuple(registry.bakes()), options=SPOT_PAGE_OPTIONS), root / "spot_all.glb")
         server, base = serve(root)
-        url = f"{base}/index.html?hud=0&src=spot_all.glb&time=1.3"
+        # every technique on (?start=all) and translucency lit from behind: the viewer itself opens on one technique
+        url = f"{base}/index.html?hud=0&src=spot_all.glb&time=1.3&start=all&on=backlight"
         jobs = [{"url": f"{url}&engine={engine}", "width": width, "height": height, "frames": args.frames}
                 for _ in range(args.repeat) for engine in ENGINES]
         (root / "jobs.json").write_text(json.dumps(jobs))

@@ -5,7 +5,7 @@
 The spot baked with every surface and geometry technique (tests/test_three_webgpu.py's options) on three pages of
 the viewer: WebGLRenderer (?engine=three, the peer: @baker/three's onBeforeCompile / ShaderMaterial path),
 WebGPURenderer on WebGPU (?engine=three-webgpu, TSL node materials with the WGSL modules) and on its WebGL2 backend
-(&backend=webgl2, the same node materials with the GLSL modules), every technique on (the defaults). Per page
+(&backend=webgl2, the same node materials with the GLSL modules), every technique on (?start=all). Per page
 (examples/viewer/test/webgpu_bench.mjs): the first frame with the asset (its render call: shader generation,
 program linking or pipeline creation, the submission), and the mean of --frames frames after it, each waited for on
 the GPU (SwiftShader: Vulkan for WebGPU, GLES through ANGLE for WebGL; no GPU here, so the figures are CPU
@@ -47,7 +47,9 @@ def main():
         save(asset, root / "spot_all.glb")
         server, url = serve(root)
         try:
-            jobs = [{"url": f"{url}/index.html?hud=0&src=spot_all.glb&time=1.3{query}", "width": width, "height": height,
+            # every technique on (?start=all) and translucency lit from behind: the viewer opens on one technique
+            page = f"{url}/index.html?hud=0&src=spot_all.glb&time=1.3&start=all&on=backlight"
+            jobs = [{"url": f"{page}{query}", "width": width, "height": height,
                      "frames": args.frames} for _ in range(args.repeat) for query in PAGES.values()]
             spec = root / "jobs.json"
             spec.write_text(json.dumps(jobs))

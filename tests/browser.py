@@ -41,7 +41,6 @@ SPOT_PAGE_OPTIONS = {
     "caustics": {"size": 64, "frames": 4, "waves": 16, "tile_size": 0.5, "water_level": 2.5, "depth": 2.5,
                  "fade_distance": 2.0},
 }
-DEFAULT_OFF = {"curvature", "wireframe"}  # debug views, off until asked for (both plugins)
 
 
 def require_tools(test, packages=("playwright-core",)):

@@ -39,3 +39,21 @@ def assert_khronos_clean(path) -> dict:
     assert not errors, f"Khronos glTF-Validator errors in {path}:\n" + "\n".join(
         f"  {m['code']} {m.get('pointer', '-')}: {m['message']}" for m in errors)
     return report
+
+
+# a channel at or above this (8-bit) is clipped white; every channel at or below CLIPPED_BLACK is clipped black
+CLIPPED_WHITE, CLIPPED_BLACK = 254, 3
+
+
+def clipped_fractions(image, covered) -> tuple[float, float]:
+    """(clipped white, clipped black) shares of the pixels ``covered`` (H, W bool) of an 8-bit picture (H, W, 3;
+    integers 0-255 or floats 0-1): white where any channel is at 254 or more (a highlight or a shade lost), black
+    where every channel is at 3 or less."""
+    import numpy as np
+
+    pixels = np.asarray(image)
+    pixels = np.round(pixels * 255.0) if pixels.dtype.kind == "f" else pixels.astype(np.float64)
+    pixels = pixels[..., :3][covered]
+    if not len(pixels):
+        return 0.0, 0.0
+    return float((pixels.max(axis=1) >= CLIPPED_WHITE).mean()), float((pixels.max(axis=1) <= CLIPPED_BLACK).mean())

@@ -117,8 +117,8 @@ def _frame_metrics(three, babylon):
     return mad, ssim, covered
 
 
-# translucency is lit from behind (the viewer's default when the asset has it); the other techniques from the front,
-# where they show (under the back light the skin LUT, for one, changes hardly a pixel)
+# translucency is lit from behind (?on=backlight: the viewer's key light is in front until asked); the other
+# techniques from the front, where they show (under the back light the skin LUT, for one, changes hardly a pixel)
 BACK_LIT = {"translucency"}
 
 
@@ -129,9 +129,10 @@ def _loads(url, techniques):
     alone = lambda t: (t, [t], [x for x in every if x != t])  # noqa: E731
     back = [t for t in every if t in BACK_LIT]
     front = [t for t in every if t not in BACK_LIT]
-    loads = [("", "none", [("default", [], []), ("none", [], every)] + [alone(t) for t in back])]
+    loads = [("&on=backlight" if back else "", "none", [("default", [], []), ("none", [], every)]
+              + [alone(t) for t in back])]
     if back and front:
-        loads.append(("&off=backlight", "none-front", [("none-front", [], every)] + [alone(t) for t in front]))
+        loads.append(("", "none-front", [("none-front", [], every)] + [alone(t) for t in front]))
     elif front:
         loads[0][2].extend(alone(t) for t in front)
     return loads

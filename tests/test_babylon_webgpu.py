@@ -37,7 +37,7 @@ CHANGED = 4 / 255  # a pixel the technique changed
 CHANGED_PIXELS = 100
 
 TIME = "&time=1.3"  # the caustic animation held at one time of its loop, so the two backends' frames compare
-BACK_LIT = {"translucency"}  # lit from behind (the viewer's default with translucency), the others from the front
+BACK_LIT = {"translucency"}  # lit from behind (?on=backlight), the others from the front (the viewer's default)
 ENGINES = ("babylon", "babylon-webgpu")
 
 
@@ -65,9 +65,9 @@ def _loads(name, techniques):
     front = [t for t in every if t not in BACK_LIT]
     loads = []
     if back:
-        loads.append(("", [("none", [], every)] + [alone(t) for t in back]))
+        loads.append(("&on=backlight", [("none", [], every)] + [alone(t) for t in back]))
     if front:
-        loads.append(("&off=backlight" if back else "", [("none-front", [], every)] + [alone(t) for t in front]))
+        loads.append(("", [("none-front", [], every)] + [alone(t) for t in front]))
     return loads
 
 

@@ -715,3 +715,103 @@ def test_reference_panel_honours_alpha_mode(tmp_path):
                                                      opaque[inside] - background, np.nan)
     print("blend fraction", np.nanmedian(mix))
     assert 0.4 < np.nanmedian(mix) < 0.6
+
+
+# ---------------------------------------------------------------------------------------------------- readable panels
+@pytest.fixture(scope="module")
+def bunny_sheet(tmp_path_factory):
+    """The Stanford bunny (69k triangles) with thickness and edges at the default panel size: dense enough that a
+    wireframe of full-strength lines is a black blob."""
+    out = tmp_path_factory.mktemp("bunny") / "bunny.glb"
+    save(baker.bake(MESHES / "stanford-bunny.obj", bakes=["thickness", "edges"], seed=1,
+                    options={"thickness": {"rays": 16, "per_texel": False}}), out)
+    return out, preview(out, panels=["lambert", "thickness", "translucency", "wireframe"])
+
+
+def _thickness_values(path):
+    from baker.gltf.document import GltfDocument
+
+    doc = GltfDocument.load(path)
+    return np.concatenate([doc.accessor(p["attributes"]["_THICKNESS"]).reshape(len(doc.accessor(
+        p["attributes"]["POSITION"])), -1)[:, 0] for m in doc.json["meshes"] for p in m["primitives"]])
+
+
+def test_no_panel_clips_the_asset(sheet, bunny_sheet):
+    """Every panel of spot with every bake (caustics aside) and of the bunny leaves at most 2% of the asset's pixels
+    (the reference panel's, and what the panel draws around them) clipped white (a channel at 254 or more) or black
+    (every channel at 3 or less)."""
+    from conftest import clipped_fractions
+
+    for result in (sheet, bunny_sheet[1]):
+        asset = _covered(_panel(result, "lambert"))
+        measured = {}
+        for name, _, _ in result.panels:
+            if name == "caustics":  # the caustics panel is another item's
+                continue
+            image = _panel(result, name)
+            measured[name] = clipped_fractions(image, asset | _covered(image))
+        print("clipped (white, black)", {k: (round(w, 4), round(b, 4)) for k, (w, b) in measured.items()})
+        assert all(w <= 0.02 and b <= 0.02 for w, b in measured.values()), measured
+
+
+def test_thickness_bar_has_ticks_and_a_range_that_fits(bunny_sheet):
+    """The thickness bar ends at a round length at or above the asset's largest thickness and within 1.25 x it (the
+    label says which), with evenly spaced light ticks above it, the first at its left end and the last at its right
+    end, 4 to 10 steps apart."""
+    path, result = bunny_sheet
+    values = _thickness_values(path)
+    label = next(label for name, label, _ in result.panels if name == "thickness")
+    end = float(re.search(r"bar 0-([0-9.e+-]+) m", label).group(1))
+    print("thickness max", values.max(), "bar end", end, label)
+    assert values.max() <= end <= 1.25 * values.max()
+    image = _panel(result, "thickness")
+    size = image.shape[0]
+    drawn = np.abs(image - np.array(BACKGROUND)).max(axis=2) > 0.05
+    top = np.nonzero(drawn.mean(axis=1) > 0.9)[0].min()  # the bar's first row: the only row drawn across the panel
+    row = image[top - 1]
+    light = (row.min(axis=1) > 0.7)
+    starts = np.nonzero(light & ~np.concatenate([[False], light[:-1]]))[0]
+    print("bar top row", top, "tick columns", starts)
+    assert 5 <= len(starts) <= 11
+    gaps = np.diff(starts)
+    assert gaps.max() - gaps.min() <= 2  # evenly spaced
+    span = np.nonzero((np.abs(image[top + 1] - np.array(BACKGROUND)).max(axis=1) > 0.05))[0]
+    assert abs(starts[0] - span.min()) <= 2 and abs(starts[-1] + (light[starts[-1]:].argmin() - 1) - span.max()) <= 2
+
+
+def test_wireframe_of_a_dense_mesh_is_not_a_blob(bunny_sheet, sheet):
+    """The bunny's 69k triangles at 384 pixels: the wireframe's ink darkens at most 45% of the surface's shade (its
+    lines fade where the triangles are small on screen; full-strength lines covered 89%) and still shows (at least
+    10%); on spot's sparser mesh at 192 pixels the lines show as well (at least 10%)."""
+    from baker.preview.core import INK
+
+    for result, dense in ((bunny_sheet[1], True), (sheet, False)):
+        reference, wire = _lum(_panel(result, "lambert")), _lum(_panel(result, "wireframe"))
+        inside = ndimage.binary_erosion(_covered(_panel(result, "lambert")), iterations=2)
+        ink_lum = float(np.dot(INK, [0.299, 0.587, 0.114]))
+        shaded = inside & (reference - ink_lum > 0.05)
+        coverage = float(np.clip((reference - wire) / (reference - ink_lum), 0, 1)[shaded].mean())
+        print("wireframe ink coverage", "bunny" if dense else "spot", coverage)
+        assert 0.1 < coverage < (0.45 if dense else 0.9), coverage
+
+
+def test_translucency_reads_thin_against_thick(bunny_sheet, baked_spot):
+    """Lit from behind, the translucency panel follows the thickness (brightness against the thickness panel's
+    colour: correlation below -0.8; the thinnest quarter of the pixels at least 1.6 x as bright as the thickest), its
+    exposure uses the display's range (the brightest 1% at 0.7 or more, short of white) and the back light is warm
+    (red over blue where it shines through)."""
+    spot = preview(baked_spot, size=256, panels=["lambert", "thickness", "translucency"])
+    for result in (bunny_sheet[1], spot):
+        asset = ndimage.binary_erosion(_covered(_panel(result, "lambert")), iterations=2)
+        thickness, translucent = _panel(result, "thickness"), _panel(result, "translucency")
+        size = thickness.shape[0]
+        asset &= np.arange(size)[:, None] < 0.85 * size  # above the colour bar and its ticks
+        t = (thickness[..., 2] - 0.1) / 0.8  # mix(orange, blue, t)
+        brightness = translucent.mean(axis=2)
+        corr = np.corrcoef(t[asset], brightness[asset])[0, 1]
+        low, high = np.percentile(t[asset], [25, 75])
+        ratio = brightness[asset & (t < low)].mean() / brightness[asset & (t > high)].mean()
+        top = np.percentile(translucent.max(axis=2)[asset], 99)
+        warm = (translucent[..., 0] - translucent[..., 2])[asset & (t < low)].mean()
+        print("translucency: corr", corr, "thin/thick", ratio, "p99", top, "warm", warm)
+        assert corr < -0.8 and ratio > 1.6 and 0.7 <= top < 0.99 and warm > 0.1, (corr, ratio, top, warm)

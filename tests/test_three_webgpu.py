@@ -48,7 +48,7 @@ BLUR = 1.5
 TIME = "&time=1.3"  # the caustic animation held at one time on every page
 ENGINES = {"webgpu": "&engine=three-webgpu", "gl2": "&engine=three-webgpu&backend=webgl2", "webgl": ""}
 BACKENDS = {"webgpu": "webgpu", "gl2": "webgl2", "webgl": "webgl2"}
-BACK_LIT = {"translucency"}  # lit from behind (the viewer's default for it), the others from the front
+BACK_LIT = {"translucency"}  # lit from behind (?on=backlight), the others from the front (the viewer's default)
 # the techniques whose frames are compared, where not all of an asset's: the Blender head (a real asset with vertex
 # TANGENTs: the blurred normals through its tangent frame) is in metres, where the skin LUT changes no pixel
 COMPARED = {"head.glb": {"normalBlur"}}
@@ -84,9 +84,9 @@ def _loads(assets):
         front = [t for t in every if t not in BACK_LIT and t in compared]
         back = [t for t in every if t in BACK_LIT and t in compared]
         if front:
-            loads.append((name, "&off=backlight" if back else "", [(None, [], every)] + [alone(t) for t in front]))
+            loads.append((name, "", [(None, [], every)] + [alone(t) for t in front]))
         if back:
-            loads.append((name, "", [(None, [], every)] + [alone(t) for t in back]))
+            loads.append((name, "&on=backlight", [(None, [], every)] + [alone(t) for t in back]))
     return loads
 
 

@@ -16,11 +16,11 @@ import baker
 from baker.preview import core as pv
 from baker.gltf.images import read_image
 from baker.pipeline import save
-from browser import (BACKGROUND_RGB, CARD_DISTANCES, DEFAULT_OFF, SPOT, VIEWER, assert_cards_alpha_tested,
+from browser import (BACKGROUND_RGB, CARD_DISTANCES, SPOT, VIEWER, assert_cards_alpha_tested,
                      assert_caustics_move, build_viewer, bump_detail, gltf_json, require_tools, serve, shoot,
                      techniques_in, write_blender_head, write_blurred_sphere, write_caustic_floor, write_hair_cards,
                      write_label_and_groom)
-from conftest import assert_khronos_clean
+from conftest import assert_khronos_clean, clipped_fractions
 
 SIZE = 256
 
@@ -30,7 +30,7 @@ def site(tmp_path_factory):
     """A served folder with the built viewer, a baked asset, and the preview panel's shader and setup."""
     require_tools("viewer")
     root = tmp_path_factory.mktemp("site")
-    build_viewer(root)
+    build_viewer(root, ("viewer.js", "babylon.js"))  # the Babylon.js page for the first-picture test
     asset = baker.bake(SPOT, options={"thickness": {"rays": 16, "per_texel": False}})
     save(asset, root / "spot.glb")
 
@@ -38,6 +38,7 @@ def site(tmp_path_factory):
     camera = pv.frame_camera(items, azimuth=150, elevation=15)
     panel = next(p for p in pv.all_panels() if p.name == "translucency")
     (root / "panel.frag").write_text(pv.fragment_shader(panel))
+    panel.prepare(items)  # the light's exposure, as the preview's draw sets it
     uniforms = {k: list(v) if isinstance(v, tuple) else v for k, v in panel.uniforms(items[0]).items()}
     # the material inputs every surface panel reads (spot has no textures: its base colour factor alone)
     uniforms.update({"u_baseColorFactor": list(pv.surface_material(items[0].material, 0).base_color),
@@ -104,7 +105,8 @@ def assets(site):
     root = site["root"]
     asset = baker.bake(SPOT, bakes=("thickness", "curvature", "skin", "edges", "tam", "toon", "fur"), options={
         "thickness": {"rays": 8, "per_texel": False},
-        "skin": {"width": 64, "height": 64, "penumbra_size": 32},
+        # a 5 mm cow: curvatures where the skin LUT departs from Lambert (at 1 m skin alone changes no pixel)
+        "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
         "edges": {"fins": True},
         "tam": {"size": 64, "levels": 3},
         "fur": {"fins": True, "shells": 4, "texture_size": 64},
@@ -130,29 +132,34 @@ def test_viewer_switches_every_technique(site, assets, tmp_path):
     assert assets == expected_all  # the bakes wrote what the test is about
     jobs, keys = [], []
     for name, techniques in assets.items():
-        base = f"{site['url']}/index.html?hud=0&src={name}"
-        jobs.append({"url": base, "out": str(tmp_path / f"{name}.png"), "width": W, "height": H})
-        keys.append((name, None))
-        for technique in sorted(techniques):
-            flip = "on" if technique in DEFAULT_OFF else "off"
-            jobs.append({"url": f"{base}&{flip}={technique}", "out": str(tmp_path / f"{name}-{technique}.png"),
-                         "width": W, "height": H})
-            keys.append((name, technique))
+        # every technique off, then each one switched on; translucency lit from behind (?on=backlight), where it
+        # shows, the others under the viewer's front key light
+        for light in ("front", "back") if "translucency" in techniques else ("front",):
+            base = f"{site['url']}/index.html?hud=0&src={name}&start=none" + ("&on=backlight" if light == "back" else "")
+            jobs.append({"url": base, "out": str(tmp_path / f"{name}-{light}.png"), "width": W, "height": H})
+            keys.append((name, None, light))
+            for technique in sorted(t for t in techniques if (t == "translucency") == (light == "back")):
+                sep = "," if light == "back" else "&on="
+                jobs.append({"url": f"{base}{sep}{technique}", "out": str(tmp_path / f"{name}-{technique}.png"),
+                             "width": W, "height": H})
+                keys.append((name, technique, light))
     infos, images = _shoot(jobs, tmp_path)
     shots = dict(zip(keys, zip(infos, images)))
     background = np.array(BACKGROUND_RGB) / 255.0
     changed = {}
-    for (name, technique), (info, image) in shots.items():
+    for (name, technique, light), (info, image) in shots.items():
         assert info["ready"] and not info["errors"] and not info["warnings"], info
         assert set(info["techniques"]) == assets[name], info
+        assert info["enabled"] == ([] if technique is None else [technique]), info
         for t in assets[name]:
             assert t in info["status"], info
         if technique is None:
             drawn = np.abs(image - background).max(axis=2) > 0.03
             assert 0.01 < drawn.mean() < 0.9, (name, drawn.mean())  # the asset is on screen
             continue
-        base = shots[(name, None)][1]
+        base = shots[(name, None, light)][1]
         changed[(name, technique)] = int((np.abs(image - base).max(axis=2) > 4 / 255).sum())
+    print("pixels changed by each switch", changed)
     # every switch changes a visible part of the picture (>= 100 pixels of 120,000)
     assert all(n >= 100 for n in changed.values()), changed
 
@@ -165,6 +172,84 @@ def test_viewer_without_baked_data_reports_none(site, tmp_path):
                              "width": W, "height": H}], tmp_path)
     assert infos[0]["ready"] and not infos[0]["errors"], infos[0]
     assert infos[0]["techniques"] == [] and "no baked data found" in infos[0]["status"]
+
+
+# ------------------------------------------------------------------------------------------ the first picture
+MARKERS = {"front": (0.9, 0.1, 0.1), "back": (0.1, 0.2, 0.9)}  # Kd of the cubes in front of / behind the cow
+
+
+def write_standing_cow(root):
+    """The spot turned to face +Z (glTF's front; the OBJ's face looks along -Z: its horns at z -0.41 to -0.16, the
+    rump at z +1.05) and standing on y = 0, white (the glTF default base colour: the brightest a Lambert surface
+    gets), with a small red cube just in front of its face and a blue one just behind its rump:
+    root/standing.obj and its .mtl."""
+    lines = SPOT.read_text().splitlines()
+    points = np.array([[float(x) for x in line.split()[1:4]] for line in lines if line.startswith("v ")])
+    turned = points * [-1.0, 1.0, -1.0]
+    turned[:, 1] -= turned[:, 1].min()
+    out = ["mtllib standing.mtl", "usemtl body"]
+    out += ["v %.6f %.6f %.6f" % tuple(p) for p in turned]
+    out += [line for line in lines if line.startswith(("vt ", "vn "))]
+    out += [line for line in lines if line.startswith("f ")]
+    vertices = len(turned)
+    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], np.float64) * 0.06
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    front, back = turned[:, 2].max(), turned[:, 2].min()
+    # each cube at the height of the part it faces (the snout, the rump), 0.1 away from it
+    for name, z, near in (("front", front + 0.1, turned[:, 2] > front - 0.1), ("back", back - 0.1, turned[:, 2] < back + 0.1)):
+        out.append(f"usemtl {name}")
+        out += ["v %.6f %.6f %.6f" % tuple(c + [0.0, turned[near, 1].mean(), z]) for c in corners]
+        out += ["f " + " ".join(str(vertices + 1 + i) for i in quad) for quad in quads]
+        vertices += 8
+    (root / "standing.obj").write_text("\n".join(out) + "\n")
+    mtl = ["newmtl body", "Kd 1 1 1"] + [f"newmtl {n}\nKd {r} {g} {b}" for n, (r, g, b) in MARKERS.items()]
+    (root / "standing.mtl").write_text("\n".join(mtl) + "\n")
+    return root / "standing.obj"
+
+
+def test_viewer_opens_on_a_readable_first_picture(site, tmp_path):
+    """The first frame of a white mesh standing on y = 0, with the panel shown, on the three.js page and the
+    Babylon.js page (WebGL2): the camera looks at its front (glTF's +Z: the red cube in front of the face shows, the
+    blue one behind the rump does not), the asset is framed (its pixels centred, filling a sensible part of the
+    canvas, not cut at an edge), the panel's rectangle is beside the canvas (never over it), only the first technique
+    of the list is on, and at most 2% of the asset's pixels are clipped black or white, in the first frame and with
+    every technique off."""
+    root = site["root"]
+    asset = baker.bake(write_standing_cow(root), bakes=("thickness", "toon", "edges"),
+                       options={"thickness": {"rays": 8, "per_texel": False}})
+    save(asset, root / "standing.glb")
+    every = sorted(techniques_in(gltf_json(root / "standing.glb")))
+    assert every == ["outline", "toon", "translucency", "wireframe"]
+    width, height = 640, 400
+    jobs = [{"url": f"{site['url']}/index.html?src=standing.glb{engine}", "width": width, "height": height,
+             "out": str(tmp_path / f"first{i}.png"),
+             "shots": [{"on": [], "off": every, "out": str(tmp_path / f"off{i}.png")}]}
+            for i, engine in enumerate(("", "&engine=babylon"))]
+    infos = shoot(jobs, tmp_path / "jobs.json")
+    background = np.array(BACKGROUND_RGB) / 255.0
+    for i, info in enumerate(infos):
+        assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["enabled"] == ["translucency"], info  # the first of the list (RUNTIMES' order), alone
+        panel, canvas = info["rects"]["panel"], info["rects"]["canvas"]
+        assert panel[0] + panel[2] <= canvas[0] + 0.5 and canvas[0] + canvas[2] <= width + 0.5, info["rects"]
+        first, off = (read_image(tmp_path / f"{k}{i}.png")[..., :3].astype(np.float32) / 255.0 for k in ("first", "off"))
+        assert first.shape[:2] == (round(canvas[3]), round(canvas[2]))
+        for frame in (first, off):
+            covered = np.abs(frame - background).max(axis=2) > 0.03
+            white, black = clipped_fractions(frame, covered)
+            print(jobs[i]["url"], "clipped white", white, "black", black)
+            assert white <= 0.02 and black <= 0.02, (white, black)
+            rows, cols = np.nonzero(covered)
+            h, w = covered.shape
+            # framed: the asset's box centred, within the canvas, filling a sensible part of it
+            assert rows.min() > 0 and cols.min() > 0 and rows.max() < h - 1 and cols.max() < w - 1
+            assert abs((rows.min() + rows.max()) / 2 - h / 2) < 0.12 * h
+            assert abs((cols.min() + cols.max()) / 2 - w / 2) < 0.12 * w
+            assert 0.45 < (rows.max() - rows.min()) / h < 0.95, (rows.min(), rows.max())
+            # the front: the red cube in front of the face shows, the blue one behind the rump is hidden
+            red = (frame[..., 0] > 0.4) & (frame[..., 1] < 0.25) & (frame[..., 2] < 0.25)
+            blue = (frame[..., 2] > 0.4) & (frame[..., 0] < 0.25)
+            assert red.sum() > 40 and blue.sum() < 5, (int(red.sum()), int(blue.sum()))
 
 
 def test_viewer_draws_moving_caustics_on_a_floor(site, tmp_path):

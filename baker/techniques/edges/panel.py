@@ -13,6 +13,7 @@ from baker.preview.core import (INK, LAMBERT, REFERENCE, Camera, DrawItem, Panel
 from baker.techniques.edges.extension import FIN_ATTRIBUTES, OUTLINE_NORMAL, read
 
 DEFAULT_CREASE = math.radians(60)
+WIRE_COVERAGE = 0.4  # the most of a triangle the wireframe panel's lines darken fully
 
 
 @dataclass
@@ -111,7 +112,8 @@ def draw_fins(ctx, fins: EdgeFins, camera: Camera, size: int) -> None:
 
 
 class WireframePanel(Panel):
-    """The wireframe of the primitives with a baked wireframe mask (one 3-bit mask per triangle)."""
+    """The wireframe of the primitives with a baked wireframe mask (one 3-bit mask per triangle), its lines faded
+    where the triangles are small on screen (at most about WIRE_COVERAGE of a triangle inked)."""
 
     def read_item(self, doc, item: DrawItem) -> None:
         edges = read(doc, item.mesh, item.primitive_index) if item.mesh is not None else None
@@ -127,8 +129,15 @@ PANELS = [
     OutlinePanel("outline", "shell outline + fins", (), "", LAMBERT, order=60),
     WireframePanel("wireframe", "wireframe (mask)", ("baker_edges.glsl",), "",
                    "vec3 fill = albedo * (0.15 + 0.85 * max(dot(N, u_light), 0.0));\n"
-                   "    vec2 wire = baker_wireframe(v_bary, fwidth(v_bary), v_mask, u_width, 0.0);\n"
-                   "    color = mix(fill, u_ink, wire.x);",
+                   "    vec3 slope = fwidth(v_bary);\n"
+                   "    vec2 wire = baker_wireframe(v_bary, slope, v_mask, u_width, 0.0);\n"
+                   # the share of a triangle its edges' lines cover is about width x the sum of the barycentric
+                   # slopes (1 / each height in pixels), all of it from 1 on: where triangles are so small on screen
+                   # that it passes WIRE_COVERAGE the lines fade by that ratio, so the ink stays about WIRE_COVERAGE
+                   # of the surface and a dense mesh reads as a tone, not a black blob
+                   f"    float density = clamp(u_width * (slope.x + slope.y + slope.z), {WIRE_COVERAGE}, 1.0);\n"
+                   f"    float fade = {WIRE_COVERAGE} / density;\n"
+                   "    color = mix(fill, u_ink, wire.x * fade);",
                    inputs="in vec3 v_bary;\nflat in int v_mask;", vertex_modules=("baker_edges.glsl",),
                    vertex_body="v_bary = baker_barycentric(gl_VertexID);\n    v_mask = int(a_mask + 0.5);",
                    expand=True, order=70),

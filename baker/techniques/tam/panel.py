@@ -1,9 +1,14 @@
 """Preview panel of BAKER_tonal_art_map: Praun's real-time hatching (``runtime-shaders/baker_hatching.glsl``), the
-TAM's levels uploaded as the custom mip chains of two textures, six-tone blend."""
+TAM's levels uploaded as the custom mip chains of two textures, six-tone blend, drawn as ink on off-white paper."""
 from __future__ import annotations
 
 from baker.preview.core import DrawItem, Panel
 from baker.techniques.tam.extension import read
+
+
+# the hatching's brightness (0 a stroke, 1 the paper) shown as ink on paper, both short of black and white so the
+# sheet clips neither (the strokes and the paper are what the panel shows)
+PAPER, INK = (0.94, 0.93, 0.9), (0.05, 0.05, 0.06)
 
 
 class HatchingPanel(Panel):
@@ -39,6 +44,7 @@ PANELS = [
                   "vec2 tile = baker_tam_coord(v_uv, u_scale, u_finestSize);\n"
                   "    float lod = baker_tam_lod(dFdx(tile), dFdy(tile), u_finestSize, u_levelCount);\n"
                   "    float darkness = baker_hatching_darkness(N, u_light, 1.0);\n"
-                  "    color = vec3(baker_hatching(u_tones012, u_tones345, tile, lod, darkness, u_tonesA, u_tonesB));",
+                  "    float brightness = baker_hatching(u_tones012, u_tones345, tile, lod, darkness, u_tonesA, u_tonesB);\n"
+                  f"    color = mix(vec3{INK}, vec3{PAPER}, brightness);",
                   inputs="in vec2 v_uv;", order=50),
 ]

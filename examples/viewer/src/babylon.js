@@ -18,8 +18,9 @@ import { MeshoptCompression } from '@babylonjs/core/Meshes/Compression/meshoptCo
 import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { TECHNIQUES, bakerControls, registerBakerExtensions, unregisterBakerExtensions } from '../../../runtime-shaders/babylon/src/index.js';
 import {
-	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
-	bakerOn, caustics, engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
+	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, bakerOn, caustics,
+	engineSwitch, fail, frameDirection, frameDistance, frontSwitch, keyDirection, listParam, onDroppedFile, params,
+	showToggles, status, switchTechniques,
 } from './ui.js';
 import { shaders } from './shaders.js';
 import { RUNTIMES } from '@baker/shared';
@@ -114,17 +115,16 @@ export async function babylonViewer() {
 		const { min, max } = root.getHierarchyBoundingVectors(true);
 		const center = min.add(max).scale(0.5);
 		const radius = max.subtract(min).length() / 2;
-		const distance = frameDistance(radius);
-		const eye = center.add(new Vector3(...FRAME_DIRECTION).scale(distance));
+		const distance = frameDistance(radius, engine.getAspectRatio(camera));
+		const eye = center.add(new Vector3(...frameDirection()).scale(distance));
 		const toEye = eye.subtract(center).normalize();
 		// fill: camera space (-1, 1.5, 2), aimed at the world origin as three.js's default light target
 		camera.setTarget(center);
 		camera.setPosition(eye);
 		const m = camera.getWorldMatrix();
 		const fillWorld = Vector3.TransformCoordinates(new Vector3(...FILL_CAMERA_POSITION), m);
-		const keyDir = back ? toEye.scale(-1) : toEye;
 		return { eye: eye.asArray(), target: center.asArray(), near: distance / 100, far: distance * 10,
-			key: keyDir.asArray(), fill: fillWorld.normalize().asArray() };
+			key: keyDirection(toEye.asArray(), back), fill: fillWorld.normalize().asArray() };
 	}
 
 	async function show(source, name) {
@@ -136,20 +136,24 @@ export async function babylonViewer() {
 			const root = result.meshes[0];
 			const baker = bakerControls(root);
 			const found = showToggles(baker, null, TECHNIQUES);
-			const back = found.includes('translucency') && !listParam('off').has('backlight');
+			// the light from behind (translucency) only when asked for: ?on=backlight or its checkbox
+			let back = found.includes('translucency') && listParam('on').has('backlight');
 			const v = given ?? frame(root, back);
 			place(v);
 			sphere = v;
 			if (found.includes('translucency')) {
 				addToggle('light from behind', 'backlight', back, (on) => {
-					const k = new Vector3(...sphere.key);
-					key.direction = (on === back ? k.scale(-1) : k);
+					back = on;
+					// the front key of the framing, or the camera's direction reversed
+					const toEye = Vector3.FromArray(sphere.eye).subtract(Vector3.FromArray(sphere.target)).normalize();
+					key.direction = new Vector3(...keyDirection(toEye.asArray(), on).map((x) => -x));
 				});
 			}
+			reframe = () => { sphere = frame(root, back); place(sphere); window.__bakerView = sphere; };
 			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}`;
 			await scene.whenReadyAsync();
 			window.__bakerTechniques = found;
-			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
+			window.__bakerSwitch = (names, on) => switchTechniques(baker, names, on); // for tests
 			window.__bakerView = v;
 			window.__bakerScene = scene; // for inspection from the console
 			engine.stopRenderLoop();
@@ -164,6 +168,8 @@ export async function babylonViewer() {
 			fail(`cannot load ${name}: ${e.message || e}\n${e.stack || ''}`);
 		}
 	}
+	let reframe = () => {};
+	frontSwitch(() => reframe());
 	addEventListener('resize', () => engine.resize());
 	onDroppedFile((file) => {
 		for (const m of [...scene.meshes]) m.dispose();

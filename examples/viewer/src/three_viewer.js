@@ -5,8 +5,9 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { TECHNIQUES } from '@baker/shared';
 import {
-	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, FRAME_DIRECTION, HEMI, KEY_INTENSITY, addToggle,
-	engineSwitch, fail, frameDistance, listParam, onDroppedFile, params, showToggles, status,
+	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, engineSwitch, fail,
+	frameDirection, frameDistance, frontSwitch, keyDirection, listParam, onDroppedFile, params, showToggles, status,
+	switchTechniques,
 } from './ui.js';
 
 /**
@@ -31,9 +32,12 @@ export function runThreeViewer({ renderer, load, engine, backend }) {
 	scene.add(camera);
 	let root = null;
 
+	// the canvas fills #view, the page beside the side panel (the panel never covers the asset)
+	const view = renderer.domElement.parentElement;
 	function resize() {
-		renderer.setSize(innerWidth, innerHeight);
-		camera.aspect = innerWidth / innerHeight;
+		const width = Math.max(1, view.clientWidth), height = Math.max(1, view.clientHeight);
+		renderer.setSize(width, height);
+		camera.aspect = width / height;
 		camera.updateProjectionMatrix();
 	}
 	addEventListener('resize', resize);
@@ -42,8 +46,8 @@ export function runThreeViewer({ renderer, load, engine, backend }) {
 	function frame(object) {
 		const box = new THREE.Box3().setFromObject(object);
 		const sphere = box.getBoundingSphere(new THREE.Sphere());
-		const distance = frameDistance(sphere.radius);
-		camera.position.copy(sphere.center).add(new THREE.Vector3(...FRAME_DIRECTION).multiplyScalar(distance));
+		const distance = frameDistance(sphere.radius, camera.aspect);
+		camera.position.copy(sphere.center).add(new THREE.Vector3(...frameDirection()).multiplyScalar(distance));
 		camera.near = distance / 100;
 		camera.far = distance * 10;
 		camera.updateProjectionMatrix();
@@ -53,13 +57,15 @@ export function runThreeViewer({ renderer, load, engine, backend }) {
 	}
 
 	function setBackLight(on, sphere) {
-		// back light: behind the object as seen from the camera, so translucency shows
-		const dir = new THREE.Vector3().subVectors(camera.position, controls.target).normalize();
-		key.position.copy(sphere.center).addScaledVector(dir, on ? -sphere.radius * 4 : sphere.radius * 4);
+		// the key light from the front (above and right of the camera), or behind the object as seen from the
+		// camera (so translucency shows)
+		const toEye = new THREE.Vector3().subVectors(camera.position, controls.target).normalize();
+		const dir = new THREE.Vector3(...keyDirection(toEye.toArray(), on));
+		key.position.copy(sphere.center).addScaledVector(dir, sphere.radius * 4);
 		key.target.position.copy(sphere.center);
 	}
 
-	const off = listParam('off');
+	const on = listParam('on');
 	// the view and lights drawn, world space (towards the light), for a page of the other engine (?view=)
 	function publishView() {
 		scene.updateMatrixWorld(true);
@@ -75,18 +81,20 @@ export function runThreeViewer({ renderer, load, engine, backend }) {
 			if (root) scene.remove(root);
 			root = gltf.scene;
 			scene.add(root);
-			const sphere = frame(root);
+			let sphere = frame(root);
 			const baker = gltf.userData.baker;
 			const found = baker ? baker.techniques : [];
 			showToggles(baker, found, TECHNIQUES);
-			const back = found.includes('translucency') && !off.has('backlight');
+			// the light from behind (translucency) only when asked for: ?on=backlight or its checkbox
+			let back = found.includes('translucency') && on.has('backlight');
 			setBackLight(back, sphere);
-			if (found.includes('translucency')) addToggle('light from behind', 'backlight', back, (v) => setBackLight(v, sphere));
+			if (found.includes('translucency')) addToggle('light from behind', 'backlight', back, (v) => { back = v; setBackLight(v, sphere); publishView(); });
+			reframe = () => { sphere = frame(root); setBackLight(back, sphere); publishView(); };
 			publishView();
 			const missing = baker?.unsupported?.length ? ` (not drawn by this renderer: ${baker.unsupported.join(', ')})` : '';
 			status.textContent = `${name}: ${found.length ? found.join(', ') : 'no baked data found'}${missing}`;
 			window.__bakerTechniques = found;
-			window.__bakerSwitch = (names, on) => { for (const t of names) baker?.setEnabled(t, on); }; // for tests
+			window.__bakerSwitch = (names, v) => switchTechniques(baker, names, v); // for tests
 			window.__bakerReadyMs = performance.now();
 			window.__bakerReady = true;
 		} catch (e) {
@@ -94,6 +102,8 @@ export function runThreeViewer({ renderer, load, engine, backend }) {
 		}
 	}
 
+	let reframe = () => {};
+	frontSwitch(() => reframe());
 	onDroppedFile((file) => show(URL.createObjectURL(file), file.name));
 	if (params.get('src')) show(params.get('src'), params.get('src'));
 	// for benchmarks/three_webgpu.py: the renderer and scene, and when the first frame with the asset was drawn

@@ -1,7 +1,7 @@
 // Screenshot several viewer pages in one headless Chromium (Debian's): one browser launch for a whole test.
 //   node test/screenshots.mjs JOBS.json       JOBS.json: [{"url": ..., "out": ..., "width": 480, "height": 360}, ...]
-//   a job may add "shots": [{"on": [techniques], "off": [techniques], "out": ...}, ...]: switched in the loaded page
-// Prints one JSON line per job, {url, errors, warnings, status, techniques, ready, view, backend, error}. Used by the
+//   a job may add "pageOut": a screenshot of the whole page (the panel included), and "shots": [{"on": [techniques], "off": [techniques], "out": ...}, ...]: switched in the loaded page
+// Prints one JSON line per job, {url, errors, warnings, status, techniques, enabled, ready, view, backend, error, rects}. Used by the
 // tests/ of the web hosts (tests/browser.py shoot); BAKER_WEBGPU=1 for the WebGPU pages.
 import { readFileSync } from 'node:fs';
 import { launchChromium } from './chromium.mjs';
@@ -34,9 +34,13 @@ try {
 		const info = await page.evaluate(() => ({
 			status: document.getElementById('status').textContent, techniques: window.__bakerTechniques || [],
 			ready: Boolean(window.__bakerReady), view: window.__bakerView || null, backend: window.__bakerBackend || null,
-			error: window.__bakerError || null,
+			error: window.__bakerError || null, enabled: window.__bakerEnabled || null,
+			// page rectangles (CSS pixels) of the side panel and the canvas: the panel must leave the canvas clear
+			rects: Object.fromEntries([['panel', document.getElementById('panel')], ['canvas', document.querySelector('canvas')]]
+				.map(([k, el]) => { const r = el?.getBoundingClientRect(); return [k, r && getComputedStyle(el).visibility !== 'hidden' && getComputedStyle(el).display !== 'none' ? [r.left, r.top, r.width, r.height] : null]; })),
 		}));
 		if (job.out) await page.locator('canvas').screenshot({ path: job.out });
+		if (job.pageOut) await page.screenshot({ path: job.pageOut }); // the whole page, panel included
 		// shots: the same page with techniques switched (window.__bakerSwitch) between screenshots, one load for all
 		for (const shot of job.shots || []) {
 			await page.evaluate(({ on, off }) => { window.__bakerSwitch(off, false); window.__bakerSwitch(on, true); }, shot);
