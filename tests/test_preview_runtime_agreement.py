@@ -104,7 +104,7 @@ def measured(tmp_path_factory):
                 shots += [{"on": list(SWITCHES[p]), "off": [t for t in found if t not in SWITCHES[p]],
                            "out": str(root / f"{name}-{light}-{p}.png")} for p in chosen]
                 jobs.append({"url": f"{url}/index.html?hud=0&src={name}.glb&time={time}"
-                                    f"{'' if back else '&off=backlight'}", "width": SIZE, "height": SIZE,
+                                    f"{'&on=backlight' if back else '&off=backlight'}", "width": SIZE, "height": SIZE,
                              "shots": shots, "name": name})
             result[name] = {"caustics": caustics, "panels": panels, "shown": shown, "found": found, "root": root}
         infos = shoot(jobs, root / "jobs.json")
