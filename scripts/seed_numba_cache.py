@@ -60,7 +60,9 @@ def main(build_lib: str) -> int:
     seed = build_lib / "baker" / "numba_seed"
     shutil.rmtree(seed, ignore_errors=True)
     seed.mkdir(parents=True)
-    env = {**os.environ, "PYTHONPATH": str(build_lib), "BAKER_NUMBA_SEED_BUILD": str(seed)}
+    # build_lib first; a PYTHONPATH already set is pip's isolated build environment holding the dependencies
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(build_lib), os.environ.get("PYTHONPATH")])),
+           "BAKER_NUMBA_SEED_BUILD": str(seed), "BAKER_COMPILE_NOTE": "0"}
     # run from elsewhere: `python -c` puts the current folder (the checkout, where pip builds) first on sys.path
     where = subprocess.run([sys.executable, "-c", "import baker; print(baker.__file__)"], env=env,
                            capture_output=True, text=True, cwd=tempfile.gettempdir())
