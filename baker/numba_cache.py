@@ -11,7 +11,9 @@ representative workload with ``BAKER_NUMBA_SEED_BUILD`` naming ``baker/numba_see
 so the wheel carries the compiled kernels; the first time a module folder's kernels are looked up, its seed folder is
 copied into the user cache (the package folder may be read-only). numba still checks each entry's key (signature,
 bytecode hash, numba version, target triple, CPU name and features), so a seed built on another CPU or numba misses
-and that kernel compiles as before, into the same user folder.
+and that kernel compiles as before, into the same user folder. numba raises its ``numba:compile`` event only then
+(a cache miss): :class:`CompileNoteListener` turns the first one of a command into its one-line note
+(:mod:`baker.compile_note`).
 """
 from __future__ import annotations
 
