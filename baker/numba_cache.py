@@ -11,7 +11,9 @@ representative workload with ``BAKER_NUMBA_SEED_BUILD`` naming ``baker/numba_see
 so the wheel carries the compiled kernels; the first time a module folder's kernels are looked up, its seed folder is
 copied into the user cache (the package folder may be read-only). numba still checks each entry's key (signature,
 bytecode hash, numba version, target triple, CPU name and features), so a seed built on another CPU or numba misses
-and that kernel compiles as before, into the same user folder.
+and that kernel compiles as before, into the same user folder. numba raises its ``numba:compile`` event only then
+(a cache miss): :class:`CompileNoteListener` turns the first one of a command into its one-line note
+(:mod:`baker.compile_note`).
 """
 from __future__ import annotations
 
@@ -22,8 +24,10 @@ import shutil
 import tempfile
 from pathlib import Path
 
+from numba.core import event
 from numba.core.caching import CacheImpl, _CacheLocator
 
+from baker import compile_note
 from baker.version import __version__
 
 PACKAGE = Path(__file__).resolve().parent
@@ -119,12 +123,31 @@ class BakerCacheLocator(_CacheLocator):
         return self
 
 
+class CompileNoteListener(event.Listener):
+    """numba raises ``numba:compile`` only when a kernel is not in its cache: the first one of baker's prints the
+    command's note (:mod:`baker.compile_note`)."""
+
+    def on_start(self, ev):
+        dispatcher = (ev.data or {}).get("dispatcher")
+        if (getattr(getattr(dispatcher, "py_func", None), "__module__", None) or "").startswith("baker."):
+            compile_note.compiling()
+
+    def on_end(self, ev):
+        pass
+
+
+_compile_listener: list = []  # the registered listener, once
+
+
 def register() -> None:
-    """Put :class:`BakerCacheLocator` first in numba's locator list (idempotent). Every ``cache=True`` kernel
-    decorated afterwards uses it; importing this module does it, which :mod:`baker` makes happen as
-    ``numba.core.caching`` is imported."""
+    """Put :class:`BakerCacheLocator` first in numba's locator list and listen for compilations (both idempotent).
+    Every ``cache=True`` kernel decorated afterwards uses it; importing this module does it, which :mod:`baker` makes
+    happen as ``numba.core.caching`` is imported."""
     if BakerCacheLocator not in CacheImpl._locator_classes:
         CacheImpl._locator_classes.insert(0, BakerCacheLocator)
+    if not _compile_listener:
+        _compile_listener.append(CompileNoteListener())
+        event.register("numba:compile", _compile_listener[0])
 
 
 register()

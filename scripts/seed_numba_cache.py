@@ -12,6 +12,7 @@ from __future__ import annotations
 import hashlib
 import os
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -24,10 +25,31 @@ FONT = Path("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")
 ALL_BAKES = "thickness,curvature,skin,edges,tam,toon,fur,caustics"
 
 
+CUBE_POSITIONS = [(x, y, z) for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, 1.0)]
+CUBE_FACES = [(0, 3, 2), (0, 1, 3), (4, 7, 5), (4, 6, 7), (0, 5, 1), (0, 4, 5), (2, 7, 6), (2, 3, 7), (0, 6, 4),
+              (0, 2, 6), (1, 7, 3), (1, 5, 7)]  # counter-clockwise seen from outside
+
+
+def meshes_without_normals(work: Path) -> tuple[Path, Path]:
+    """A cube as OBJ and as binary PLY, without normals: the readers compute smooth ones (the compiled
+    angle-weighted normals, in float64 for OBJ and float32 for PLY), as they do for a scan."""
+    obj = work / "cube.obj"
+    obj.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in CUBE_POSITIONS) +
+                   "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in CUBE_FACES))
+    ply = work / "cube.ply"
+    header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(CUBE_POSITIONS)}\nproperty float x\n"
+              f"property float y\nproperty float z\nelement face {len(CUBE_FACES)}\n"
+              "property list uchar int vertex_indices\nend_header\n").encode()
+    ply.write_bytes(header + b"".join(struct.pack("<3f", *p) for p in CUBE_POSITIONS) +
+                    b"".join(struct.pack("<B3i", 3, *f) for f in CUBE_FACES))
+    return obj, ply
+
+
 def workload(work: Path) -> list[list[str]]:
     """The commands, in order (later ones read earlier outputs): the README's and the benchmarks' commands first."""
     baked = work / "spot_all.glb"
     hair = work / "hair.glb"
+    cube_obj, cube_ply = meshes_without_normals(work)
     commands = [
         ["bake", SPOT, "-o", baked, "--bakes", ALL_BAKES, "--fur-fins", "true", "-q"],  # fins: their kernels too
         ["bake", SPOT, "-o", work / "spot_thickness.glb", "--bakes", "thickness", "-q"],
@@ -43,6 +65,8 @@ def workload(work: Path) -> list[list[str]]:
         ["inspect", baked],
         ["validate", baked, "--no-khronos", "-q"],
         ["preview", baked, "-o", work / "sheet.png", "--size", "96", "-q"],
+        ["bake", cube_obj, "-o", work / "cube_obj.glb", "--bakes", "edges", "-q"],
+        ["bake", cube_ply, "-o", work / "cube_ply.glb", "--bakes", "edges", "-q"],
     ]
     return [[str(a) for a in c] for c in commands]
 
@@ -60,7 +84,9 @@ def main(build_lib: str) -> int:
     seed = build_lib / "baker" / "numba_seed"
     shutil.rmtree(seed, ignore_errors=True)
     seed.mkdir(parents=True)
-    env = {**os.environ, "PYTHONPATH": str(build_lib), "BAKER_NUMBA_SEED_BUILD": str(seed)}
+    # build_lib first; a PYTHONPATH already set is pip's isolated build environment holding the dependencies
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(build_lib), os.environ.get("PYTHONPATH")])),
+           "BAKER_NUMBA_SEED_BUILD": str(seed), "BAKER_COMPILE_NOTE": "0"}
     # run from elsewhere: `python -c` puts the current folder (the checkout, where pip builds) first on sys.path
     where = subprocess.run([sys.executable, "-c", "import baker; print(baker.__file__)"], env=env,
                            capture_output=True, text=True, cwd=tempfile.gettempdir())

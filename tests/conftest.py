@@ -8,10 +8,16 @@ Under CI (:func:`ci.in_ci`) a skipped test is a failed test: CI cannot go green 
 """
 from __future__ import annotations
 
+import os
+
 import pytest
 
 from baker import validate
 from ci import in_ci
+
+# the note a cold numba cache prints (baker/compile_note.py) would land in whichever test compiles a kernel first:
+# off for the suite (subprocesses inherit it); tests/test_numba_cache.py turns it on where it checks it
+os.environ.setdefault("BAKER_COMPILE_NOTE", "0")
 
 
 @pytest.hookimpl(hookwrapper=True)

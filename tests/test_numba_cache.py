@@ -68,3 +68,49 @@ def test_registered_when_numba_is_imported_after_baker(tmp_path):
                          env={**os.environ, "PYTHONPATH": str(REPO)})
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "baker.numba_cache"
+
+
+def test_a_command_says_once_that_it_compiles_and_a_warm_cache_says_nothing(tmp_path):
+    """A source checkout compiles kernels on first use: the first compilation of a baker kernel prints the armed
+    command's note (one line, before the kernel compiles), a second compilation in the same command prints nothing
+    more, and a second process with the same cache, which loads the kernels, prints nothing. A kernel called with
+    no note armed (the Python API) prints nothing."""
+    probe = ("import sys, numpy as np\n"
+             "from baker import compile_note\n"
+             "if sys.argv[1] == 'armed':\n"
+             "    compile_note.expect(['bake', 'in.obj', '--bakes', 'toon,edges'])\n"
+             "from baker.geometry.welding import position_cells, weld_cells\n"
+             "print('compiling', file=sys.stderr, flush=True)\n"
+             "position_cells(np.zeros((2, 3)), 1.0)\n"
+             "weld_cells(np.zeros((2, 3), np.int64))\n")
+    env = {**os.environ, "PYTHONPATH": str(REPO), "XDG_CACHE_HOME": str(tmp_path), "BAKER_COMPILE_NOTE": "1"}
+    env.pop("NUMBA_CACHE_DIR", None)
+
+    def stderr(mode: str) -> list[str]:
+        out = subprocess.run([sys.executable, "-c", probe, mode], capture_output=True, text=True, cwd=tmp_path,
+                             env=env, timeout=300)
+        assert out.returncode == 0, out.stderr
+        return out.stderr.splitlines()
+
+    from baker.compile_note import BAKE_SECONDS
+
+    seconds = BAKE_SECONDS["toon"] + BAKE_SECONDS["edges"]
+    note = f"baker: note: compiling the numba kernels for toon, edges once (~{seconds} s; later runs reuse them)"
+    assert stderr("armed") == ["compiling", note]
+    assert stderr("armed") == ["compiling"]  # warm: loaded, nothing said
+    env["XDG_CACHE_HOME"] = str(tmp_path / "other")
+    assert stderr("api") == ["compiling"]  # cold, but no command armed the note
+    env["XDG_CACHE_HOME"] = str(tmp_path / "third")
+    env["BAKER_COMPILE_NOTE"] = "0"
+    assert stderr("armed") == ["compiling"]
+
+
+def test_compile_note_estimates_name_the_command_and_its_bakes():
+    from baker import compile_note
+
+    assert compile_note.estimate(["bake", "x.obj", "-o", "y.glb"]) == ("thickness", compile_note.BAKE_SECONDS["thickness"])
+    what, seconds = compile_note.estimate(["bake", "x.obj", "--bakes=edges,curvature", "-q"])
+    assert what == "edges, curvature" and seconds == compile_note.BAKE_SECONDS["edges"] + \
+        compile_note.BAKE_SECONDS["curvature"]
+    assert compile_note.estimate(["glyphs", "font.ttf", "-o", "a"]) == ("glyphs", compile_note.COMMAND_SECONDS["glyphs"])
+    assert compile_note.estimate(["inspect", "a.glb"]) is None and compile_note.estimate([]) is None

@@ -118,13 +118,14 @@ def test_wheel_ships_compiled_kernels_and_a_first_run_compiles_nothing(wheel, ve
     """The wheel carries numba's compiled kernels (baker/numba_seed, built by setup.py on this machine), a first
     `baker glyphs` with an empty $XDG_CACHE_HOME copies them into $XDG_CACHE_HOME/baker/numba/<version>-<seed id>
     and compiles nothing (every cache file there is byte-identical to the shipped one), a second run changes no
-    cache file, and nothing is written into the package (it may be read-only)."""
+    cache file, and nothing is written into the package (it may be read-only); neither run prints the note a cold
+    cache prints (tests/test_numba_cache.py)."""
     names = set(zipfile.ZipFile(wheel).namelist())
     assert "baker/numba_seed/SEED_ID" in names
     assert any(n.startswith("baker/numba_seed/baker.techniques.glyphs/") and n.endswith(".nbc") for n in names)
     cache = tmp_path / "cache"
     env = {**{k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NUMBA_CACHE_DIR")},
-           "XDG_CACHE_HOME": str(cache), "HOME": str(tmp_path)}
+           "XDG_CACHE_HOME": str(cache), "HOME": str(tmp_path), "BAKER_COMPILE_NOTE": "1"}
     package = Path(subprocess.check_output([str(venv / "bin" / "python"), "-c", "import baker, os; "
                                             "print(os.path.dirname(baker.__file__))"], text=True, env=env,
                                            cwd=tmp_path).strip())
@@ -140,6 +141,7 @@ def test_wheel_ships_compiled_kernels_and_a_first_run_compiles_nothing(wheel, ve
                                  "--charset", "str:cache", "--size", "16", "-q"], cwd=tmp_path, env=env,
                                 capture_output=True, text=True, timeout=600)
         assert result.returncode == 0, result.stderr
+        assert "compiling" not in result.stderr, result.stderr  # the note of a cold cache: nothing compiles here
         return files(cache / "baker" / "numba")
 
     installed = files(package)
@@ -151,3 +153,30 @@ def test_wheel_ships_compiled_kernels_and_a_first_run_compiles_nothing(wheel, ve
         assert shipped.is_file() and shipped.read_bytes() == path.read_bytes(), f"{path} was compiled, not shipped"
     assert glyphs() == first
     assert files(package) == installed
+
+
+def test_build_backend_adds_the_dependencies_only_where_the_interpreter_lacks_them(monkeypatch):
+    """`pip install .` in a fresh environment builds the wheel before installing anything: the build backend
+    (scripts/numba_seed_backend.py) asks for the project's dependencies then, so setup.py can run baker to compile the
+    kernels the wheel ships; with the dependencies installed (here) it asks for nothing more than setuptools does."""
+    import tomllib
+
+    sys.path.insert(0, str(REPO / "scripts"))
+    try:
+        import numba_seed_backend as backend
+    finally:
+        sys.path.remove(str(REPO / "scripts"))
+    pyproject = tomllib.loads((REPO / "pyproject.toml").read_text())
+    assert pyproject["build-system"]["build-backend"] == "numba_seed_backend"
+    assert pyproject["build-system"]["backend-path"] == ["scripts"]
+    dependencies = pyproject["project"]["dependencies"]
+    assert backend.project_dependencies() == dependencies
+    assert backend.interpreter_has(dependencies)  # this interpreter runs baker's tests: it has them
+    assert not backend.interpreter_has(["numpy>=1.26", "no-such-distribution-baker-test>=1"])
+    monkeypatch.setattr(backend.build_meta, "get_requires_for_build_wheel", lambda config_settings=None: ["wheel"])
+    monkeypatch.delenv("BAKER_NUMBA_SEED", raising=False)
+    assert backend.get_requires_for_build_wheel() == ["wheel"]
+    monkeypatch.setattr(backend, "interpreter_has", lambda requirements: False)  # a fresh virtual environment
+    assert backend.get_requires_for_build_wheel() == ["wheel", *dependencies]
+    monkeypatch.setenv("BAKER_NUMBA_SEED", "0")  # a wheel without kernels needs nothing to run baker
+    assert backend.get_requires_for_build_wheel() == ["wheel"]

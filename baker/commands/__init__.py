@@ -7,7 +7,7 @@ import argparse
 import importlib
 import pkgutil
 
-from baker import registry
+from baker import compile_note, registry
 from baker.version import __version__
 
 
@@ -57,4 +57,8 @@ def run(argv) -> int:
     args, unknown = parser.parse_known_args(argv)
     if unknown:  # reported by the verb's parser, so the synopsis and the help pointer are the verb's
         parser.verbs.choices[args.command].error(f"unrecognized arguments: {' '.join(unknown)}")
-    return args.func(args)
+    compile_note.expect(list(argv))  # a cold numba cache says so once, as the first kernel compiles
+    try:
+        return args.func(args)
+    finally:
+        compile_note.disarm()

@@ -8,43 +8,44 @@ import numpy as np
 def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Unit vertex normals as trimesh computes them for a mesh without any: each face's unit normal weighted by the
     corner angle (Thuermer & Wuethrich 1998), summed in face order; faces whose normal is degenerate and vertices
-    no usable face touches contribute zero. The operations follow trimesh's so the float32 result is the same."""
-    triangles = positions[faces]
-    cross = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 1])
-    face_normals, valid = unitize(cross, with_valid=True)
-    face_normals[~valid] = 0.0
-    angles = _corner_angles(triangles)
-    ok = (face_normals ** 2).sum(axis=1) > 0.5
-    weights = angles[ok].reshape(-1)
-    corner = faces[ok].reshape(-1)
-    summed = np.zeros((len(positions), 3))
-    normals_ok = face_normals[ok]
-    for axis in range(3):
-        summed[:, axis] = np.bincount(corner, weights * np.repeat(normals_ok[:, axis], 3), minlength=len(positions))
-    return unitize(summed)
+    no usable face touches contribute zero. The operations follow trimesh's so the float64 result matches it to
+    rounding (a compiled pass, :func:`baker.geometry.normals.angle_weighted_normals`; numba is imported only here,
+    so reading a file that has normals does not load it)."""
+    from baker.geometry.normals import angle_weighted_normals
+
+    out = np.zeros((len(positions), 3))
+    if len(faces):
+        angle_weighted_normals(np.ascontiguousarray(positions, np.float64), np.ascontiguousarray(faces, np.int64), out)
+    return out
 
 
-def seamless_vertex_normals(parts: list) -> list:
+def seamless_vertex_normals(parts: list, dtype=np.float64) -> list:
     """Vertex normals of several meshes of one space (an OBJ's material groups, the vertices it splits at UV
-    seams) computed as one mesh: vertices are welded by position (:func:`baker.geometry.edge_codes.weld_positions`,
-    the grid of :mod:`baker.geometry.welding`) and each welded vertex gets the angle-weighted normal of every face
-    around it (:func:`vertex_normals`), so split copies of a vertex agree and UV or material seams do not shade.
-    Vertices stay apart only where their smoothing sets differ. ``parts``: (positions, faces, smoothing ids or
-    None) per mesh; returns the (n, 3) normals of each mesh's vertices, in order."""
-    from baker.geometry.edge_codes import weld_positions
+    seams) computed as one mesh: vertices are welded by position (:func:`baker.geometry.welding.weld`, the cells and
+    numbering of :func:`baker.geometry.edge_codes.weld_positions` in one compiled pass) and each welded vertex gets
+    the angle-weighted normal of every face around it (:func:`vertex_normals`), so split copies of a vertex agree and
+    UV or material seams do not shade. Vertices stay apart only where their smoothing sets differ. ``parts``:
+    (positions, faces, smoothing ids or None) per mesh; returns the (n, 3) normals of each mesh's vertices, in order,
+    as ``dtype``, unit as glTF requires them (:func:`unit_normals` gives the same: +Z where no usable face touches)."""
+    from baker.geometry.normals import gathered_unit_normals
+    from baker.geometry.welding import weld
 
     counts = [len(p[0]) for p in parts]
     offsets = np.cumsum([0] + counts)
     positions = np.concatenate([p[0] for p in parts]) if len(parts) > 1 else np.asarray(parts[0][0])
-    faces = np.concatenate([np.asarray(p[1], np.int64) + offsets[i] for i, p in enumerate(parts)])
-    welded, vertex = weld_positions(positions)
+    faces = np.concatenate([np.asarray(p[1], np.int64) + offsets[i] for i, p in enumerate(parts)]) if len(parts) > 1 \
+        else np.asarray(parts[0][1], np.int64)
+    welded, vertex = weld(np.asarray(positions, np.float64))
     if any(p[2] is not None for p in parts):
         smoothing = np.concatenate([np.zeros(len(p[0]), np.int64) if p[2] is None else p[2] for p in parts])
         sets = int(smoothing.max()) + 1
         split, vertex = np.unique(vertex * sets + smoothing, return_inverse=True)
         vertex = vertex.reshape(-1)
         welded = welded[split // sets]
-    normals = vertex_normals(welded, vertex[faces])[vertex]
+    # nothing merged: the vertex ids are the identity (weld numbers by first occurrence), the faces stay as they are
+    sums = vertex_normals(welded, faces if len(welded) == len(positions) else vertex[faces])
+    normals = np.empty((len(positions), 3), dtype)
+    gathered_unit_normals(sums, np.ascontiguousarray(vertex, np.int64), normals)
     return [normals[offsets[i]:offsets[i + 1]] for i in range(len(parts))]
 
 
@@ -56,18 +57,6 @@ def unitize(vectors: np.ndarray, with_valid: bool = False):
     norm[valid] **= -1
     unit = vectors * norm.reshape((-1, 1))
     return (unit, valid) if with_valid else unit
-
-
-def _corner_angles(triangles: np.ndarray) -> np.ndarray:
-    u = unitize(triangles[:, 1] - triangles[:, 0])
-    v = unitize(triangles[:, 2] - triangles[:, 0])
-    w = unitize(triangles[:, 2] - triangles[:, 1])
-    angles = np.zeros((len(triangles), 3))
-    angles[:, 0] = np.arccos(np.clip(np.dot(u * v, [1.0] * 3), -1, 1))
-    angles[:, 1] = np.arccos(np.clip(np.dot(-u * w, [1.0] * 3), -1, 1))
-    angles[:, 2] = np.pi - angles[:, 0] - angles[:, 1]
-    angles[(angles < 1e-8).any(axis=1), :] = 0.0
-    return angles
 
 
 def unit_normals(normals: np.ndarray) -> np.ndarray:

@@ -504,10 +504,14 @@ def analyze_mesh(positions: np.ndarray, faces: np.ndarray, *, face_group: np.nda
         Triangles indexing ``positions``, counter-clockwise seen from the front.
     face_group : (F,) int, optional
         Primitive/material id per face; edges between different ids are material edges.
-    corner_uv : (F, 3, 2) float, optional
+    corner_uv : (F, 3, 2) float, or a function returning it, optional
         TEXCOORD_0 at each face corner (NaN where a primitive has none: never a seam there).
-    corner_normals : (F, 3, 3) float, optional
+    corner_normals : (F, 3, 3) float, or a function returning it, optional
         NORMAL at each face corner, for the normal-seam flag.
+
+    A function stands for a vertex attribute read at the corners: its seams need a position held by several
+    vertices, so when the weld merges nothing (every edge's two faces share their vertices) it is not called and no
+    seam is looked for (a PLY without seams does not gather (F, 3, 3) corner normals).
     """
     positions = np.asarray(positions, np.float64)
     faces = np.asarray(faces, np.int64)
@@ -529,10 +533,12 @@ def analyze_mesh(positions: np.ndarray, faces: np.ndarray, *, face_group: np.nda
                                  math.cos(math.radians(options.planar_angle)), group, math.radians(options.quad_angle),
                                  QUAD_MIN_OPPOSITE_ANGLE, flags, angle)
     classes = EdgeClasses(flags, angle, int(inconsistent))
-    if corner_uv is not None:
-        flags |= seam_flags(faces_welded, topology, corner_uv, UV_SEAM, 1e-6)
-    if corner_normals is not None:
-        flags |= seam_flags(faces_welded, topology, corner_normals, NORMAL_SEAM, 1e-4)
+    merged = len(welded) < len(positions)
+    for corners, flag, tolerance in ((corner_uv, UV_SEAM, 1e-6), (corner_normals, NORMAL_SEAM, 1e-4)):
+        if callable(corners):
+            corners = corners() if merged else None
+        if corners is not None:
+            flags |= seam_flags(faces_welded, topology, corners, flag, tolerance)
     normals = outline_normals(welded, faces_welded, inverse) if len(faces) else np.zeros((len(positions), 3))
     return MeshEdges(welded, inverse, faces, faces_welded, topology, classes, normals)
 

@@ -75,7 +75,8 @@ def weld(positions: np.ndarray, tolerance: float = 1e-6) -> tuple[np.ndarray, np
     """
     if len(positions) == 0:
         return positions.copy(), np.zeros(0, np.int64)
-    diag = float(np.linalg.norm(positions.max(0) - positions.min(0))) or 1.0
+    # column by column: numpy reduces a (n, 3) array along axis 0 several times slower than three contiguous passes
+    diag = float(np.linalg.norm([positions[:, k].max() - positions[:, k].min() for k in range(3)])) or 1.0
     keys = position_cells(np.ascontiguousarray(positions, np.float64), diag * tolerance)
     first, inverse = weld_cells(keys)
     if len(first) == len(positions):  # ids count first occurrences, so no merge means first == inverse == arange

@@ -272,8 +272,9 @@ class GltfDocument:
         if min_max and len(array):
             flat = array.reshape(len(array), -1)
             cast = float if array.dtype.kind == "f" else int
-            acc["min"] = [cast(v) for v in flat.min(axis=0)]
-            acc["max"] = [cast(v) for v in flat.max(axis=0)]
+            # column by column: several times faster than numpy's axis-0 reduction of a (count, n) array, same values
+            acc["min"] = [cast(flat[:, k].min()) for k in range(flat.shape[1])]
+            acc["max"] = [cast(flat[:, k].max()) for k in range(flat.shape[1])]
         if name:
             acc["name"] = name
         accessors = self.json.setdefault("accessors", [])

@@ -19,7 +19,7 @@ import numpy as np
 
 from baker import memory
 from baker.errors import BakerError
-from baker.geometry.angle_normals import seamless_vertex_normals, unit_normals, unitize
+from baker.geometry.angle_normals import seamless_vertex_normals
 from baker.geometry.strips import triangles_from_strips
 from baker.gltf.document import GltfDocument
 from baker.readers.finite import FLOAT32_MAX, refuse_non_finite
@@ -90,10 +90,8 @@ def read_direct(path: Path, header: PlyHeader) -> GltfDocument | None:
         # float32 already: a double beyond float32 became an infinity
         refuse_non_finite(path, values, name, non_finite_location)
     if "NORMAL" not in arrays:
-        with np.errstate(all="ignore"):
-            (normals,) = seamless_vertex_normals([(arrays["POSITION"].astype(np.float64), indices.reshape(-1, 3),
-                                                   None)])
-        arrays["NORMAL"] = unitize(unit_normals(normals)).astype(np.float32)
+        (arrays["NORMAL"],) = seamless_vertex_normals([(arrays["POSITION"], indices.reshape(-1, 3), None)],
+                                                      np.float32)
     doc = GltfDocument.from_triangles(path, path.name, arrays, indices, "baker (converted from ply)")
     assign_materials(doc, {})
     return doc

@@ -358,6 +358,31 @@ def test_material_and_uv_seam_edges():
     assert len(ends) == meridian - 1 > 10
 
 
+def test_seams_of_vertex_attributes_are_looked_for_only_where_positions_are_split():
+    """A function for the corner values (the edges bake's vertex attributes) is called only when the weld merges
+    vertices, and then flags what the array does; on a mesh whose vertices are all distinct it is never called."""
+    sphere = trimesh.creation.icosphere(2)
+    calls = []
+
+    def corners(values):
+        def gather():
+            calls.append(1)
+            return values
+        return gather
+
+    normals = np.asarray(sphere.vertex_normals)[sphere.faces]
+    analysis = E.analyze_mesh(sphere.vertices, sphere.faces, corner_normals=corners(normals))
+    assert not calls and not np.any(analysis.flags & E.NORMAL_SEAM)
+    # the same sphere with its faces split apart (flat shaded): every edge is a normal seam, with or without a function
+    flat_positions = sphere.vertices[sphere.faces].reshape(-1, 3)
+    flat_faces = np.arange(len(flat_positions)).reshape(-1, 3)
+    flat_normals = np.repeat(np.asarray(sphere.face_normals)[:, None], 3, axis=1)
+    lazy = E.analyze_mesh(flat_positions, flat_faces, corner_normals=corners(flat_normals))
+    eager = E.analyze_mesh(flat_positions, flat_faces, corner_normals=flat_normals)
+    assert calls == [1] and np.array_equal(lazy.flags, eager.flags)
+    assert np.count_nonzero(lazy.flags & E.NORMAL_SEAM) == len(sphere.edges_unique)
+
+
 # ---------------------------------------------------------------------------------------------------------- lines
 def _svg_paths(text: str) -> list[tuple[str, np.ndarray, bool]]:
     out = []

@@ -15,14 +15,16 @@ from baker.geometry.edge_codes import EdgeSettings
 from baker.geometry.edges import PrimitiveEdges, analyze_mesh, primitive_edges
 
 
-def mesh_edges(parts: list, corner_uv: np.ndarray | None, corner_normals: np.ndarray | None,
+def mesh_edges(parts: list, corner_uv, corner_normals,
                settings: EdgeSettings, fins: bool) -> list[PrimitiveEdges]:
     """Edge data of one mesh's triangle primitives, in their order.
 
     ``parts``: per primitive ``(positions (n, 3), triangles (t, 3) in its own vertex indices, keep (t,) bool: the
     triangles without a repeated index)``; ``corner_uv`` / ``corner_normals``: the kept triangles' per-corner UVs
-    (f, 3, 2) and normals (f, 3, 3) over all parts in order, or None where no seam is looked for. ``settings``: the
-    crease, planar and seam thresholds (the edges bake's options fit, by name); ``fins``: build fin corners."""
+    (f, 3, 2) and normals (f, 3, 3) over all parts in order, or functions returning them (called only when some
+    position is held by several vertices: no seam is possible otherwise), or None where no seam is looked for.
+    ``settings``: the crease, planar and seam thresholds (the edges bake's options fit, by name); ``fins``: build fin
+    corners."""
     v_off = np.cumsum([0] + [len(positions) for positions, _, _ in parts])
     f_off = np.cumsum([0] + [int(keep.sum()) for _, _, keep in parts])
     if len(parts) == 1:  # the common large case: no copies, and no material edges to look for

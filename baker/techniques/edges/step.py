@@ -59,12 +59,13 @@ def run(asset: Asset, options: EdgesOptions, seed: int = 0, progress: Progress =
                      for p, *_ in members)
         has_normals = all("NORMAL" in (prims[p].get("attributes") or {}) for p, *_ in members)
         with progress.task(f"edges mesh {m}", 1) as advance:
+            # gathered only if the analysis looks for seams (some position is held by several vertices)
             found = mesh_edges(
                 [(positions, triangles, keep) for _, positions, triangles, keep in members],
-                np.concatenate([_corner_attribute(asset, prims[p], "TEXCOORD_0", t[k], 2) for p, _, t, k in members])
-                if has_uv else None,
-                np.concatenate([_corner_attribute(asset, prims[p], "NORMAL", t[k], 3) for p, _, t, k in members])
-                if has_normals else None,
+                (lambda: np.concatenate([_corner_attribute(asset, prims[p], "TEXCOORD_0", t[k], 2)
+                                         for p, _, t, k in members])) if has_uv else None,
+                (lambda: np.concatenate([_corner_attribute(asset, prims[p], "NORMAL", t[k], 3)
+                                         for p, _, t, k in members])) if has_normals else None,
                 options, fins=options.fins)
             advance(1)
         for (p, pos, _, _), pe in zip(members, found):
