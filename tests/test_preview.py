@@ -1,6 +1,7 @@
 """``baker preview``: panels render with the runtime shaders and show their effect (pixel statistics per panel)."""
 from __future__ import annotations
 
+import dataclasses
 import re
 from pathlib import Path
 
@@ -125,10 +126,25 @@ def test_every_baked_technique_gets_its_panel(sheet):
                                                "hatching", "outline", "wireframe", "fur"]
 
 
-def test_hatching_darkens_from_lit_to_shadowed_side(sheet):
-    lambert = _lum(_panel(sheet, "lambert"))
+def test_hatching_darkens_from_lit_to_shadowed_side(baked_all, sheet):
+    """The hatching panel is the reference's lit colour times the TAM's brightness, as the web hosts draw it (the key
+    light from the front, as the viewer's): never brighter than the front-lit reference, and the strokes' share of
+    the shade (1 - panel / reference) grows from the lit to the shadowed side, near the tone asked for."""
+    from baker import readers
+    from baker.preview import core as pv
+
+    scene = pv.gather_scene(readers.read(baked_all))
+    ctx = pv.create_context()
+    try:
+        front = pv.render_panel(ctx, dataclasses.replace(pv.REFERENCE, light="front"), scene,
+                                pv.frame_camera(scene, azimuth=60, elevation=15), SIZE)
+    finally:
+        scene.release()
+        ctx.release()
+    lambert, hatching = _lum(front.astype(np.float64)), _lum(_panel(sheet, "hatching"))
     inside = ndimage.binary_erosion(_covered(_panel(sheet, "lambert")), iterations=2)
-    darkness = 1.0 - _lum(_panel(sheet, "hatching"))
+    assert (hatching[inside] <= lambert[inside] + 2 / 255).all()
+    darkness = 1.0 - hatching / np.maximum(lambert, 1e-6)
     # lambert = 0.8 (0.15 + 0.85 max(N.L, 0)): lit N.L > 0.7, half-lit N.L ~ 0.15-0.45, shadow N.L <= 0
     lit, half, shadow = inside & (lambert > 0.6), inside & (lambert > 0.2) & (lambert < 0.42), \
         inside & (lambert < 0.125)

@@ -30,12 +30,13 @@ SIZE = 192  # both pictures; the preview's default view (azimuth 30, elevation 1
 NOTICEABLE = 8 / 255  # a pixel changes when a channel moves by more than this
 # the preview panel -> the viewer switches that draw the same thing
 SWITCHES = {"caustics": ("caustics",), "translucency": ("translucency",), "toon": ("toon",), "skin": ("skin",),
-            "outline": ("outline",), "wireframe": ("wireframe",)}
+            "outline": ("outline",), "wireframe": ("wireframe",), "hatching": ("tam",), "fur": ("fur",)}
 BACK_LIT = {"translucency"}  # drawn with the light behind the asset (the viewer's back light, the panel's "back")
 OPTIONS = {"caustics": {"size": 128, "frames": 2},  # the water at its defaults (level, depth, tile, fade)
            "thickness": {"rays": 8, "per_texel": False},
-           "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0}}
-BAKES = {"spot": ("caustics", "thickness", "toon", "skin", "edges"), "standing": ("caustics",)}
+           "skin": {"width": 64, "height": 64, "penumbra_size": 32, "unit_scale": 5.0},
+           "tam": {"size": 64, "levels": 3}, "fur": {"shells": 6, "texture_size": 64}}
+BAKES = {"spot": ("caustics", "thickness", "toon", "skin", "edges", "tam", "fur"), "standing": ("caustics",)}
 
 
 def standing_spot(path):
@@ -157,7 +158,7 @@ def test_caustics_change_agrees_and_never_clips(measured, name):
     assert clipped <= 0.02
 
 
-@pytest.mark.parametrize("panel", ["translucency", "toon", "skin", "outline", "wireframe"])
+@pytest.mark.parametrize("panel", ["translucency", "toon", "skin", "outline", "wireframe", "hatching", "fur"])
 def test_technique_change_agrees_on_spot(measured, panel):
     """Each technique's viewer change is at least half its preview change (and both show something)."""
     entry = measured["spot"]

@@ -1,14 +1,13 @@
-"""Preview panel of BAKER_tonal_art_map: Praun's real-time hatching (``runtime-shaders/baker_hatching.glsl``), the
-TAM's levels uploaded as the custom mip chains of two textures, six-tone blend, drawn as ink on off-white paper."""
+"""Preview panel of BAKER_tonal_art_map: what a runtime draws (``runtime-shaders/baker_hatching.glsl``, as the
+three.js and Babylon.js hosts call it): Praun's real-time hatching, the TAM's levels uploaded as the custom mip chains
+of two textures, six-tone blend, the tone from the key light, multiplying the lit colour (the Lambert reference)
+with the hosts' own stage (``runtime-shaders/hosts/web/surface_hatching.glsl``). Lit from the front, over the
+camera's shoulder, as the web viewer's key light is: the hatching's tone follows the key light, so the panel shows
+the strokes the viewer draws."""
 from __future__ import annotations
 
-from baker.preview.core import DrawItem, Panel
+from baker.preview.core import LAMBERT, DrawItem, Panel, host_text
 from baker.techniques.tam.extension import read
-
-
-# the hatching's brightness (0 a stroke, 1 the paper) shown as ink on paper, both short of black and white so the
-# sheet clips neither (the strokes and the paper are what the panel shows)
-PAPER, INK = (0.94, 0.93, 0.9), (0.05, 0.05, 0.06)
 
 
 class HatchingPanel(Panel):
@@ -27,24 +26,31 @@ class HatchingPanel(Panel):
 
     def uniforms(self, item):
         tam = item.data["tam"]
-        return {"u_tonesA": tam.tones[:3], "u_tonesB": tam.tones[3:6], "u_scale": tam.scale,
-                "u_finestSize": float(tam.levels[0].size), "u_levelCount": float(len(tam.levels))}
+        return {"u_baker_tam_on": 1.0, "u_bakerTamTonesA": tam.tones[:3], "u_bakerTamTonesB": tam.tones[3:6],
+                "u_bakerTamScale": tam.scale, "u_bakerTamFinestSize": float(tam.levels[0].size),
+                "u_bakerTamLevels": float(len(tam.levels))}
 
     def textures(self, scene, ctx, item):
         levels = item.data["tam"].levels
-        return {f"u_tones{name}": scene.mip_chain(ctx, [level.textures[j] for level in levels])
+        return {f"u_bakerTam{name}": scene.mip_chain(ctx, [level.textures[j] for level in levels])
                 for j, name in enumerate(("012", "345"))}
 
 
+# the web hosts' stage itself: bakerUv the TAM's texture coordinates (the panel binds the set the TAM reads), the
+# key light the panel's, bakerColor the lit colour (the Lambert reference) the brightness multiplies
+STAGE = host_text("web/surface_hatching.glsl")
+
 PANELS = [
     HatchingPanel("hatching", "hatching (tonal art map)", ("baker_hatching.glsl",),
-                  "uniform sampler2D u_tones012;\nuniform sampler2D u_tones345;\nuniform vec3 u_tonesA;\n"
-                  "uniform vec3 u_tonesB;\nuniform float u_scale;\nuniform float u_finestSize;\n"
-                  "uniform float u_levelCount;",
-                  "vec2 tile = baker_tam_coord(v_uv, u_scale, u_finestSize);\n"
-                  "    float lod = baker_tam_lod(dFdx(tile), dFdy(tile), u_finestSize, u_levelCount);\n"
-                  "    float darkness = baker_hatching_darkness(N, u_light, 1.0);\n"
-                  "    float brightness = baker_hatching(u_tones012, u_tones345, tile, lod, darkness, u_tonesA, u_tonesB);\n"
-                  f"    color = mix(vec3{INK}, vec3{PAPER}, brightness);",
-                  inputs="in vec2 v_uv;", order=50),
+                  "uniform float u_baker_tam_on;\nuniform sampler2D u_bakerTam012;\nuniform sampler2D u_bakerTam345;\n"
+                  "uniform vec3 u_bakerTamTonesA;\nuniform vec3 u_bakerTamTonesB;\nuniform float u_bakerTamScale;\n"
+                  "uniform float u_bakerTamFinestSize;\nuniform float u_bakerTamLevels;",
+                  f"{LAMBERT}\n"
+                  "    vec2 bakerUv = v_uv;\n"
+                  "    vec3 bakerNormal = N;\n"
+                  "    vec3 bakerKeyLight = u_light;\n"
+                  "    vec3 bakerColor = color;\n"
+                  f"    {STAGE}\n"
+                  "    color = bakerColor;",
+                  light="front", inputs="in vec2 v_uv;", order=50),
 ]
