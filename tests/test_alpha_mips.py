@@ -389,7 +389,7 @@ def test_preview_fur_keeps_coverage_when_small(tmp_path):
         for size in (384, 128, 64):
             on, off = coverage(path, size), coverage(bare, size)
             quad = np.abs(off - np.array(BACKGROUND)).max(axis=2) > 0.02
-            changed = np.abs(on - off).max(axis=2) > 0.02  # the panel's skin is the hair's mean colour, darker
+            changed = np.abs(on - off).max(axis=2) > 0.02  # the shells over the reference-shaded surface
             measured[name, size] = float((changed & quad).sum() / quad.sum())
     print(measured)
     near = measured["chain", 384]
