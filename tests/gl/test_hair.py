@@ -322,7 +322,9 @@ def test_offset_children_and_lods_match_twin(gl_context, tmp_path):
     assert cli_main(["guides", str(groom), "-o", str(out), "--guides", "30", "--vertices-per-strand", "9",
                      "--quiet"]) == 0
     doc = GltfDocument.load(out)
-    guides, children = read(doc, 0, 0), read(doc, 0, 1)
+    # the groom's emitter (spot) is carried beside the hair as its scalp: the strands are the "hair" mesh
+    hair = next(i for i, m in enumerate(doc.json["meshes"]) if m.get("name") == "hair")
+    guides, children = read(doc, hair, 0), read(doc, hair, 1)
     v = guides.vertices_per_strand
     gpos = guides.positions.reshape(-1, v, 3)
     cpos = children.positions.reshape(-1, v, 3)
