@@ -174,6 +174,13 @@ def build_card(curve: np.ndarray, members: np.ndarray, scalp_normal: np.ndarray,
         curve = np.concatenate([curve, curve[-1:] + reach * tangents[-1:]])
         members = np.concatenate([members, members[:, -1:]], axis=1)
         tangents = np.concatenate([tangents, tangents[-1:]])
+    # and roots behind the representative's root (a clump's roots cover a patch of the scalp, some upstream of
+    # their mean): one station before it, back along the root tangent as far as the farthest root lies behind
+    behind = float(np.max((curve[0] - members[:, 0]) @ tangents[0]))
+    if behind > 1e-3 * np.linalg.norm(np.diff(curve, axis=0), axis=1).sum():
+        curve = np.concatenate([curve[:1] - behind * tangents[:1], curve])
+        members = np.concatenate([members[:, :1], members], axis=1)
+        tangents = np.concatenate([tangents[:1], tangents])
     offsets = members - curve[None]
     w_axis, normal = width_directions(tangents, offsets, scalp_normal)
     across = np.einsum("nvi,vi->nv", offsets, w_axis)
