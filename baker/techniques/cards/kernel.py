@@ -10,7 +10,7 @@ import numpy as np
 
 from baker.techniques.cards.atlas import closest_on_cards, pack_regions, rasterize_strands
 from baker.techniques.cards.clumps import cluster_strands
-from baker.techniques.cards.fit import NEAR, fit_clumps, refine_clumps
+from baker.techniques.cards.fit import fit_clumps, refine_clumps
 from baker.techniques.cards.options import CardsOptions
 from baker.techniques.cards.ribbon import build_card, draw_order
 from baker.texels.color import linear_to_srgb
@@ -95,7 +95,7 @@ def make_cards(strands: np.ndarray, lengths: np.ndarray, widths: np.ndarray | No
         widths = np.full((s, v), float(np.median(lengths)) / 300.0)
     min_half = max(float(np.median(widths)), 2e-3 * mean_length)
     card_options = dict(coverage=options.coverage, min_half_width=min_half, tolerance=options.tolerance,
-                        max_segments=options.max_segments, hold=NEAR * mean_length)
+                        max_segments=options.max_segments)
     if options.cards:  # an explicit count: one clustering, one card per clump
         clumps = cluster_strands(strands, lengths, options.cards, locality=options.locality, seed=options.seed)
         clumps, cards = refine_clumps(strands, lengths, clumps, card_options=card_options, rounds=options.refine)
