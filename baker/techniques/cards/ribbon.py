@@ -5,7 +5,9 @@ For each clump:
 1. a frame along the curve: tangent T, then a width direction W perpendicular to it, from the principal axis of
    the members' offsets around the curve (2 x 2 PCA per station in a parallel-transport frame, smoothed along the
    curve) plus a pull towards T x scalp normal, so a clump that spreads evenly lies flat on the scalp, as cards are
-   laid; the card normal N = T x W points out of the scalp;
+   laid; where the members' points over a few stations spread least along an axis that is not the tangent, that
+   axis is the card normal (the members' sheet) and W runs across the curve in that plane; N = T x W points out
+   of the scalp; the ribbon starts behind the curve's root as far as the farthest member root lies upstream;
 2. the width at each station covers the central ``coverage`` share of the members' offsets along W, and the ribbon
    sits at their median offset along N;
 3. segments adapted to curvature: starting from the two ends, the station whose edges deviate most from the
