@@ -26,6 +26,7 @@ from techniques.curly_groom import make_curly_groom
 from techniques.cards_views import alpha_at, card_silhouette, coverage_image, strand_silhouette, view_basis
 
 CARDS = 96
+MESHES = Path("/work/shared/assets/meshes")  # as tests/browser.py
 ATLAS = 1024
 
 
@@ -519,6 +520,52 @@ def test_fixed_budget_holds_the_held_out_groom(curly, tmp_path):
     assert near >= 0.90, near
     assert summary["fit"]["met"] and summary["fit"]["within5Percent"] >= 0.90
     assert summary["fit"]["within5Percent"] <= near + 0.002  # own card (resampled points) vs nearest (input points)
+
+
+def grown_strands(path: Path) -> list:
+    """The child strands of a ``baker hair`` GLB (the groom ``baker cards`` reads), parsed here: the ``hair`` mesh's
+    second primitive, ``verticesPerStrand`` points a strand (BAKER_hair)."""
+    gltf, acc, _ = read_glb(path)
+    children = next(m for m in gltf["meshes"] if m["name"] == "hair")["primitives"][1]
+    v = children["extensions"]["BAKER_hair"]["verticesPerStrand"]
+    return list(acc(children["attributes"]["POSITION"]).astype(np.float64).reshape(-1, v, 3))
+
+
+def test_fixed_budget_on_a_grown_groom(tmp_path):
+    """A groom grown by ``baker hair`` (round guide bundles: clumped, curly children) on the top of suzanne's head,
+    3000 strands at --cards 60 (50 strands a card, as 120 cards for 6,000). Measured here: every input point's
+    distance to the nearest card surface against 5 % of its OWN strand's length (the issue's wording) and of the
+    mean length (the same here: the grower gives every strand one length). The cards do not reach the 90 % target
+    on this groom (a flat card cannot hold a round guide bundle thicker than the tolerance: README, hair cards);
+    this checks the share they do reach and that the summary says the target is missed."""
+    import trimesh
+
+    head = trimesh.load(MESHES / "suzanne.obj", force="mesh")
+    lo, hi = head.bounds
+    top = (head.face_normals[:, 1] > 0.2) & (head.triangles_center[:, 1] > lo[1] + 0.55 * (hi[1] - lo[1]))
+    head.submesh([np.flatnonzero(top)], append=True).export(tmp_path / "top.obj")
+    grown = tmp_path / "grown.glb"
+    assert cli_main(["hair", str(tmp_path / "top.obj"), "-o", str(grown), "--guides", "150", "--children", "20",
+                     "--seed", "5", "--curl-amplitude", "0.03", "--curl-frequency", "2", "--clump", "0.5",
+                     "--segments", "24", "-q"]) == 0
+    curves = grown_strands(grown)
+    assert len(curves) == 3000
+    out = tmp_path / "cards.glb"
+    with contextlib.redirect_stdout(io.StringIO()) as buffer:
+        assert cli_main(["cards", str(grown), "-o", str(out), "--cards", "60", "--atlas-size", "256",
+                         "--format", "json"]) == 0
+    summary = json.loads(buffer.getvalue())
+    cards = cards_from_glb(out)
+    assert cards["ext"]["cardCount"] == 60
+    lengths = np.array([np.linalg.norm(np.diff(c, axis=0), axis=1).sum() for c in curves])
+    distance, _, _ = nearest_card_points(np.concatenate(curves), cards)
+    own = (distance <= 0.05 * np.repeat(lengths, [len(c) for c in curves])).mean()
+    mean = (distance <= 0.05 * lengths.mean()).mean()
+    print("grown groom, 60 cards: within 5 % of the own strand length", own, "of the mean length", mean,
+          "summary", summary["fit"])
+    # 0.675 (own card 0.574) before the cards followed their members' sheet and roots; 0.696 (0.601) now
+    assert own >= 0.69 and mean >= 0.69, (own, mean)
+    assert not summary["fit"]["met"] and summary["fit"]["within5Percent"] <= mean + 0.002
 
 
 # -------------------------------------------------------------------------------------- formats, bytes, errors
