@@ -17,7 +17,7 @@ import threading
 # seconds to compile the kernels of each command (and of each bake of ``baker bake``) on a cold cache: first run
 # minus second run, examples/spot/spot.obj and DejaVu Sans, 2 cores; rounded, as the note gives them
 COMMAND_SECONDS = {"glyphs": 28, "text": 25, "hair": 17, "guides": 10, "cards": 15, "lines": 8, "tam": 10,
-                   "caustics": 8, "preview": 3}
+                   "caustics": 8, "preview": 3, "hair-lut": 7}
 BAKE_SECONDS = {"thickness": 9, "curvature": 5, "skin": 3, "edges": 7, "tam": 10, "toon": 2, "fur": 5,
                 "caustics": 8, "normal-blur": 8}
 DEFAULT_BAKES = ("thickness",)

@@ -62,6 +62,7 @@ def workload(work: Path) -> list[list[str]]:
         ["lines", SPOT, "-o", work / "spot.svg"],
         ["tam", "-o", work / "tam", "-q"],
         ["caustics", "-o", work / "caustics", "-q"],
+        ["hair-lut", "-o", work / "hair_lut", "-q"],
         ["inspect", baked],
         ["validate", baked, "--no-khronos", "-q"],
         ["preview", baked, "-o", work / "sheet.png", "--size", "96", "-q"],
