@@ -124,7 +124,15 @@ def assert_same(alone, together, what):
     assert alone.keys() <= together.keys(), (what, sorted(set(alone) - set(together)))
     for key, value in alone.items():
         if isinstance(value, np.ndarray):
-            assert np.array_equal(value, together[key]), (what, key)
+            other = together[key]
+            if value.shape != other.shape and value.shape[:1] == other.shape[:1]:
+                # the blender layout pads a mesh's custom attributes to the widest data the run's bakes write
+                # (SCALAR for thickness alone, VEC3 with curvature's directions): the same data, zeros beyond it
+                value, other = value.reshape(len(value), -1), other.reshape(len(other), -1)
+                width = min(value.shape[1], other.shape[1])
+                assert not value[:, width:].any() and not other[:, width:].any(), (what, key, "padding")
+                value, other = value[:, :width], other[:, :width]
+            assert np.array_equal(value, other), (what, key)
         else:
             assert value == together[key], (what, key)
 

@@ -36,7 +36,7 @@ SIGNATURES = (
     ("pdf", "a PDF document", lambda h: h.startswith(b"%PDF")),
     ("gzip", "gzip-compressed data", lambda h: h.startswith(b"\x1f\x8b")),
     ("elf", "an executable (ELF)", lambda h: h.startswith(b"\x7fELF")),
-    ("json", "JSON text", lambda h: h.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"{")),
+    ("json", "JSON text", lambda h: h.lstrip(b"\xef\xbb\xbf \t\r\n").startswith((b"{", b"["))),
 )
 DESCRIPTIONS = {kind: what for kind, what, _ in SIGNATURES}
 

@@ -67,8 +67,12 @@ def _obj_no_faces(folder, env):
 
 
 CASES = [
-    Case("empty-file", "damaged GLB: an empty file", _empty, {**NOT_READABLE, "bake": Expect(2, ("empty.glb",))}),
-    Case("glb-bad-magic", "damaged GLB: wrong magic", _bad_magic, NOT_READABLE),
+    # an empty file and one without the GLB magic are not GLB files: validate refuses them in one line (exit 2, issue
+    # 47) as it does a PNG under that name, instead of reporting them as damaged GLBs
+    Case("empty-file", "damaged GLB: an empty file", _empty,
+         {**NOT_READABLE, "bake": Expect(2, ("empty.glb",)), "validate": Expect(2, ("an empty file",))}),
+    Case("glb-bad-magic", "damaged GLB: wrong magic", _bad_magic,
+         {**NOT_READABLE, "validate": Expect(2, ("binary data, not a GLB file",))}),
     Case("glb-length-lies", "damaged GLB: total length beyond the file", _total_length_lies, NOT_READABLE),
     Case("glb-chunk-past-end", "damaged GLB: a chunk length beyond the file", _chunk_past_end, NOT_READABLE),
     Case("glb-truncated", "damaged GLB: cut short", _truncated, NOT_READABLE),
