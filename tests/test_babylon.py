@@ -362,7 +362,8 @@ def test_babylon_shades_diffuse_with_the_blurred_normals_like_three(site, tmp_pa
     DELTA_RATIO."""
     name = write_blurred_sphere(site["root"])
     shots = {"on": "", "off": "&off=normalBlur"}
-    base = f"{site['url']}/index.html?hud=0&src={name}"
+    # every technique on and the back light, as the viewer opened before it opened on the first technique alone
+    base = f"{site['url']}/index.html?hud=0&src={name}&start=all&on=backlight"
 
     three, babylon = shoot_engines("webgl2", base, shots, tmp_path)
     for info in three + babylon:
@@ -409,7 +410,8 @@ def test_babylon_softens_the_blender_heads_diffuse(site, tmp_path):
     detail drops with the blurred normals on."""
     name = write_blender_head(site["root"])
     shots = {"on": "", "off": "&off=normalBlur"}
-    base = f"{site['url']}/index.html?hud=0&src={name}"
+    # every technique on and the back light, as the viewer opened before it opened on the first technique alone
+    base = f"{site['url']}/index.html?hud=0&src={name}&start=all&on=backlight"
 
     three, babylon = shoot_engines("webgl2", base, shots, tmp_path)
     for info in three + babylon:

@@ -338,7 +338,8 @@ def test_viewer_softens_the_blender_heads_diffuse(site, tmp_path):
     (skin stays on in both: its LUT then reads the per-channel N.L)."""
     name = write_blender_head(site["root"])
     assert techniques_in(gltf_json(site["root"] / name)) == {"normalBlur", "skin", "curvature"}
-    base = f"{site['url']}/index.html?hud=0&src={name}"
+    # every technique on and the back light, as the viewer opened before it opened on the first technique alone
+    base = f"{site['url']}/index.html?hud=0&src={name}&start=all&on=backlight"
     jobs = [{"url": base + query, "out": str(tmp_path / f"{key}.png"), "width": W, "height": H}
             for key, query in (("on", ""), ("off", "&off=normalBlur"))]
     infos, (on, off) = _shoot(jobs, tmp_path)
