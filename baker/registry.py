@@ -9,7 +9,7 @@ from importlib.metadata import entry_points
 
 from baker.data import SCHEMA_ROOT
 from baker.errors import BakerError
-from baker.technique import Technique
+from baker.technique import USD_READ_HOOKS, Technique
 
 ENTRY_POINT_GROUP = "baker.techniques"
 
@@ -145,3 +145,7 @@ def panels() -> list:
     from baker.technique import load
 
     return [panel for t in techniques().values() if t.panels for panel in load(t.panels)]
+
+
+# the USD reader (a shared layer) reaches these through baker.technique, not by importing the registry
+USD_READ_HOOKS.update(primitive_accessors=usd_primitive_accessors, material_readers=usd_material_readers)

@@ -79,3 +79,16 @@ class Technique:
         if not sep:
             return Path(self.schemas)
         return Path(str(importlib.resources.files(package).joinpath(folder)))
+
+
+# What the technique registry lends the shared layers, which may not import it (DESIGN.md's layers): baker.registry
+# fills this in when it is imported (every command, baker.api and baker.validate import it). The USD reader asks it
+# which members of a primitive extension are accessors ("primitive_accessors") and for the techniques' hooks that
+# restore what USD attributes cannot carry ("material_readers").
+USD_READ_HOOKS: dict = {}
+
+
+def usd_read_hook(name: str) -> dict:
+    """The registry's answer for ``name`` (see :data:`USD_READ_HOOKS`); empty before the registry is imported."""
+    provider = USD_READ_HOOKS.get(name)
+    return provider() if provider is not None else {}

@@ -28,7 +28,7 @@ FAST = {
     "skin": {"width": 32, "height": 32, "penumbra_size": 16},
     "tam": {"size": 64, "levels": 2},
     "edges": {"fins": True},
-    "fur": {"shells": 4, "texture_size": 32, "hairs": 100},
+    "fur": {"fins": True, "shells": 4, "texture_size": 32, "hairs": 100},  # fins: a fin primitive to read back
     "caustics": {"size": 32, "frames": 2, "waves": 16},
     "normal-blur": {"texture_size": 64},
 }

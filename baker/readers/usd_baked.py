@@ -17,7 +17,8 @@ points as :mod:`baker.readers.usd` does) one glTF mesh and node:
   path>`` textures (each ``UsdUVTexture``'s image becomes a glTF image and texture, its primvar reader's ``st<n>``
   the ``texCoord``), ``KHR_materials_volume`` from ``ThicknessTexture`` and ``inputs:baker:thicknessFactor``;
 - what the attributes cannot carry (lists of objects holding glTF indices, e.g. TAM level sizes) each extension
-  recovers in its ``from_usd(doc, material, params)`` hook (:func:`baker.registry.usd_material_readers`).
+  recovers in its ``from_usd(doc, material, params)`` hook (:func:`baker.registry.usd_material_readers`, lent
+  through :data:`baker.technique.USD_READ_HOOKS`).
 
 - each ``coverageMips`` chain from its ``baker:<name>:coverageMips:_<i>:*`` attributes (the KTX2 file back into an
   accessor, its level 0's coverage measured again).
@@ -39,6 +40,7 @@ import numpy as np
 
 from baker.errors import BakerError
 from baker.gltf.document import GltfDocument, sniff_mime
+from baker.technique import usd_read_hook
 
 ST_NAME = re.compile(r"st(\d*)")
 LIST_ITEM = re.compile(r"_(\d+)")
@@ -140,9 +142,7 @@ class _StageReader:
     def primitive_extensions(self, prim, mesh: int, primitive: int) -> None:
         """The primitive extensions written on the mesh prim (``baker:<name>:*``, see :mod:`baker.gltf.usd`), their
         accessors rebuilt from the flat arrays and their ``:componentType`` and ``:type``."""
-        from baker import registry
-
-        known = registry.usd_primitive_accessors()
+        known = usd_read_hook("primitive_accessors")
         found: dict = {}
         for attr in prim.GetAttributes():
             name = attr.GetName()
@@ -260,7 +260,6 @@ class _StageReader:
 
     # ------------------------------------------------------------------ materials
     def material(self, material) -> int:
-        from baker import registry
         from pxr import UsdShade
 
         key = str(material.GetPath())
@@ -308,7 +307,7 @@ class _StageReader:
             if isinstance(extensions.get(short), dict):
                 extensions[short]["coverageMips"] = [self._coverage_mips(entries[k], f"{key}.baker:{short}:{k}")
                                                      for k in sorted(entries, key=lambda k: int(k.lstrip("_") or 0))]
-        hooks = registry.usd_material_readers()
+        hooks = usd_read_hook("material_readers")
         for short, params in sorted(extensions.items()):
             if not isinstance(params, dict):
                 continue
