@@ -98,7 +98,7 @@ def read_glb(path: Path) -> tuple[dict, callable]:
     bin_len, bin_type = struct.unpack_from("<I4s", data, 20 + json_len)
     assert bin_type == b"BIN\x00"
     blob = data[28 + json_len:28 + json_len + bin_len]
-    dtypes = {5126: "<f4", 5125: "<u4", 5123: "<u2"}
+    dtypes = {5126: "<f4", 5125: "<u4", 5123: "<u2", 5121: "u1"}
     sizes = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
 
     def accessor(i):

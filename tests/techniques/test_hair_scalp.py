@@ -1,13 +1,12 @@
 """The scalp travels with the hair: ``baker hair`` writes its emitter mesh beside the strands, and ``baker guides``
 and ``baker cards`` carry it to their outputs (or take ``--scalp MESH``); the cards summary states its fit against
-``--fit`` and says when it is missed. Files are read here with their own GLB parser (JSON + BIN chunks) and the
+``--fit`` and says when it is missed. Files are read with the tests' own GLB parser (test_guides.read_glb) and the
 emitter with trimesh, never with baker's reader."""
 from __future__ import annotations
 
 import contextlib
 import io
 import json
-import struct
 
 import numpy as np
 import pytest
@@ -15,27 +14,7 @@ from scipy.spatial import cKDTree
 
 from baker.cli import main as cli_main
 from baker.validate import validate_file
-
-
-def read_glb(path):
-    """(glTF JSON, accessor reader) of a GLB, parsed here."""
-    data = path.read_bytes()
-    (json_len,) = struct.unpack_from("<I", data, 12)
-    gltf = json.loads(data[20:20 + json_len])
-    (bin_len,) = struct.unpack_from("<I", data, 20 + json_len)
-    blob = data[28 + json_len:28 + json_len + bin_len]
-    dtypes = {5126: "<f4", 5125: "<u4", 5123: "<u2", 5121: "u1"}
-    sizes = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
-
-    def accessor(i):
-        a = gltf["accessors"][i]
-        view = gltf["bufferViews"][a["bufferView"]]
-        n = sizes[a["type"]]
-        arr = np.frombuffer(blob, dtypes[a["componentType"]], a["count"] * n,
-                            view.get("byteOffset", 0) + a.get("byteOffset", 0))
-        return arr.reshape(a["count"], n) if n > 1 else arr
-
-    return gltf, accessor
+from techniques.test_guides import read_glb
 
 
 def triangle_meshes(path):
