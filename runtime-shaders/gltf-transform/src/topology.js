@@ -312,3 +312,24 @@ function remapPrimitive(document, prim, snapshot, ids, indices) {
 	for (const [property, path, array] of updates) replaceAccessor(document, property, path, array);
 	return null;
 }
+
+/** The class of an extension whose data is indexed by vertex order (edge visibility, hair strands): `Base` with
+ * every primitive's vertices marked on read and the data remapped (or dropped) before write. */
+export function tracksVertexOrder(Base) {
+	return class extends Base {
+		prewriteTypes = [PropertyType.ACCESSOR];
+
+		read(context) {
+			super.read(context);
+			for (const mesh of this.document.getRoot().listMeshes()) {
+				for (const prim of mesh.listPrimitives()) markVertices(this.document, prim);
+			}
+			return this;
+		}
+
+		prewrite(_context, _propertyType) {
+			prewriteTopology(this);
+			return this;
+		}
+	};
+}
