@@ -24,18 +24,12 @@ sys.path.insert(0, str(ROOT))
 from baker.techniques.hair_shading import kernel as K  # noqa: E402
 from baker.techniques.hair_shading.extension import lut_files  # noqa: E402
 from baker.techniques.hair_shading.options import HairShadingOptions  # noqa: E402
-from baker.techniques.hair_shading.tables import as_half, bake_tables, evaluate  # noqa: E402
+from baker.techniques.hair_shading.tables import as_half, bake_tables, evaluate, sphere_directions  # noqa: E402
 
 SIZES = {"small (M 64, N 32x16x8)": (64, 32, 16, 8), "default (M 128, N 64x32x16)": (128, 64, 32, 16),
          "large (M 256, N 128x64x32)": (256, 128, 64, 32)}
 
 
-def sphere(n_theta, n_phi):
-    s = -1 + (np.arange(n_theta) + 0.5) * 2 / n_theta
-    p = -math.pi + (np.arange(n_phi) + 0.5) * 2 * math.pi / n_phi
-    s, p = np.meshgrid(s, p, indexing="ij")
-    c = np.sqrt(1 - s ** 2)
-    return np.stack([s.ravel(), (c * np.cos(p)).ravel(), (c * np.sin(p)).ravel()], -1)
 
 
 def view(theta_deg):
@@ -44,7 +38,7 @@ def view(theta_deg):
 
 
 def main() -> None:
-    lights = sphere(48, 96)
+    lights = sphere_directions(48, 96)
     h = -1 + (np.arange(512) + 0.5) * 2 / 512
     w = np.full(512, 1 / 512)
     views = (-70, -40, -10, 0, 20, 50, 80)
@@ -73,7 +67,7 @@ def main() -> None:
                 cells.append(f"{100 * errors.max():.2f}% / {100 * errors.mean():.2f}%")
             print(f"| {name} | {kib:.0f} KiB, baked in {seconds:.2f} s | {beta} | " + " | ".join(cells) + " |")
     tables = as_half(bake_tables(0.3, 0.3, 1.55))
-    dense = sphere(200, 400)
+    dense = sphere_directions(200, 400)
     albedo = [evaluate(tables, [1, 0, 0], dense, view(t), [0.0, 0.0, 0.0], 2.0)[:, 0].sum() * 4 * math.pi
               / len(dense) for t in (0, 30, 60, 85)]
     print("white hair albedo from the default tables (beta 0.3), theta_o 0/30/60/85:",

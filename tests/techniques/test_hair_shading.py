@@ -17,7 +17,7 @@ import baker.api
 from baker.gltf.images import read_image
 from baker.techniques.hair_shading import kernel as K
 from baker.techniques.hair_shading.extension import read_lut
-from baker.techniques.hair_shading.tables import as_half, bake_tables
+from baker.techniques.hair_shading.tables import as_half, bake_tables, sphere_directions
 
 
 def direction(theta_deg, phi_deg=0.0):
@@ -25,13 +25,6 @@ def direction(theta_deg, phi_deg=0.0):
     return np.array([math.sin(t), math.cos(t) * math.cos(p), math.cos(t) * math.sin(p)])
 
 
-def sphere(n_theta, n_phi):
-    """Midpoint directions in (sin theta, phi): equal solid angle 4 pi / (n_theta n_phi) each."""
-    s = -1 + (np.arange(n_theta) + 0.5) * 2 / n_theta
-    p = -math.pi + (np.arange(n_phi) + 0.5) * 2 * math.pi / n_phi
-    s, p = np.meshgrid(s, p, indexing="ij")
-    c = np.sqrt(1 - s ** 2)
-    return np.stack([s.ravel(), (c * np.cos(p)).ravel(), (c * np.sin(p)).ravel()], -1)
 
 
 @pytest.mark.parametrize("beta", [0.2, 0.4])
@@ -104,7 +97,7 @@ def model_with_midpoints(model, wo, wi, count=384):
 def test_tables_match_the_model(beta):
     """``baker.api.hair_bsdf`` (half-float tables, bilinear lookups) is within 5% relative L1 over the sphere of light
     directions of the model, per view direction, for blond, brown and black hair."""
-    lights = sphere(24, 48)
+    lights = sphere_directions(24, 48)
     worst = 0.0
     for eumelanin in (0.3, 1.3, 8.0):
         model = K.FibreModel(K.sigma_a_from_melanin(eumelanin), beta, beta, 2.0, 1.55)
@@ -123,7 +116,7 @@ def test_any_tangent_frame():
     """Rotating tangent, light and view together changes nothing (the twin builds its own fibre frame)."""
     rng = np.random.default_rng(8)
     q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
-    lights = sphere(6, 8)
+    lights = sphere_directions(6, 8)
     view = direction(25.0, 40.0)
     a = baker.api.hair_bsdf([1.0, 0.0, 0.0], lights, view, eumelanin=0.3)
     b = baker.api.hair_bsdf(q @ [1.0, 0.0, 0.0], lights @ q.T, q @ view, eumelanin=0.3)
@@ -156,7 +149,7 @@ def test_hair_lut_command(tmp_path):
     assert np.isfinite(m.astype(float)).all() and np.isfinite(n.astype(float)).all()
     baked = as_half(bake_tables(0.25, 0.35, 1.55))
     np.testing.assert_array_equal(m.astype(np.float32), baked.longitudinal)
-    lights = sphere(8, 16)
+    lights = sphere_directions(8, 16)
     view = direction(10.0)
     from_files = baker.api.hair_bsdf([1, 0, 0], lights, view, eumelanin=1.3, beta_m=0.25, beta_n=0.35,
                                      tables=read_lut(out))
@@ -184,7 +177,7 @@ def test_dual_scattering_averages_against_the_model():
     dual = dual_scattering_table(0.3, 0.3, 1.55, 2.0, n_theta=7, slices=5)  # rows at x = 0, .25, .5, .75, 1
     white = dual.table[0, :, 0] + dual.table[0, :, 1]
     np.testing.assert_allclose(white, 1.0, atol=2e-3)
-    lights = sphere(90, 180)
+    lights = sphere_directions(90, 180)
     back = np.abs(np.arctan2(lights[:, 2], lights[:, 1])) <= math.pi / 2  # the view sits at phi = 0
     for row in (0, 2):
         sigma = -2.0 * math.log(1.0 - row / 4)
@@ -206,7 +199,7 @@ def test_colour_inversion():
     assert np.allclose(K.sigma_a_from_color([1.0, 1.0, 1.0], 0.3), 0.0)
     sigma = K.sigma_a_from_color([0.45, 0.25, 0.12], 0.3)
     assert sigma[0] < sigma[1] < sigma[2]
-    lights = sphere(24, 48)
+    lights = sphere_directions(24, 48)
     s = baker.api.hair_bsdf([1, 0, 0], lights, direction(10.0), color=[0.45, 0.25, 0.12]).sum(0)
     assert s[0] > s[1] > s[2]
 

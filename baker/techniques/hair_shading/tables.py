@@ -104,6 +104,16 @@ def as_half(tables: HairTables) -> HairTables:
                       tables.beta_m, tables.beta_n, tables.eta, tables.slices)
 
 
+def sphere_directions(n_theta: int, n_phi: int) -> np.ndarray:
+    """(n_theta n_phi, 3) unit directions at the midpoints of an (sin theta, phi) grid, x along the fibre: each
+    stands for the same solid angle 4 pi / (n_theta n_phi), so a mean over them is an integral over the sphere."""
+    s = -1 + (np.arange(n_theta) + 0.5) * 2 / n_theta
+    p = -math.pi + (np.arange(n_phi) + 0.5) * 2 * math.pi / n_phi
+    s, p = np.meshgrid(s, p, indexing="ij")
+    c = np.sqrt(1 - s ** 2)
+    return np.stack([s.ravel(), (c * np.cos(p)).ravel(), (c * np.sin(p)).ravel()], -1)
+
+
 def bilinear(image: np.ndarray, u, v, row0=0, rows=None) -> np.ndarray:
     """Linear filtering of an endpoint-aligned image at (u, v) in [0, 1] (clamped), within rows [row0, row0+rows):
     what a GPU's bilinear fetch at texel centre ((t * (size - 1) + 0.5) / size) returns."""
