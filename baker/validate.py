@@ -509,7 +509,8 @@ def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
     ``khronos`` (default) also runs Khronos glTF-Validator and merges its messages; the report's ``khronos`` says
     whether it ran (``{"ran", "version", "reason", ...}``) and ``validators`` lists the validators that ran.
 
-    Raises :class:`~baker.errors.BakerError` when the file does not exist, and :class:`KhronosUnavailable` (a
+    Raises :class:`~baker.errors.BakerError` when the file does not exist or cannot be parsed (a truncated GLB,
+    broken JSON, a stage pxr cannot open: one line with the place and the problem), and :class:`KhronosUnavailable` (a
     BakerError) when ``khronos`` is asked for and the validator cannot run here: the check fails closed. Anything wrong
     inside the file is a message.
     """
@@ -525,9 +526,15 @@ def validate_file(path, khronos: bool = True, allow_outside=None) -> dict:
         raise KhronosUnavailable(khronos_state["reason"])
     issues = Issues()
     gltf, glb_bin, mime = read_container(path, issues)
+    unreadable = next((m for m in issues.messages if m["code"] in UNREADABLE_CONTAINER), None)
+    if unreadable is not None:  # a truncated or broken file is refused (exit 2, one line), not reported on
+        raise BakerError(path, unreadable["message"])
     return _check_container(path, gltf, glb_bin, mime, issues, khronos, khronos_state, allow_outside)
 
 
+# the container cannot be parsed (a GLB whose header or chunks run past the end of the file, JSON that breaks off or
+# is not JSON): validate refuses the file, as it refuses a missing one, rather than report on a document it never read
+UNREADABLE_CONTAINER = ("INVALID_GLB", "INVALID_JSON")
 USD_SUFFIXES = (".usd", ".usda", ".usdc", ".usdz")
 USD_MIME_TYPES = {".usda": "model/vnd.usda", ".usdc": "model/vnd.usd", ".usd": "model/vnd.usd",
                   ".usdz": "model/vnd.usdz+zip"}
@@ -542,8 +549,9 @@ def validate_usd(path: Path, khronos: bool = True, allow_outside=None) -> dict:
     for or not. Pointers name places in the recovered glTF document (``/meshes/0`` is the first mesh of the stage)."""
     import tempfile
 
-    from baker.readers.usd import read as read_usd_document
+    from baker.readers.usd import open_stage, read as read_usd_document
 
+    open_stage(path)  # a stage pxr cannot parse (a truncated .usda) is refused: BakerError, exit 2
     issues = Issues()
     report_state = {"ran": False, "version": None, "reason": KHRONOS_NOT_FOR_USD if khronos else KHRONOS_DISABLED}
     try:

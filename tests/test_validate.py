@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import struct
 
@@ -286,14 +287,25 @@ def test_structure_rules(copy, edit, code):
 
 
 def test_unparseable_and_missing_files(tmp_path, baked, capsys):
-    broken = tmp_path / "broken.gltf"
-    broken.write_text("{ not json")
-    assert cli(["validate", "--no-khronos", str(broken)]) == 1
-    assert "INVALID_JSON" in capsys.readouterr().out
-
-    truncated = tmp_path / "truncated.glb"
-    truncated.write_bytes(baked[".glb"].read_bytes()[:1000])
-    assert cli(["validate", "--no-khronos", str(truncated)]) == 1
+    """A file validate cannot parse (broken or truncated JSON, a GLB cut short, a .usda cut short) or that is not
+    there is refused: exit 2 and one line naming the file, the place and the problem, nothing on stdout (it is not a
+    report on a document: those are exit 1)."""
+    baker.pipeline.save(baker.bake(baked[".glb"], bakes=()), tmp_path / "ico.usda")
+    usda = (tmp_path / "ico.usda").read_bytes()
+    # the problem and its place: the JSON's line and column, the GLB's sizes, the stage's line:column
+    cases = {"broken.gltf": (b"{ not json", r"broken JSON at line 1 column 3 \(char 2\)"),
+             "truncated.gltf": (baked[".gltf"].read_bytes()[:700], r"truncated JSON: the file ends at line \d+ column"),
+             "truncated.glb": (baked[".glb"].read_bytes()[:1000], r"truncated GLB: header says \d+ bytes, file has 1000"),
+             "truncated.usda": (usda[:len(usda) // 2], r"cannot open USD stage: \S*truncated.usda:\d+:\d+: parse error")}
+    lines = []
+    for name, (data, problem) in cases.items():
+        (tmp_path / name).write_bytes(data)
+        assert cli(["validate", "--no-khronos", str(tmp_path / name)]) == 2, name
+        out, err = capsys.readouterr()
+        lines.append(err.strip())
+        assert out == "" and len(err.strip().splitlines()) == 1 and err.startswith(f"baker: error: {tmp_path / name}: ")
+        assert re.search(problem, err) and "Traceback" not in err and "pxrInternal" not in err, err
+    print("\n".join(lines))
 
     assert cli(["validate", str(tmp_path / "nope.glb")]) == 2
 
@@ -387,8 +399,16 @@ def test_load_and_validate_report_the_same_first_problem(tmp_path):
     one line a bake fails with is validate's first error, pointer and message."""
     from baker.errors import BakerError
 
-    checked = 0
+    checked = refused = 0
     for case, path in _gltf_corpus(tmp_path):
+        if case.expect["validate"].exit == 2:  # a container neither can parse: both refuse it with the same line
+            with pytest.raises(BakerError) as raised_by_validate:
+                validate.validate_file(path, khronos=False)
+            with pytest.raises(BakerError) as raised:
+                GltfDocument.load(path)
+            assert raised.value.message == raised_by_validate.value.message, case.name
+            refused += 1
+            continue
         report = validate.validate_file(path, khronos=False)
         errors = [m for m in report["issues"]["messages"] if m["severity"] == 0]
         if case.expect["validate"].exit == 0:
@@ -400,7 +420,7 @@ def test_load_and_validate_report_the_same_first_problem(tmp_path):
         first = f"{errors[0]['pointer']}: {errors[0]['message']}" if errors[0].get("pointer") else errors[0]["message"]
         assert raised.value.message == first, case.name
         checked += 1
-    assert checked > 40
+    assert checked > 40 and refused >= 2
 
 
 @pytest.mark.parametrize("edit, code, ptr", [

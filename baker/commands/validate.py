@@ -1,5 +1,5 @@
 """``baker validate FILE...``: schemas, each technique's semantic checks and Khronos' glTF-Validator
-(:mod:`baker.validate`); exit 1 on errors, 2 when a file is missing or Khronos' validator cannot run (unless
+(:mod:`baker.validate`); exit 1 on errors, 2 when a file is missing or cannot be parsed (truncated) or Khronos' validator cannot run (unless
 ``--no-khronos``). ``--install-khronos`` installs the pinned validator into the user cache first."""
 from __future__ import annotations
 

@@ -183,7 +183,14 @@ def read_container(path: Path, issues: Issues) -> tuple[dict | None, bytes | Non
     except BakerError as exc:
         issues.error("INVALID_GLB", exc.message)
         return None, None, mime
-    except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as exc:
+    except json.JSONDecodeError as exc:
+        where = f"line {exc.lineno} column {exc.colno} (char {exc.pos})"
+        if not exc.doc[exc.pos:].strip():  # nothing but white space after the place the parser stopped
+            issues.error("INVALID_JSON", f"truncated JSON: the file ends at {where} inside the document ({exc.msg})")
+        else:
+            issues.error("INVALID_JSON", f"broken JSON at {where}: {exc.msg}")
+        return None, None, mime
+    except (UnicodeDecodeError, RecursionError) as exc:
         issues.error("INVALID_JSON", f"broken JSON: {exc}")
         return None, None, mime
     if not isinstance(gltf, dict):

@@ -21,6 +21,7 @@ normals gets them as a USD renderer would draw it: flat per face when ``subdivis
 """
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -102,7 +103,8 @@ def open_stage(path: Path) -> "Usd.Stage":
     except Exception as exc:  # pxr raises Tf.ErrorException with a multi-line message
         messages = [str(getattr(a, "commentary", "")).strip() for a in exc.args]
         text = next((m for m in messages if m), str(exc))
-        raise BakerError(path, f"cannot open USD stage: {' '.join(text.split())[:300]}") from None
+        text = re.sub(r"pxrInternal_\w+?__pxrReserved__::", "", " ".join(text.split()))  # pxr's namespace
+        raise BakerError(path, f"cannot open USD stage: {text[:300]}") from None
     if stage is None:
         raise BakerError(path, "cannot open USD stage")
     return stage
