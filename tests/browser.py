@@ -228,15 +228,21 @@ def terminator_redness(on, off, background):
     return float(red[0] - red[1]), int(band.sum())
 
 
-def write_blender_head(root):
-    """A real normal-mapped asset (tests/blender/normal_mapped_head.py: Suzanne exported by Blender's own glTF exporter
-    with TANGENT) baked with normal-blur, curvature and skin: root/head.glb. Blender is the bpy venv of
-    scripts/install-bpy ($BAKER_BPY_PYTHON, as tests/test_blender.py finds it)."""
+def bpy_python():
+    """Blender's Python: the bpy venv of scripts/install-bpy ($BAKER_BPY_PYTHON, as tests/test_blender.py finds it)."""
     python = os.environ.get("BAKER_BPY_PYTHON")
     if not python:
         done = subprocess.run([str(ROOT / "scripts" / "install-bpy")], capture_output=True, text=True)
         assert done.returncode == 0, f"scripts/install-bpy failed:\n{done.stderr[-2000:]}"
         python = done.stdout.strip().splitlines()[-1]
+    return python
+
+
+def write_blender_head(root):
+    """A real normal-mapped asset (tests/blender/normal_mapped_head.py: Suzanne exported by Blender's own glTF exporter
+    with TANGENT) baked with normal-blur, curvature and skin: root/head.glb. Blender is the bpy venv of
+    scripts/install-bpy ($BAKER_BPY_PYTHON, as tests/test_blender.py finds it)."""
+    python = bpy_python()
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     exported = root / "head_blender.glb"
     made = subprocess.run([python, str(ROOT / "tests" / "blender" / "normal_mapped_head.py"), str(exported), "256"],

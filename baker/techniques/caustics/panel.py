@@ -5,7 +5,9 @@ The panel is the Lambert reference with the caustics applied by the runtime's ow
 values as written: the frames projected along ``projectionDirection`` from the world position with the baked tile
 size (``baker_caustics_uv``), faded by the point's depth below ``waterLevel`` (``baker_caustics_fade``: nothing
 above the water), and the key light's Lambert part of the reference redistributed by the irradiance
-(``baker_caustics_apply``), as the hosts redistribute their directional lights' Lambert light. What the panel shows
+(``baker_caustics_apply``), as the hosts redistribute their directional lights' Lambert light, under the key light
+from the front (the viewer's key light; the sheet's grazing side light would leave the side of an asset standing on
+the ground dark, where the caustics barely show). What the panel shows
 on an asset is what a runtime shows on it: a water level that leaves the asset dry shows no caustics here either
 (baker's default puts the water over the asset, :func:`baker.techniques.caustics.options.water_over`)."""
 from __future__ import annotations
@@ -120,5 +122,5 @@ PANELS = [
                   "    vec3 bakerDiffuse = reference;\n"
                   f"    {STAGE}\n"
                   "    color = headroom(reference, bakerDiffuse);",
-                  order=45),
+                  light="front", order=45),
 ]
