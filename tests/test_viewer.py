@@ -30,7 +30,8 @@ def site(tmp_path_factory):
     """A served folder with the built viewer, a baked asset, and the preview panel's shader and setup."""
     require_tools("viewer")
     root = tmp_path_factory.mktemp("site")
-    build_viewer(root, ("viewer.js", "babylon.js"))  # the Babylon.js page for the first-picture test
+    # the Babylon.js and three.js WebGPURenderer pages for the first-picture tests
+    build_viewer(root, ("viewer.js", "babylon.js", "three_webgpu.js"))
     asset = baker.bake(SPOT, options={"thickness": {"rays": 16, "per_texel": False}})
     save(asset, root / "spot.glb")
 
@@ -214,31 +215,48 @@ def test_viewer_opens_on_a_readable_first_picture(site, tmp_path):
     canvas, not cut at an edge), the panel's rectangle is beside the canvas (never over it), only the first technique
     of the list is on, and at most 2% of the asset's pixels are clipped black or white, in the first frame and with
     every technique off."""
+    assert_first_picture(site, tmp_path, {"three": "", "babylon": "&engine=babylon"}, webgpu=False)
+
+
+def test_viewer_opens_on_a_readable_first_picture_on_webgpu(site, tmp_path):
+    """The same first frame and plain frame (every technique off) on the WebGPU pages: three.js's WebGPURenderer
+    (?engine=three-webgpu) and Babylon.js's WebGPUEngine (?engine=babylon-webgpu), in a Chromium with a WebGPU adapter
+    (SwiftShader on Vulkan); each page reports window.__bakerBackend 'webgpu'."""
+    require_tools("viewer on WebGPU", ("playwright-core", "three", "@babylonjs/core"))
+    assert_first_picture(site, tmp_path, {"three-webgpu": "&engine=three-webgpu",
+                                          "babylon-webgpu": "&engine=babylon-webgpu"}, webgpu=True)
+
+
+def assert_first_picture(site, tmp_path, engines, webgpu):
+    """The first-picture checks on the pages of ``engines`` (name -> query), in a browser with WebGPU or not."""
     root = site["root"]
-    asset = baker.bake(write_standing_cow(root), bakes=("thickness", "toon", "edges"),
-                       options={"thickness": {"rays": 8, "per_texel": False}})
-    save(asset, root / "standing.glb")
+    if not (root / "standing.glb").exists():  # baked once for both tests
+        asset = baker.bake(write_standing_cow(root), bakes=("thickness", "toon", "edges"),
+                           options={"thickness": {"rays": 8, "per_texel": False}})
+        save(asset, root / "standing.glb")
     every = sorted(techniques_in(gltf_json(root / "standing.glb")))
     assert every == ["outline", "toon", "translucency", "wireframe"]
     width, height = 640, 400
-    jobs = [{"url": f"{site['url']}/index.html?src=standing.glb{engine}", "width": width, "height": height,
-             "out": str(tmp_path / f"first{i}.png"),
-             "shots": [{"on": [], "off": every, "out": str(tmp_path / f"off{i}.png")}]}
-            for i, engine in enumerate(("", "&engine=babylon"))]
-    infos = shoot(jobs, tmp_path / "jobs.json")
+    jobs = [{"url": f"{site['url']}/index.html?src=standing.glb{query}", "width": width, "height": height,
+             "out": str(tmp_path / f"first-{name}.png"),
+             "shots": [{"on": [], "off": every, "out": str(tmp_path / f"off-{name}.png")}]}
+            for name, query in engines.items()]
+    infos = shoot(jobs, tmp_path / "jobs.json", webgpu=webgpu)
     background = np.array(BACKGROUND_RGB) / 255.0
-    for i, info in enumerate(infos):
+    for name, info in zip(engines, infos):
         assert info["ready"] and not info["errors"] and not info["warnings"], info
+        assert info["backend"] == ("webgpu" if webgpu else "webgl2"), info
         assert info["enabled"] == ["translucency"], info  # the first of the list (RUNTIMES' order), alone
         panel, canvas = info["rects"]["panel"], info["rects"]["canvas"]
         assert panel[0] + panel[2] <= canvas[0] + 0.5 and canvas[0] + canvas[2] <= width + 0.5, info["rects"]
-        first, off = (read_image(tmp_path / f"{k}{i}.png")[..., :3].astype(np.float32) / 255.0 for k in ("first", "off"))
+        first, off = (read_image(tmp_path / f"{k}-{name}.png")[..., :3].astype(np.float32) / 255.0
+                      for k in ("first", "off"))
         assert first.shape[:2] == (round(canvas[3]), round(canvas[2]))
         for frame in (first, off):
             covered = np.abs(frame - background).max(axis=2) > 0.03
             white, black = clipped_fractions(frame, covered)
-            print(jobs[i]["url"], "clipped white", white, "black", black)
-            assert white <= 0.02 and black <= 0.02, (white, black)
+            print(name, "clipped white", white, "black", black)
+            assert white <= 0.02 and black <= 0.02, (name, white, black)
             rows, cols = np.nonzero(covered)
             h, w = covered.shape
             # framed: the asset's box centred, within the canvas, filling a sensible part of it
@@ -249,7 +267,7 @@ def test_viewer_opens_on_a_readable_first_picture(site, tmp_path):
             # the front: the red cube in front of the face shows, the blue one behind the rump is hidden
             red = (frame[..., 0] > 0.4) & (frame[..., 1] < 0.25) & (frame[..., 2] < 0.25)
             blue = (frame[..., 2] > 0.4) & (frame[..., 0] < 0.25)
-            assert red.sum() > 40 and blue.sum() < 5, (int(red.sum()), int(blue.sum()))
+            assert red.sum() > 40 and blue.sum() < 5, (name, int(red.sum()), int(blue.sum()))
 
 
 def test_viewer_draws_moving_caustics_on_a_floor(site, tmp_path):
