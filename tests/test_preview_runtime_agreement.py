@@ -21,6 +21,7 @@ from __future__ import annotations
 import dataclasses
 import os
 import subprocess
+import time as clock
 from pathlib import Path
 
 import numpy as np
@@ -166,6 +167,7 @@ def measured(tmp_path_factory):
     server, url = serve(root)
     try:
         for name, source in sources.items():
+            started = clock.monotonic()
             save(baker.bake(source, bakes=BAKES[name], seed=1,
                             options={k: v for k, v in OPTIONS.items() if k in BAKES[name]}), root / f"{name}.glb")
             doc = GltfDocument.load(root / f"{name}.glb")
@@ -191,7 +193,10 @@ def measured(tmp_path_factory):
                              "shots": [{"on": [], "off": found, "out": str(root / f"{name}-plain.png")}]})
             result[name] = {"caustics": caustics, "panels": panels, "shown": shown, "found": found,
                             "source": source}
+            print(name, "baked and previewed in", round(clock.monotonic() - started, 1), "s")
+        started = clock.monotonic()
         infos = shoot(jobs, root / "jobs.json")
+        print(len(jobs), "viewer pages in", round(clock.monotonic() - started, 1), "s")
     finally:
         server.shutdown()
     for job, info in zip(jobs, infos):

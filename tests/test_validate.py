@@ -295,8 +295,10 @@ def test_unparseable_and_missing_files(tmp_path, baked, capsys):
     # the problem and its place: the JSON's line and column, the GLB's sizes, the stage's line:column
     cases = {"broken.gltf": (b"{ not json", r"broken JSON at line 1 column 3 \(char 2\)"),
              "truncated.gltf": (baked[".gltf"].read_bytes()[:700], r"truncated JSON: the file ends at line \d+ column"),
-             "truncated.glb": (baked[".glb"].read_bytes()[:1000], r"truncated GLB: header says \d+ bytes, file has 1000"),
-             "truncated.usda": (usda[:len(usda) // 2], r"cannot open USD stage: \S*truncated.usda:\d+:\d+: parse error")}
+             "truncated.glb": (baked[".glb"].read_bytes()[:1000],
+                               r"truncated GLB: header says \d+ bytes, file has 1000"),
+             "truncated.usda": (usda[:len(usda) // 2],
+                                r"cannot open USD stage: \S*truncated.usda:\d+:\d+: parse error")}
     lines = []
     for name, (data, problem) in cases.items():
         (tmp_path / name).write_bytes(data)
