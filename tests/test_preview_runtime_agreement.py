@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import resource
 import subprocess
 import time as clock
 from pathlib import Path
@@ -194,9 +195,11 @@ def measured(tmp_path_factory):
             result[name] = {"caustics": caustics, "panels": panels, "shown": shown, "found": found,
                             "source": source}
             print(name, "baked and previewed in", round(clock.monotonic() - started, 1), "s")
-        started = clock.monotonic()
+        started, cpu = clock.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
         infos = shoot(jobs, root / "jobs.json")
-        print(len(jobs), "viewer pages in", round(clock.monotonic() - started, 1), "s")
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        print(len(jobs), "viewer pages in", round(clock.monotonic() - started, 1), "s, CPU",
+              round(after.ru_utime + after.ru_stime - cpu.ru_utime - cpu.ru_stime, 1), "s (node and Chromium)")
     finally:
         server.shutdown()
     for job, info in zip(jobs, infos):
