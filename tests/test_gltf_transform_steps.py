@@ -150,6 +150,8 @@ def test_step_keeps_the_bake(spot, tmp_path, step):
         assert len(warnings) == 1 and "edge data" in warnings[0] and "dropped" in warnings[0], log
         assert all(VISIBILITY not in (p.get("extensions") or {}) and EDGES not in (p.get("extensions") or {})
                    for m in after.json["meshes"] for p in m["primitives"])
+        # and no longer listed as used
+        assert not {EDGES, VISIBILITY} & set(after.json.get("extensionsUsed", [])), after.json["extensionsUsed"]
         return
     assert not warnings, log
     local0, world0, tris0, edges0, vis0 = _edge_data(before)
