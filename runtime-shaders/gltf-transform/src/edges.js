@@ -2,6 +2,7 @@
 import { PropertyType } from '@gltf-transform/core';
 import { BakerExtension, defineProperty, finsOfPrimitive } from './base.js';
 import { markVertices, prewriteTopology } from './topology.js';
+import { rememberUnits } from './units.js';
 
 const EDGES = 'BAKER_edges';
 
@@ -17,6 +18,7 @@ export class BakerEdges extends BakerExtension {
 
 	read(context) {
 		super.read(context);
+		rememberUnits(this.document);
 		// `fins` is a back reference: drop it, finish() derives it from the fin primitive's `finsOf`
 		for (const mesh of this.document.getRoot().listMeshes()) {
 			for (const prim of mesh.listPrimitives()) {

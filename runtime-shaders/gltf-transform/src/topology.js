@@ -16,6 +16,7 @@
 // one warning line. meshopt's index codec may rotate a triangle's corners: with its codec given
 // (setMeshoptIndexCodec) the triangles are rotated as it will before the remap.
 import { PropertyType } from '@gltf-transform/core';
+import { rememberUnits, settleUnits } from './units.js';
 
 export const VERTEX_ID = '_BAKER_VERTEX_ID';
 const EDGES = 'BAKER_edges';
@@ -177,6 +178,7 @@ export function settleTopology(document) {
 /** Prewrite hook of the classes holding topology data (the first one settles everything: the ids are gone after).
  * The ids are not put back: write a document once per read. */
 export function prewriteTopology(extension) {
+	settleUnits(extension.document);
 	settleTopology(extension.document);
 }
 
@@ -321,6 +323,7 @@ export function tracksVertexOrder(Base) {
 
 		read(context) {
 			super.read(context);
+			rememberUnits(this.document);
 			for (const mesh of this.document.getRoot().listMeshes()) {
 				for (const prim of mesh.listPrimitives()) markVertices(this.document, prim);
 			}
