@@ -142,6 +142,20 @@ def test_step_keeps_the_bake(spot, tmp_path, step):
     assert_khronos_clean(out)
 
     before, after = _load(spot), _load(out)
+    # data in mesh units follows the units the step left (quantize moves the dequantization into the node): each
+    # fin vertex sits on its edge's end (POSITION = _FIN_V0 at corners 0 and 3, _FIN_V1 at 1 and 2, as baked), and
+    # the fur's lengths times the node's scale are the baked lengths
+    scale = np.cbrt(abs(np.linalg.det(_world(after, 0)[:3, :3])))
+    for prim in after.json["meshes"][0]["primitives"]:
+        if "_FIN_V0" not in prim["attributes"]:
+            continue
+        at = {name: to_float(after, prim["attributes"][name])[:, :3] for name in ("POSITION", "_FIN_V0", "_FIN_V1")}
+        corner = to_float(after, prim["attributes"]["_FIN_CORNER"])[:, 0]
+        end = np.where(((corner < 0.5) | (corner > 2.5))[:, None], at["_FIN_V0"], at["_FIN_V1"])
+        assert np.abs(at["POSITION"] - end).max() < 1e-3 * np.ptp(at["POSITION"], axis=0).max(), step
+    fur0, fur1 = (d.json["materials"][0]["extensions"]["BAKER_fur"] for d in (before, after))
+    for name in ("length", "shellSpacing"):
+        assert fur1[name] * scale == pytest.approx(fur0[name], rel=1e-5), (step, name)
     kept = EDGES in (after.json["meshes"][0]["primitives"][0].get("extensions") or {})
     assert kept == KEEPS_EDGES[step]
     warnings = [line for line in log.splitlines() if "@baker/gltf-transform" in line]
@@ -245,3 +259,48 @@ def test_hair_keeps_its_strands_through_optimize(cli, tmp_path):
             assert np.abs(x0 - x1).max() < 1e-3 * np.ptp(x0, axis=0).max()  # int16 positions
             strands += ext["strandCount"]
     assert strands > 12
+
+
+def test_three_and_babylon_draw_each_step_like_the_bake(spot, tmp_path):
+    """Every technique on (?start=all), default view: each step's output drawn by three.js and by Babylon.js (WebGL2)
+    like the uncompressed file. quantize and meshopt move the dequantization into the node's scale: the fins'
+    positions and the fur lengths follow it (src/units.js), the outline's pixel width is divided by the world scale
+    (the hosts); Draco's custom attributes are decoded by the hosts (Babylon's loader decodes only the standard ones).
+    """
+    from scipy import ndimage
+    from skimage.metrics import structural_similarity
+
+    from baker.gltf.images import read_image
+    from browser import BACKGROUND_RGB, build_viewer, require_tools, serve, shoot
+
+    require_tools("gltf-transform steps", ("playwright-core", "three", "@babylonjs/core", "@babylonjs/loaders"))
+    shutil.copy(spot, tmp_path / "plain.glb")
+    steps = ["meshopt", "draco", "quantize", "optimize"]
+    for step in steps:
+        _step(spot, tmp_path / f"{step}.glb", step)
+    build_viewer(tmp_path, ("viewer.js", "babylon.js"))
+    server, url = serve(tmp_path)
+    names = ["plain", *steps]
+    try:
+        jobs = [{"url": f"{url}/index.html?hud=0&start=all&src={name}.glb{engine}",
+                 "out": str(tmp_path / f"{name}{engine.replace('&engine=', '.')}.png"), "width": 256, "height": 256}
+                for engine in ("", "&engine=babylon") for name in names]
+        infos = shoot(jobs, tmp_path / "jobs.json")
+    finally:
+        server.shutdown()
+    for job, info in zip(jobs, infos):
+        assert info["ready"] and not info["errors"], (job["url"], info)
+
+    def luma(path):
+        image = read_image(path)[..., :3].astype(np.float32) / 255.0
+        return image, ndimage.gaussian_filter(image, sigma=(1.0, 1.0, 0)) @ np.array([0.2126, 0.7152, 0.0722], np.float32)
+
+    background = np.array(BACKGROUND_RGB, np.float32) / 255.0
+    for e, engine in enumerate(("three", "babylon")):
+        plain, plain_luma = luma(jobs[e * len(names)]["out"])
+        assert 0.05 < (np.abs(plain - background).max(axis=2) > 0.03).mean() < 0.9  # the cow is on screen
+        for k, step in enumerate(steps, start=1):
+            _, stepped = luma(jobs[e * len(names) + k]["out"])
+            ssim = structural_similarity(plain_luma, stepped, data_range=1.0)
+            print(f"{engine} {step}: SSIM {ssim:.4f}")  # for the record
+            assert ssim >= 0.95, (engine, step, ssim)
