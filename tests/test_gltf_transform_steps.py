@@ -304,3 +304,54 @@ def test_three_and_babylon_draw_each_step_like_the_bake(spot, tmp_path):
             ssim = structural_similarity(plain_luma, stepped, data_range=1.0)
             print(f"{engine} {step}: SSIM {ssim:.4f}")  # for the record
             assert ssim >= 0.95, (engine, step, ssim)
+
+
+def test_blender_addon_reads_the_quantized_attributes(tmp_path):
+    """Blender's importer skips custom attributes stored as normalized integers (it makes FLOAT, INT and colour
+    attributes only) and the add-on matched its edge marks by raw positions: after `gltf-transform quantize`, the
+    add-on gives Blender every baked attribute with its value within one 12-bit step of the baked file's, and marks
+    the same Freestyle edges (fandisk's creases), as for the baked file."""
+    import json
+
+    from scipy.spatial import cKDTree
+    from test_blender import ADDON, FANDISK, run_blender
+
+    blender_python = os.environ.get("BAKER_BPY_PYTHON")
+    if not blender_python:
+        if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
+            pytest.fail("BAKER_BPY_PYTHON is required in CI (scripts/install-bpy)")
+        pytest.skip("BAKER_BPY_PYTHON not set (scripts/install-bpy)")
+    plain, quantized = tmp_path / "fandisk.glb", tmp_path / "fandisk.quantize.glb"
+    save(baker.bake(FANDISK, bakes=["thickness", "curvature", "edges"],
+                    options={"thickness": {"rays": 8, "texture_size": 32}, "curvature": {"rings": 1}}), plain)
+    if not CLI.exists():
+        pytest.fail("@gltf-transform/cli is not installed (scripts/install-node-tools)")
+    _step(plain, quantized, "quantize")
+    report = tmp_path / "report.json"
+    run_blender(blender_python, "import_report.py", "--addon", ADDON, "--out", report, "--", plain, quantized)
+    entries = json.loads(report.read_text())
+    (mesh0,), (mesh1,) = ([o for o in entries[str(p)]["objects"] if o["type"] == "MESH"] for p in (plain, quantized))
+    assert entries[str(quantized)]["error"] is None
+
+    doc0, doc1 = GltfDocument.load(plain), GltfDocument.load(quantized)
+    prim0, prim1 = doc0.json["meshes"][0]["primitives"][0], doc1.json["meshes"][0]["primitives"][0]
+    normalized = {n for n, a in prim1["attributes"].items()
+                  if n.startswith("_") and doc1.json["accessors"][a].get("normalized")}
+    assert {"_OUTLINE_NORMAL", "_PRINCIPAL_DIRECTION"} <= normalized, normalized  # (fandisk's thickness > 1)
+    # Blender's vertices (glTF axes, the node's local space) in world space, against the baked file's vertices
+    world = _world(doc1, 0)
+    points1 = np.asarray(mesh1["positions"]) @ world[:3, :3].T + world[:3, 3]
+    points0 = to_float(doc0, prim0["attributes"]["POSITION"])
+    near = cKDTree(points0).query_ball_point(points1, r=2e-4 * np.ptp(points0, axis=0).max())
+    assert all(near)
+    for name in sorted(n for n in prim0["attributes"] if n.startswith("_")):
+        assert name in mesh1["attributes"], f"Blender lacks {name}"
+        baked = to_float(doc0, prim0["attributes"][name]).reshape(len(points0), -1)
+        got = np.asarray(mesh1["attributes"][name]["values"], np.float64)[:, : baked.shape[1]]
+        error = np.array([np.abs(baked[list(candidates)] - value).max(axis=1).min()
+                          for candidates, value in zip(near, got)])
+        step = 1.0 / (2 ** 11 - 1) if name in normalized else 1e-6 * max(1.0, np.abs(baked).max())
+        assert error.max() <= step, (name, error.max())
+    marks = [m.get("freestyle_marks", int(np.sum(m["attributes"].get("freestyle_edge", {}).get("values", 0))))
+             for m in (mesh0, mesh1)]
+    assert marks[0] > 100 and marks[1] == marks[0], marks
