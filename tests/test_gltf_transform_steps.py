@@ -355,3 +355,33 @@ def test_blender_addon_reads_the_quantized_attributes(tmp_path):
     marks = [m.get("freestyle_marks", int(np.sum(m["attributes"].get("freestyle_edge", {}).get("values", 0))))
              for m in (mesh0, mesh1)]
     assert marks[0] > 100 and marks[1] == marks[0], marks
+
+
+def test_preview_reads_the_quantized_attributes(spot, tmp_path):
+    """`baker preview` draws what it gathers in world space: after `gltf-transform quantize` (same vertex order) every
+    surface it gathers has the baked file's world positions (within the 16-bit step), its custom attributes within
+    one 12-bit step (it read the raw integers before), and the fur's world spacing the baked one."""
+    from baker import readers
+    from baker.preview.core import gather_scene
+
+    out = tmp_path / "spot.quantize.glb"
+    _step(spot, out, "quantize")
+    items0, items1 = (gather_scene(readers.read(p, require_triangles=False)).items for p in (spot, out))
+    assert len(items0) == len(items1) > 0
+    for a, b in zip(items0, items1):
+        extent = np.ptp(a.positions, axis=0).max()
+        assert np.abs(a.positions - b.positions).max() < 2e-4 * extent
+        assert set(a.attributes) == set(b.attributes)
+        for name in a.attributes:
+            quantized = _normalized(out, name)
+            step = 1.0 / (2 ** 11 - 1) if quantized else 1e-6 * max(1.0, float(np.abs(a.attributes[name]).max()))
+            assert np.abs(a.attributes[name] - b.attributes[name]).max() <= step + 1e-6, name
+        fur0, fur1 = a.data.get("fur"), b.data.get("fur")
+        if fur0 is not None:
+            assert fur1.shell_spacing * b.world_scale == pytest.approx(fur0.shell_spacing * a.world_scale, rel=1e-5)
+
+
+def _normalized(path: Path, name: str) -> bool:
+    doc = GltfDocument.load(path)
+    accessor = doc.json["meshes"][0]["primitives"][0]["attributes"].get(name)
+    return accessor is not None and bool(doc.json["accessors"][accessor].get("normalized"))
