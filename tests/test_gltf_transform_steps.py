@@ -49,18 +49,22 @@ def cli():
     return CLI
 
 
+SPOT_BAKES = ["thickness", "curvature", "skin", "edges", "tam", "toon", "fur"]
+SPOT_OPTIONS = {
+    "thickness": {"rays": 8, "texture_size": 64},
+    "curvature": {"rings": 1, "smoothing": 1},
+    "skin": {"width": 32, "height": 32, "samples": 16, "penumbra_size": 16},
+    "tam": {"size": 32, "levels": 2, "candidates": 2},
+    "toon": {"width": 16},
+    "edges": {"fins": True},
+    "fur": {"shells": 3, "texture_size": 16, "hairs": 50},
+}
+
+
 @pytest.fixture(scope="module")
 def spot(cli, tmp_path_factory):
     path = tmp_path_factory.mktemp("gltf_transform_steps") / "spot.glb"
-    save(baker.bake(SPOT, bakes=["thickness", "curvature", "skin", "edges", "tam", "toon", "fur"], options={
-        "thickness": {"rays": 8, "texture_size": 64},
-        "curvature": {"rings": 1, "smoothing": 1},
-        "skin": {"width": 32, "height": 32, "samples": 16, "penumbra_size": 16},
-        "tam": {"size": 32, "levels": 2, "candidates": 2},
-        "toon": {"width": 16},
-        "edges": {"fins": True},
-        "fur": {"shells": 3, "texture_size": 16, "hairs": 50},
-    }), path)
+    save(baker.bake(SPOT, bakes=SPOT_BAKES, options=SPOT_OPTIONS), path)
     return path
 
 
@@ -261,11 +265,45 @@ def test_hair_keeps_its_strands_through_optimize(cli, tmp_path):
     assert strands > 12
 
 
+BUNNY = Path(__file__).parents[2] / "shared" / "assets" / "meshes" / "stanford-bunny.obj"
+EDGE_TECHNIQUES = "fins,outline"  # what the edge data draws (the viewer's switches)
+
+
+def _clustered_obj(source: Path, out: Path, cell: float) -> Path:
+    """``source`` decimated by vertex clustering (one vertex per ``cell``-sized grid cell, at its vertices' mean;
+    triangles that collapse or repeat are dropped): a scan small enough for a software renderer."""
+    vertices, faces = [], []
+    for line in source.read_text().splitlines():
+        if line.startswith("v "):
+            vertices.append([float(x) for x in line.split()[1:4]])
+        elif line.startswith("f "):
+            faces.append([int(x.split("/")[0]) - 1 for x in line.split()[1:4]])
+    vertices, faces = np.array(vertices), np.array(faces)
+    _, cluster, counts = np.unique(np.floor((vertices - vertices.min(0)) / cell).astype(np.int64), axis=0,
+                                   return_inverse=True, return_counts=True)
+    cluster = cluster.reshape(-1)
+    centers = np.zeros((len(counts), 3))
+    np.add.at(centers, cluster, vertices)
+    centers /= counts[:, None]
+    tris = cluster[faces]
+    tris = tris[(tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 0] != tris[:, 2])]
+    tris = tris[np.sort(np.unique(np.sort(tris, axis=1), axis=0, return_index=True)[1])]
+    used = np.unique(tris)
+    index = np.full(len(centers), -1)
+    index[used] = np.arange(len(used))
+    out.write_text("".join(f"v {x:.6f} {y:.6f} {z:.6f}\n" for x, y, z in centers[used]) +
+                   "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in index[tris]))
+    return out
+
+
 def test_three_and_babylon_draw_each_step_like_the_bake(spot, tmp_path):
-    """Every technique on (?start=all), default view: each step's output drawn by three.js and by Babylon.js (WebGL2)
-    like the uncompressed file. quantize and meshopt move the dequantization into the node's scale: the fins'
-    positions and the fur lengths follow it (src/units.js), the outline's pixel width is divided by the world scale
-    (the hosts); Draco's custom attributes are decoded by the hosts (Babylon's loader decodes only the standard ones).
+    """Every technique on (?start=all), default view: each step's output of spot and of a scan (the Stanford bunny,
+    decimated to 4.6k triangles), drawn by three.js and by Babylon.js (WebGL2), like the uncompressed file.
+    quantize and meshopt move the dequantization into the node's scale: the fins' positions and the fur lengths
+    follow it (src/units.js), the outline's pixel width is divided by the world scale (the hosts); Draco's custom
+    attributes are decoded by the hosts (Babylon's loader decodes only the standard ones). draco and optimize drop the
+    edge data (with a warning): on the bunny, whose picture is much outline and fins, they are compared with the bake
+    drawn without them (the full bake's SSIM is printed for the record).
     """
     from scipy import ndimage
     from skimage.metrics import structural_similarity
@@ -274,36 +312,50 @@ def test_three_and_babylon_draw_each_step_like_the_bake(spot, tmp_path):
     from browser import BACKGROUND_RGB, build_viewer, require_tools, serve, shoot
 
     require_tools("gltf-transform steps", ("playwright-core", "three", "@babylonjs/core", "@babylonjs/loaders"))
-    shutil.copy(spot, tmp_path / "plain.glb")
+    bunny = tmp_path / "bunny.glb"
+    save(baker.bake(_clustered_obj(BUNNY, tmp_path / "bunny.obj", 0.006), bakes=SPOT_BAKES, options=SPOT_OPTIONS),
+         bunny)
     steps = ["meshopt", "draco", "quantize", "optimize"]
-    for step in steps:
-        _step(spot, tmp_path / f"{step}.glb", step)
+    for asset, source in (("spot", spot), ("bunny", bunny)):
+        shutil.copy(source, tmp_path / f"{asset}.plain.glb")
+        for step in steps:
+            _step(source, tmp_path / f"{asset}.{step}.glb", step)
     build_viewer(tmp_path, ("viewer.js", "babylon.js"))
     server, url = serve(tmp_path)
-    names = ["plain", *steps]
+    shots = [(asset, name, engine) for asset in ("spot", "bunny") for engine in ("three", "babylon")
+             for name in ("plain", "plain-no-edges", *steps)]
     try:
-        jobs = [{"url": f"{url}/index.html?hud=0&start=all&src={name}.glb{engine}",
-                 "out": str(tmp_path / f"{name}{engine.replace('&engine=', '.')}.png"), "width": 256, "height": 256}
-                for engine in ("", "&engine=babylon") for name in names]
+        jobs = [{"url": f"{url}/index.html?hud=0&start=all&src={asset}.{name.replace('-no-edges', '')}.glb"
+                        f"{'&off=' + EDGE_TECHNIQUES if name.endswith('-no-edges') else ''}"
+                        f"{'&engine=babylon' if engine == 'babylon' else ''}",
+                 "out": str(tmp_path / f"{asset}.{name}.{engine}.png"), "width": 256, "height": 256}
+                for asset, name, engine in shots]
         infos = shoot(jobs, tmp_path / "jobs.json")
     finally:
         server.shutdown()
     for job, info in zip(jobs, infos):
         assert info["ready"] and not info["errors"], (job["url"], info)
 
-    def luma(path):
-        image = read_image(path)[..., :3].astype(np.float32) / 255.0
-        return image, ndimage.gaussian_filter(image, sigma=(1.0, 1.0, 0)) @ np.array([0.2126, 0.7152, 0.0722], np.float32)
+    def luma(asset, name, engine):
+        image = read_image(tmp_path / f"{asset}.{name}.{engine}.png")[..., :3].astype(np.float32) / 255.0
+        return image, ndimage.gaussian_filter(image, sigma=(1.0, 1.0, 0)) @ np.array([0.2126, 0.7152, 0.0722],
+                                                                                       np.float32)
 
     background = np.array(BACKGROUND_RGB, np.float32) / 255.0
-    for e, engine in enumerate(("three", "babylon")):
-        plain, plain_luma = luma(jobs[e * len(names)]["out"])
-        assert 0.05 < (np.abs(plain - background).max(axis=2) > 0.03).mean() < 0.9  # the cow is on screen
-        for k, step in enumerate(steps, start=1):
-            _, stepped = luma(jobs[e * len(names) + k]["out"])
-            ssim = structural_similarity(plain_luma, stepped, data_range=1.0)
-            print(f"{engine} {step}: SSIM {ssim:.4f}")  # for the record
-            assert ssim >= 0.95, (engine, step, ssim)
+    for asset in ("spot", "bunny"):
+        for engine in ("three", "babylon"):
+            plain, plain_luma = luma(asset, "plain", engine)
+            assert 0.05 < (np.abs(plain - background).max(axis=2) > 0.03).mean() < 0.9  # the asset is on screen
+            no_edges = luma(asset, "plain-no-edges", engine)[1]
+            for step in steps:
+                stepped = luma(asset, step, engine)[1]
+                ssim = structural_similarity(plain_luma, stepped, data_range=1.0)
+                dropped = structural_similarity(no_edges, stepped, data_range=1.0)
+                print(f"{asset} {engine} {step}: SSIM {ssim:.4f}, against the bake without edges {dropped:.4f}")
+                edges_dropped = step in ("draco", "optimize")
+                assert (dropped if edges_dropped and asset == "bunny" else ssim) >= 0.95, (asset, engine, step, ssim)
+                if edges_dropped:
+                    assert dropped >= 0.95 and dropped > ssim, (asset, engine, step, dropped, ssim)
 
 
 def test_blender_addon_reads_the_quantized_attributes(tmp_path):
