@@ -437,3 +437,44 @@ def _normalized(path: Path, name: str) -> bool:
     doc = GltfDocument.load(path)
     accessor = doc.json["meshes"][0]["primitives"][0]["attributes"].get(name)
     return accessor is not None and bool(doc.json["accessors"][accessor].get("normalized"))
+
+
+def test_three_and_babylon_read_the_quantized_attributes(spot, tmp_path):
+    """three.js's GLTFLoader and @baker/babylon's accessor reader (in Node: examples/viewer/test/attribute_values.mjs,
+    bundled here) read `gltf-transform quantize`'s normalized integers as numbers: every attribute of the quantized
+    spot within its step of the baked file's values (positions in world space, through the node)."""
+    import json
+
+    from browser import VIEWER, require_tools
+
+    require_tools("gltf-transform steps", ("three", "@babylonjs/core", "esbuild"))
+    out = tmp_path / "spot.quantize.glb"
+    _step(spot, out, "quantize")
+    script = tmp_path / "attribute_values.mjs"
+    bundle = subprocess.run(
+        [str(VIEWER / "node_modules" / ".bin" / "esbuild"), "test/attribute_values.mjs", "--bundle", "--platform=node",
+         "--format=esm", "--loader:.glsl=text", "--loader:.wgsl=text",
+         "--alias:@baker/shared=../../runtime-shaders/shared/src/index.js", f"--outfile={script}", "--log-level=warning"],
+        cwd=VIEWER, env={**os.environ, "NODE_PATH": "node_modules"}, capture_output=True, text=True, timeout=120)
+    assert bundle.returncode == 0, bundle.stderr
+    result = subprocess.run(["node", str(script), str(out)], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    read = json.loads(result.stdout.strip().splitlines()[-1])
+
+    before, after = _load(spot), _load(out)
+    prim0, prim1 = before.json["meshes"][0]["primitives"][0], after.json["meshes"][0]["primitives"][0]
+    world = _world(after, 0)
+    assert {n for n, a in prim1["attributes"].items() if after.json["accessors"][a].get("normalized")} >= \
+        {"POSITION", "NORMAL", "_THICKNESS", "_OUTLINE_NORMAL", "_PRINCIPAL_DIRECTION"}
+    for reader in ("three", "babylon"):
+        for name, accessor in prim0["attributes"].items():
+            baked = to_float(before, accessor)
+            values = np.asarray(read[reader][name], np.float64).reshape(baked.shape)
+            if name == "POSITION":
+                values = values @ world[:3, :3].T + world[:3, 3]
+                step = 2e-4 * np.ptp(baked, axis=0).max()
+            elif after.json["accessors"][prim1["attributes"][name]].get("normalized"):
+                step = 1.0 / (2 ** 11 - 1) if name.startswith("_") else 1.0 / 127  # 12-bit generic; 8-bit normals
+            else:
+                step = 1e-6 * max(1.0, float(np.abs(baked).max()))
+            assert np.abs(values - baked).max() <= step, (reader, name, np.abs(values - baked).max())
