@@ -6,8 +6,9 @@ runtime-shaders/gltf-transform/gltf-transform.config.mjs`. Each output must pass
 Draco and meshopt first) and Khronos' validator. Where the edge data is kept, it is checked against the stepped
 mesh itself: the edge list decoded after the step is the set of edges of the stepped triangles (by position), and
 each edge keeps its flags, visibility codes and wireframe bits (edge i before = edge i after, matched by the
-positions of its endpoints). Where a step cannot keep it (Draco renumbers vertices inside its stream; optimize's
-simplify makes new triangle edges) it must be gone, with one warning line, fins included. The quantized attributes
+positions of its endpoints); Draco renumbers vertices inside its stream, and the data follows the order the stream
+decodes to. Where a step cannot keep it (optimize's simplify makes new triangle edges) it must be gone, with one
+warning line, fins included. The quantized attributes
 read back through baker's reader within their step.
 """
 from __future__ import annotations
@@ -37,7 +38,7 @@ STEPS = {"meshopt": ["meshopt"], "draco": ["draco"], "quantize": ["quantize"],
          "optimize": ["optimize", "--compress", "meshopt"],
          # weld, reorder and meshopt without simplify: the edge data is remapped, not dropped
          "optimize-no-simplify": ["optimize", "--compress", "meshopt", "--simplify", "false"]}
-KEEPS_EDGES = {"meshopt": True, "quantize": True, "draco": False, "optimize": False, "optimize-no-simplify": True}
+KEEPS_EDGES = {"meshopt": True, "quantize": True, "draco": True, "optimize": False, "optimize-no-simplify": True}
 
 
 @pytest.fixture(scope="module")

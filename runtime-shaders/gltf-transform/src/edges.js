@@ -14,7 +14,7 @@ export class BakerEdges extends BakerExtension {
 	static EXTENSION_NAME = EDGES;
 	static PROPERTIES = [Edges];
 	extensionName = EDGES;
-	prewriteTypes = [PropertyType.ACCESSOR];
+	prewriteTypes = [PropertyType.ACCESSOR, PropertyType.BUFFER];
 
 	read(context) {
 		super.read(context);
@@ -35,8 +35,8 @@ export class BakerEdges extends BakerExtension {
 
 	/** Before any compression step claims the accessors: remap the edge data to the vertex and triangle order the
 	 * pipeline left (topology.js). */
-	prewrite(_context, _propertyType) {
-		prewriteTopology(this);
+	prewrite(context, propertyType) {
+		prewriteTopology(this, context, propertyType);
 		return this;
 	}
 

@@ -18,7 +18,7 @@ export class BakerFur extends BakerExtension {
 	static EXTENSION_NAME = FUR;
 	static PROPERTIES = [Fur, FurFins];
 	extensionName = FUR;
-	prewriteTypes = [PropertyType.ACCESSOR];
+	prewriteTypes = [PropertyType.ACCESSOR, PropertyType.BUFFER];
 
 	/** Its lengths and fin positions are in mesh units: units.js follows a step that changes them (quantize). */
 	read(context) {
@@ -27,8 +27,8 @@ export class BakerFur extends BakerExtension {
 		return this;
 	}
 
-	prewrite(_context, _propertyType) {
-		prewriteTopology(this);
+	prewrite(context, propertyType) {
+		prewriteTopology(this, context, propertyType);
 		return this;
 	}
 
