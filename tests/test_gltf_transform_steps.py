@@ -302,9 +302,9 @@ def test_three_and_babylon_draw_each_step_like_the_bake(spot, tmp_path):
     decimated to 4.6k triangles), drawn by three.js and by Babylon.js (WebGL2), like the uncompressed file.
     quantize and meshopt move the dequantization into the node's scale: the fins' positions and the fur lengths
     follow it (src/units.js), the outline's pixel width is divided by the world scale (the hosts); Draco's custom
-    attributes are decoded by the hosts (Babylon's loader decodes only the standard ones). draco and optimize drop the
-    edge data (with a warning): on the bunny, whose picture is much outline and fins, they are compared with the bake
-    drawn without them (the full bake's SSIM is printed for the record).
+    attributes are decoded by the hosts (Babylon's loader decodes only the standard ones) and the edge data follows
+    the stream's vertex order. optimize's simplify drops the edge data (with a warning): on the bunny, whose picture
+    is much outline and fins, it is compared with the bake drawn without them (the full bake's SSIM is printed).
     """
     from scipy import ndimage
     from skimage.metrics import structural_similarity
@@ -353,7 +353,7 @@ def test_three_and_babylon_draw_each_step_like_the_bake(spot, tmp_path):
                 ssim = structural_similarity(plain_luma, stepped, data_range=1.0)
                 dropped = structural_similarity(no_edges, stepped, data_range=1.0)
                 print(f"{asset} {engine} {step}: SSIM {ssim:.4f}, against the bake without edges {dropped:.4f}")
-                edges_dropped = step in ("draco", "optimize")
+                edges_dropped = step == "optimize"  # simplify
                 assert (dropped if edges_dropped and asset == "bunny" else ssim) >= 0.95, (asset, engine, step, ssim)
                 if edges_dropped:
                     assert dropped >= 0.95 and dropped > ssim, (asset, engine, step, dropped, ssim)
