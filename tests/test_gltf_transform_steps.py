@@ -359,6 +359,43 @@ def test_three_and_babylon_draw_each_step_like_the_bake(spot, tmp_path):
                     assert dropped >= 0.95 and dropped > ssim, (asset, engine, step, dropped, ssim)
 
 
+def test_webgpu_backends_draw_quantize_and_draco_like_the_bake(spot, tmp_path):
+    """The same on the WebGPU backends (three.js's WebGPURenderer, Babylon.js's WebGPUEngine; SwiftShader's adapter):
+    the outline width under the quantized node's scale, and Draco's custom attributes and edge data."""
+    from scipy import ndimage
+    from skimage.metrics import structural_similarity
+
+    from baker.gltf.images import read_image
+    from browser import build_viewer, require_tools, serve, shoot
+
+    require_tools("gltf-transform steps", ("playwright-core", "three", "@babylonjs/core", "@babylonjs/loaders"))
+    shutil.copy(spot, tmp_path / "plain.glb")
+    steps = ["quantize", "draco"]
+    for step in steps:
+        _step(spot, tmp_path / f"{step}.glb", step)
+    build_viewer(tmp_path, ("viewer.js", "babylon.js", "three_webgpu.js"))
+    server, url = serve(tmp_path)
+    shots = [(name, engine) for engine in ("three-webgpu", "babylon-webgpu") for name in ("plain", *steps)]
+    try:
+        jobs = [{"url": f"{url}/index.html?hud=0&start=all&src={name}.glb&engine={engine}",
+                 "out": str(tmp_path / f"{name}.{engine}.png"), "width": 256, "height": 256} for name, engine in shots]
+        infos = shoot(jobs, tmp_path / "jobs.json", webgpu=True, timeout=1200)
+    finally:
+        server.shutdown()
+    for job, info in zip(jobs, infos):
+        assert info["ready"] and not info["errors"], (job["url"], info)
+
+    def luma(name, engine):
+        image = read_image(tmp_path / f"{name}.{engine}.png")[..., :3].astype(np.float32) / 255.0
+        return ndimage.gaussian_filter(image, sigma=(1.0, 1.0, 0)) @ np.array([0.2126, 0.7152, 0.0722], np.float32)
+
+    for engine in ("three-webgpu", "babylon-webgpu"):
+        for step in steps:
+            ssim = structural_similarity(luma("plain", engine), luma(step, engine), data_range=1.0)
+            print(f"{engine} {step}: SSIM {ssim:.4f}")
+            assert ssim >= 0.95, (engine, step, ssim)
+
+
 def test_blender_addon_reads_the_quantized_attributes(tmp_path):
     """Blender's importer skips custom attributes stored as normalized integers (it makes FLOAT, INT and colour
     attributes only) and the add-on matched its edge marks by raw positions: after `gltf-transform quantize`, the
