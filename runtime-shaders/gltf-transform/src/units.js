@@ -84,6 +84,7 @@ export function settleUnits(document) {
 		const after = Array.from(node.getWorldMatrix());
 		const map = invertTimes(after, before); // old local -> new local
 		WORLD.set(mesh, after);
+		if (!map.every(Number.isFinite)) continue; // a node scaled to zero: nothing to measure units by
 		const scale = isIdentity(map) ? 1 : lengthScale(map);
 		for (const prim of mesh.listPrimitives()) {
 			const material = prim.getMaterial();
