@@ -67,6 +67,7 @@ def build_viewer(root, bundles=("viewer.js",)):
     (root / "dist").mkdir()
     for bundle in bundles:
         shutil.copy(VIEWER / "dist" / bundle, root / "dist" / bundle)
+    shutil.copytree(VIEWER / "dist" / "draco", root / "dist" / "draco")  # KHR_draco_mesh_compression's decoder
 
 
 def serve(root):

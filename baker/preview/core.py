@@ -22,6 +22,7 @@ from baker.data import SHADER_ROOT
 from baker.errors import BakerError
 from baker.geometry.asset import Asset
 from baker.geometry.normals import vertex_normals
+from baker.gltf.accessors import to_float
 from baker.gltf.document import world_nodes
 from baker.texels.color import srgb_to_linear
 
@@ -51,6 +52,9 @@ class DrawItem:
     # draws, so a panel may use what another stored (skin uses "normal_blur")
     data: dict = field(default_factory=dict)
     tangents: np.ndarray | None = None  # (n, 4) float32, world space xyz + handedness w (the TANGENT attribute)
+    # the length scale of the node's world matrix (cube root of |det|): lengths in mesh units (fur) times it are world
+    # lengths (under KHR_mesh_quantization the node carries the dequantization)
+    world_scale: float = 1.0
 
 
 @dataclass
@@ -284,8 +288,6 @@ def line_segments(asset: Asset, mesh: int, primitive: int) -> np.ndarray | None:
 
 def world_lines(asset: Asset, mesh: int, primitive: int, world: np.ndarray) -> Lines | None:
     """A line primitive in world space with per-vertex tangents (the mean direction of its segments)."""
-    from baker.gltf.accessors import to_float
-
     segments = line_segments(asset, mesh, primitive)
     if segments is None or not len(segments):
         return None
@@ -335,20 +337,22 @@ def gather_scene(asset: Asset, panels: list | None = None) -> Scene:
             if not len(g.faces):
                 continue
             normals = g.normals if g.normals is not None else vertex_normals(g.positions, g.faces)
-            attributes = {k: doc.accessor(a).astype(np.float32) for k, a in prim["attributes"].items()
+            # as numbers: KHR_mesh_quantization's normalized integers (gltf-transform quantize, meshopt) read c / max
+            attributes = {k: to_float(doc, a).astype(np.float32) for k, a in prim["attributes"].items()
                           if k.startswith("_")}
             if "_OUTLINE_NORMAL" in attributes:
                 attributes["_OUTLINE_NORMAL"] = transform_normals(attributes["_OUTLINE_NORMAL"], world)
             if "_PRINCIPAL_DIRECTION" in attributes:
                 attributes["_PRINCIPAL_DIRECTION"] = transform_directions(attributes["_PRINCIPAL_DIRECTION"], world)
-            texcoords = {int(k.split("_")[1]): doc.accessor(a).astype(np.float32)
+            texcoords = {int(k.split("_")[1]): to_float(doc, a).astype(np.float32)
                          for k, a in prim["attributes"].items() if k.startswith("TEXCOORD_")}
             index = g.material if g.material is not None and g.material < len(materials) else None
-            tangents = world_tangents(doc.accessor(prim["attributes"]["TANGENT"]), world, len(g.positions)) \
+            tangents = world_tangents(to_float(doc, prim["attributes"]["TANGENT"]), world, len(g.positions)) \
                 if "TANGENT" in prim["attributes"] else None
             item = DrawItem(transform_points(g.positions, world), transform_normals(normals, world),
                             g.faces.astype(np.uint32), attributes, materials[index] if index is not None else {},
-                            texcoords, prim, mesh=mesh, primitive_index=p, material_index=index, tangents=tangents)
+                            texcoords, prim, mesh=mesh, primitive_index=p, material_index=index, tangents=tangents,
+                            world_scale=float(np.cbrt(abs(np.linalg.det(np.asarray(world, np.float64)[:3, :3])))))
             for panel in panels:
                 panel.read_item(doc, item)
             scene.items.append(item)

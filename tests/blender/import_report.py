@@ -44,6 +44,10 @@ def describe(obj) -> dict:
         row["attributes"] = {a.name: {"domain": a.domain, "data_type": a.data_type, "values": attribute_values(a)}
                              for a in mesh.attributes if not a.name.startswith(".") and a.data_type in COMPONENTS}
         row["materials"] = [m.name if m else None for m in mesh.materials]
+        if hasattr(mesh.edges, "foreach_get") and bpy.app.version < (5, 0, 0):  # 5.0: the freestyle_edge attribute
+            marks = np.zeros(len(mesh.edges), bool)
+            mesh.edges.foreach_get("use_freestyle_mark", marks)
+            row["freestyle_marks"] = int(marks.sum())
     elif obj.type == "CURVES":
         curves = obj.data
         co = np.zeros(len(curves.points) * 3, np.float32)

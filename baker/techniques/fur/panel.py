@@ -51,7 +51,7 @@ class FurPanel(Panel):
                 shell = FurShellPanel(texture, chain if mipped else None, self.light)
                 draw_surfaces(ctx, shell, one, camera, size, extra={
                     "u_shell": float(i), "u_shellCount": float(count),
-                    "u_shellSpacing": fur.shell_spacing, "u_tiling": fur.tiling,
+                    "u_shellSpacing": fur.shell_spacing * item.world_scale, "u_tiling": fur.tiling,
                     "u_shellAlphaCutoff": float(chain["alphaCutoff"]) if mipped else 0.01,
                     "u_alphaTest": 1.0 if mipped else 0.0})
             ctx.depth_mask = True

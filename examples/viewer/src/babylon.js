@@ -16,6 +16,7 @@ import '@babylonjs/loaders/glTF/glTFFileLoader.js';
 import '@babylonjs/loaders/glTF/2.0/index.js';
 import { MeshoptCompression } from '@babylonjs/core/Meshes/Compression/meshoptCompression.js';
 import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
+import { DracoDecoder } from '@babylonjs/core/Meshes/Compression/dracoDecoder.js';
 import { TECHNIQUES, bakerControls, registerBakerExtensions, unregisterBakerExtensions } from '../../../runtime-shaders/babylon/src/index.js';
 import {
 	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, bakerOn, caustics,
@@ -30,6 +31,12 @@ import { RUNTIMES } from '@baker/shared';
 // script for Babylon.js to load
 globalThis.MeshoptDecoder = MeshoptDecoder;
 MeshoptCompression.Configuration.decoder.url = 'data:text/javascript,';
+// KHR_draco_mesh_compression: Google's glTF decoder (three's copy), which the build puts in dist/draco/, not the CDN's
+const dracoFile = (name) => new URL(`dist/draco/${name}`, document.baseURI).href;
+DracoDecoder.DefaultConfiguration = {
+	wasmUrl: dracoFile('draco_wasm_wrapper.js'), wasmBinaryUrl: dracoFile('draco_decoder.wasm'),
+	fallbackUrl: dracoFile('draco_decoder.js'),
+};
 
 // the runtime-shaders/ WGSL twins as text, under the options.shaders keys (the descriptors name them; esbuild bundles
 // every file the template can name, as text by the import attribute)

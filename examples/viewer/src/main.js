@@ -7,6 +7,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
+import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
 import { registerBakerPlugins } from '../../../runtime-shaders/three/src/index.js';
 import { shaders } from './shaders.js';
 import { runThreeViewer } from './three_viewer.js';
@@ -25,8 +26,13 @@ async function loadGLB(url) {
 	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders, caustics }) : new GLTFLoader();
 	// EXT_meshopt_compression (`baker bake --compress meshopt`, gltfpack, gltf-transform meshopt)
 	loader.setMeshoptDecoder(MeshoptDecoder);
+	// KHR_draco_mesh_compression (`gltf-transform draco`): Google's decoder, copied next to the bundles by the build
+	loader.setDRACOLoader(dracoLoader());
 	return loader.loadAsync(url);
 }
+
+let draco = null;
+const dracoLoader = () => draco || (draco = new DRACOLoader().setDecoderPath(new URL('dist/draco/', document.baseURI).href));
 
 // ------------------------------------------------------------------------------------------------ viewer mode
 async function viewer() {

@@ -5,6 +5,8 @@
 // no WebGPU adapter the page says so (and window.__bakerError) instead of falling back silently.
 import { WebGPURenderer } from 'three/webgpu';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
+import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
 import { registerBakerNodePlugins } from '../../../runtime-shaders/three/src/node/index.js';
 import { shaders } from './shaders.js';
 import { wgsl } from './wgsl.js';
@@ -13,6 +15,9 @@ import { bakerOn, caustics, fail, params } from './ui.js';
 
 async function load(url) {
 	const loader = bakerOn ? registerBakerNodePlugins(new GLTFLoader(), { shaders, wgsl, caustics }) : new GLTFLoader();
+	// the compressed forms the WebGL2 page decodes (main.js): meshopt, and Draco from dist/draco/
+	loader.setMeshoptDecoder(MeshoptDecoder);
+	loader.setDRACOLoader(new DRACOLoader().setDecoderPath(new URL('dist/draco/', document.baseURI).href));
 	return loader.loadAsync(url);
 }
 

@@ -6,6 +6,7 @@ import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
 import { Matrix, Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
+import { DracoDecoder } from '@babylonjs/core/Meshes/Compression/dracoDecoder.js';
 
 import { STAGES_WGSL_BABYLON } from './stages_wgsl.js';
 import { RUNTIMES, STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
@@ -111,7 +112,16 @@ export async function readAccessor(loader, index, { integer = false } = {}) {
 	const [bytes, getter, max] = type;
 	const count = accessor.count;
 	const data = integer ? new Uint32Array(count * size) : new Float32Array(count * size);
-	if (accessor.bufferView === undefined) return { data, size, count };
+	if (accessor.bufferView === undefined) {
+		// an attribute or the indices of a KHR_draco_mesh_compression primitive (gltf-transform draco): Babylon's
+		// loader decodes only the standard attributes, so the custom ones are decoded here from the same stream
+		const decoded = await dracoAccessor(loader, index);
+		if (decoded) {
+			if (decoded.length !== count * size) throw new Error(`${context}: Draco decoded ${decoded.length} values, not ${count * size}`);
+			data.set(decoded);
+		}
+		return { data, size, count };
+	}
 	if (accessor.sparse) throw new Error(`${context}: sparse accessors are not read by @baker/babylon`);
 	const view = loader.gltf.bufferViews[accessor.bufferView];
 	const buffer = await loader.loadBufferViewAsync(`/bufferViews/${accessor.bufferView}`, view);
@@ -129,6 +139,42 @@ export async function readAccessor(loader, index, { integer = false } = {}) {
 		}
 	}
 	return { data, size, count };
+}
+
+// bufferView index -> Promise of the decoded stream ({ indices, attributes: { uniqueId: values } })
+const DRACO_STREAMS = new WeakMap();
+
+/** The values (numbers, dequantized) of accessor `index` when a Draco-compressed primitive holds it, else null. */
+async function dracoAccessor(loader, index) {
+	for (const mesh of loader.gltf.meshes || []) {
+		for (const primitive of mesh.primitives || []) {
+			const ext = primitive.extensions?.KHR_draco_mesh_compression;
+			if (!ext) continue;
+			const name = Object.keys(primitive.attributes || {}).find((n) => primitive.attributes[n] === index);
+			if (name === undefined && primitive.indices !== index) continue;
+			if (name !== undefined && ext.attributes?.[name] === undefined) continue;
+			let streams = DRACO_STREAMS.get(loader.gltf);
+			if (!streams) DRACO_STREAMS.set(loader.gltf, (streams = new Map()));
+			if (!streams.has(ext.bufferView)) {
+				const view = loader.gltf.bufferViews[ext.bufferView];
+				streams.set(ext.bufferView, loader.loadBufferViewAsync(`/bufferViews/${ext.bufferView}`, view)
+					.then((bytes) => DracoDecoder.Default.decodeMeshToMeshDataAsync(bytes,
+						Object.fromEntries(Object.entries(ext.attributes).map(([n, id]) => [n, id]))))
+					.then((result) => ({ indices: result.indices,
+						attributes: Object.fromEntries(result.attributes.map((a) => [a.kind, dequantized(a)])) })));
+			}
+			const stream = await streams.get(ext.bufferView);
+			return name === undefined ? stream.indices : stream.attributes[name];
+		}
+	}
+	return null;
+}
+
+/** A decoded Draco attribute as numbers: normalized integers as glTF reads them (c / max, at least -1). */
+function dequantized({ data, normalized }) {
+	if (!normalized || data instanceof Float32Array) return data;
+	const max = { Int8Array: 127, Uint8Array: 255, Int16Array: 32767, Uint16Array: 65535 }[data.constructor.name];
+	return max ? Float32Array.from(data, (c) => Math.max(c / max, -1)) : data;
 }
 
 /** GLSL type of an attribute of `size` components. */

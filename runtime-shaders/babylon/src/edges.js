@@ -109,7 +109,15 @@ export class BakerEdgesExtension {
 					glsl, vertex: 'edges_outline.vert', fragment: 'solid.frag',
 					attributes: ['position', '_outline_normal'], uniforms: ['u_width', 'u_color'],
 				});
-				material.setFloat('u_width', this.style.outlineWidth);
+				// the width is in pixels at the shell's depth, so in world units: under a node that scales
+				// (KHR_mesh_quantization's dequantization, after gltf-transform quantize) the stage's object-space
+				// offset is divided by the world matrix's length scale (cube root of |det|)
+				const outlineWidth = this.style.outlineWidth;
+				material.setFloat('u_width', outlineWidth);
+				shell.onBeforeRenderObservable.add(() => {
+					const scale = Math.cbrt(Math.abs(shell.getWorldMatrix().determinant())) || 1;
+					material.setFloat('u_width', outlineWidth / scale);
+				});
 				material.setVector3('u_color', { x: this.style.color[0], y: this.style.color[1], z: this.style.color[2] });
 				// the shell shows its back faces only (RTR4 15.2.2): cull the faces that look at the eye
 				material.backFaceCulling = true;

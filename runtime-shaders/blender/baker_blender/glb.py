@@ -67,6 +67,21 @@ def accessor(gltf: dict, binary: bytes, index: int) -> np.ndarray:
     return values if width == 1 else values.reshape(count, width)
 
 
+NORMALIZED_MAX = {5120: 127, 5121: 255, 5122: 32767, 5123: 65535}
+
+
+def values(gltf: dict, binary: bytes, index: int) -> np.ndarray:
+    """An accessor's values as numbers (float32): a normalized integer accessor (KHR_mesh_quantization, as
+    ``gltf-transform quantize`` writes positions and baker's attributes) read as glTF says, c / max (at least -1), as
+    Blender's importer reads it."""
+    acc = gltf["accessors"][index]
+    raw = accessor(gltf, binary, index)
+    if acc.get("normalized") and acc["componentType"] in NORMALIZED_MAX:
+        # in float64 then float32, as the importer does: positions are matched by their exact float32 bytes
+        return np.maximum(-1.0, raw / float(NORMALIZED_MAX[acc["componentType"]])).astype(np.float32)
+    return raw.astype(np.float32)
+
+
 class Writer:
     """Appends buffer views and accessors to a loaded glTF whose binary chunk is ``binary``."""
 

@@ -212,7 +212,7 @@ def import_meshes(gltf_importer, gltf: dict, binary: bytes) -> None:
             stored.append(entry)
             edges_ext = exts.get("BAKER_edges") or {}
             if "edges" in edges_ext and "flags" in edges_ext:
-                positions = glb.accessor(gltf, binary, prim["attributes"]["POSITION"])
+                positions = glb.values(gltf, binary, prim["attributes"]["POSITION"])
                 pairs = glb.accessor(gltf, binary, edges_ext["edges"]).astype(np.int64).reshape(-1, 2)
                 flags = glb.accessor(gltf, binary, edges_ext["flags"]).astype(np.int64)
                 mark_edges(obj.data, positions, pairs, flags)
@@ -220,14 +220,14 @@ def import_meshes(gltf_importer, gltf: dict, binary: bytes) -> None:
                 hair = exts["BAKER_hair"]
                 attrs = prim["attributes"]
                 s, v = int(hair["strandCount"]), int(hair["verticesPerStrand"])
-                positions = glb.accessor(gltf, binary, attrs["POSITION"])
-                tangents = glb.accessor(gltf, binary, attrs[hair.get("tangentAttribute", "_STRAND_TANGENT")])
-                param = glb.accessor(gltf, binary, attrs[hair.get("paramAttribute", "_STRAND_PARAM")])
+                positions = glb.values(gltf, binary, attrs["POSITION"])
+                tangents = glb.values(gltf, binary, attrs[hair.get("tangentAttribute", "_STRAND_TANGENT")])
+                param = glb.values(gltf, binary, attrs[hair.get("paramAttribute", "_STRAND_PARAM")])
                 param = param[:, 0] if param.ndim == 2 else param
                 along = np.tile(np.linspace(0.0, 1.0, v), s)
                 width = float(hair.get("rootWidth", 0.0)) * (1 - along) + float(hair.get("tipWidth", 0.0)) * along
                 if "widthScale" in hair:
-                    width = width * np.repeat(glb.accessor(gltf, binary, hair["widthScale"]).reshape(-1), v)
+                    width = width * np.repeat(glb.values(gltf, binary, hair["widthScale"]).reshape(-1), v)
                 curves = make_curves(f"{obj.name} {hair.get('strandSet', 'strands')}", positions, tangents, param,
                                      s, v, width / 2, obj.users_collection[0])
                 curves.parent = obj.parent

@@ -41,18 +41,23 @@ def padded_accessor(gltf_importer, index: int, width: int) -> int:
 
 def one_width(gltf_importer, pymesh) -> None:
     """Give the FLOAT custom attributes of ``pymesh`` (a glTF mesh as the importer parsed it) the width of its
-    widest one, when they differ."""
+    widest one, when they differ; and KHR_mesh_quantization's normalized-integer custom attributes (what
+    ``gltf-transform quantize`` and ``meshopt`` write) FLOAT copies of their values, which the stock importer
+    otherwise skips (it makes Blender attributes of FLOAT, INT and colour data only)."""
     accessors = gltf_importer.data.accessors
     custom = [(prim, name, index) for prim in pymesh.primitives for name, index in (prim.attributes or {}).items()
               if name.startswith("_")]
     widths = {COMPONENTS.get(accessors[index].type, 0) for _, _, index in custom}
-    if len(widths) < 2 or 0 in widths:
+    quantized = any(accessors[index].normalized and accessors[index].component_type != FLOAT for _, _, index in custom)
+    if (len(widths) < 2 and not quantized) or 0 in widths:
         return  # one width already, or matrices the importer skips anyway
     widest = max(widths)
     copies = {}
     for prim, name, index in custom:
         accessor = accessors[index]
-        if accessor.component_type != FLOAT or accessor.normalized or COMPONENTS[accessor.type] == widest:
+        dequantize = accessor.normalized and accessor.component_type != FLOAT  # decode_accessor gives c / max
+        if not dequantize and (accessor.component_type != FLOAT or accessor.normalized
+                               or COMPONENTS[accessor.type] == widest):
             continue
         if index not in copies:
             copies[index] = padded_accessor(gltf_importer, index, widest)

@@ -238,9 +238,11 @@ export class BakerExtension extends Extension {
 	}
 
 	write(context) {
+		let written = false;
 		for (const [owner, def, mesh] of this._writePlaces(context)) {
 			const property = owner.getExtension(this.extensionName);
 			if (!property || !def) continue;
+			written = true;
 			const out = property.getParams();
 			const missing = [];
 			for (const key of property.listRefPaths()) {
@@ -283,6 +285,16 @@ export class BakerExtension extends Extension {
 			if (extras && Object.keys(extras).length) out.extras = extras;
 			def.extensions = def.extensions || {};
 			def.extensions[this.extensionName] = out;
+		}
+		// the writer lists the extensions used before the prewrite hooks run, and a hook may drop the last use
+		// (topology.js drops edge data a step cannot keep): an extension nothing carries is not listed
+		if (!written) {
+			const json = context.jsonDoc.json;
+			for (const key of ['extensionsUsed', 'extensionsRequired']) {
+				if (!json[key]) continue;
+				json[key] = json[key].filter((name) => name !== this.extensionName);
+				if (!json[key].length) delete json[key];
+			}
 		}
 		return this;
 	}

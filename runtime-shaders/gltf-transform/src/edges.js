@@ -2,6 +2,7 @@
 import { PropertyType } from '@gltf-transform/core';
 import { BakerExtension, defineProperty, finsOfPrimitive } from './base.js';
 import { markVertices, prewriteTopology } from './topology.js';
+import { rememberUnits } from './units.js';
 
 const EDGES = 'BAKER_edges';
 
@@ -13,10 +14,11 @@ export class BakerEdges extends BakerExtension {
 	static EXTENSION_NAME = EDGES;
 	static PROPERTIES = [Edges];
 	extensionName = EDGES;
-	prewriteTypes = [PropertyType.ACCESSOR];
+	prewriteTypes = [PropertyType.ACCESSOR, PropertyType.BUFFER];
 
 	read(context) {
 		super.read(context);
+		rememberUnits(this.document);
 		// `fins` is a back reference: drop it, finish() derives it from the fin primitive's `finsOf`
 		for (const mesh of this.document.getRoot().listMeshes()) {
 			for (const prim of mesh.listPrimitives()) {
@@ -33,8 +35,8 @@ export class BakerEdges extends BakerExtension {
 
 	/** Before any compression step claims the accessors: remap the edge data to the vertex and triangle order the
 	 * pipeline left (topology.js). */
-	prewrite(_context, _propertyType) {
-		prewriteTopology(this);
+	prewrite(context, propertyType) {
+		prewriteTopology(this, context, propertyType);
 		return this;
 	}
 

@@ -1,6 +1,8 @@
 // BAKER_fur (material, and fin primitive): shell and fin textures; the fin primitives' source primitive.
 import { PropertyType } from '@gltf-transform/core';
 import { BakerExtension, defineProperty } from './base.js';
+import { prewriteTopology } from './topology.js';
+import { rememberUnits } from './units.js';
 
 const FUR = 'BAKER_fur';
 
@@ -16,6 +18,19 @@ export class BakerFur extends BakerExtension {
 	static EXTENSION_NAME = FUR;
 	static PROPERTIES = [Fur, FurFins];
 	extensionName = FUR;
+	prewriteTypes = [PropertyType.ACCESSOR, PropertyType.BUFFER];
+
+	/** Its lengths and fin positions are in mesh units: units.js follows a step that changes them (quantize). */
+	read(context) {
+		super.read(context);
+		rememberUnits(this.document);
+		return this;
+	}
+
+	prewrite(context, propertyType) {
+		prewriteTopology(this, context, propertyType);
+		return this;
+	}
 
 	finish(out, owner, context) {
 		if (!('shellTextures' in out) && !('fins' in out)) return; // a fin primitive

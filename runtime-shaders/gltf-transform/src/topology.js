@@ -12,10 +12,14 @@
 // data that cannot be remapped: it is dropped, with one warning line, never written wrong.
 //
 // Draco's encoder renumbers vertices and triangles inside the compressed stream (edgebreaker and sequential alike,
-// as glTF-Transform 4.5 calls it), which no class can follow: a primitive Draco compresses loses this data, with
-// one warning line. meshopt's index codec may rotate a triangle's corners: with its codec given
+// as glTF-Transform 4.5 calls it). So a primitive Draco will compress gets one more attribute before it does,
+// `_BAKER_DRACO_ID_<n>` (unsigned integers, which Draco stores losslessly): after the encoder ran, the stream is
+// decoded (with the decoder given to setDracoDecoder), the ids say where each decoded vertex came from and the data
+// is remapped to the decoded vertex and triangle order; the id attribute is left out of the written primitive.
+// Without a decoder the data is dropped, with one warning line. meshopt's index codec may rotate a triangle's corners: with its codec given
 // (setMeshoptIndexCodec) the triangles are rotated as it will before the remap.
 import { PropertyType } from '@gltf-transform/core';
+import { rememberUnits, settleUnits } from './units.js';
 
 export const VERTEX_ID = '_BAKER_VERTEX_ID';
 const EDGES = 'BAKER_edges';
@@ -79,6 +83,18 @@ function sameArray(a, b) {
 
 // meshoptimizer's codec ({encoder, decoder}, both ready) for the index rotation EXT_meshopt_compression makes
 let indexCodec = null;
+// draco3dgltf's decoder module (ready), to read back the vertex order of a Draco stream
+let dracoDecoder = null;
+const DRACO_ID = '_BAKER_DRACO_ID';
+// primitive -> the semantic of its Draco id attribute, between the accessor and buffer prewrite phases
+const DRACO_IDS = new WeakMap();
+
+/** Give the decoder of draco3dgltf (`await draco3d.createDecoderModule()`; gltf-transform.config.mjs does): with it
+ * the edge data of a primitive KHR_draco_mesh_compression compresses is remapped to the stream's vertex order;
+ * without it, the data is dropped (with a warning). */
+export function setDracoDecoder(module) {
+	dracoDecoder = module;
+}
 
 /** Give the codec EXT_meshopt_compression writes with (gltf-transform.config.mjs does): its index encoder may
  * rotate a triangle's corners, which moves per-triangle-edge data; with the codec the triangles are rotated as it
@@ -154,9 +170,20 @@ export function settleTopology(document) {
 				SNAPSHOTS.set(prim, { indices, vertexCount: prim.getAttribute('POSITION').getCount() });
 			}
 			if (draco && prim.getIndices()) {
-				dropTopologyData(mesh, prim);
-				logger.warn(`@baker/gltf-transform: ${where}: ${DRACO} renumbers vertices and triangles inside its ` +
-					'stream; its edge data is dropped (use meshopt to keep it)');
+				if (!dracoDecoder) {
+					dropTopologyData(mesh, prim);
+					logger.warn(`@baker/gltf-transform: ${where}: ${DRACO} renumbers vertices and triangles inside its ` +
+						'stream and no decoder was given (setDracoDecoder); its edge data is dropped');
+					continue;
+				}
+				// the ids Draco carries (losslessly: integers) say where each decoded vertex came from (settleDraco)
+				const position = prim.getAttribute('POSITION');
+				const count = position.getCount();
+				const Ids = count < 0xffff ? Uint16Array : Uint32Array;
+				const semantic = `${DRACO_ID}_${serial++}`;
+				prim.setAttribute(semantic, document.createAccessor(semantic).setType('SCALAR')
+					.setArray(Ids.from({ length: count }, (_, i) => i)).setBuffer(position.getBuffer()));
+				DRACO_IDS.set(prim, semantic);
 			}
 		}
 		if (strandsMoved) {
@@ -176,7 +203,12 @@ export function settleTopology(document) {
 
 /** Prewrite hook of the classes holding topology data (the first one settles everything: the ids are gone after).
  * The ids are not put back: write a document once per read. */
-export function prewriteTopology(extension) {
+export function prewriteTopology(extension, context, propertyType) {
+	if (propertyType === PropertyType.BUFFER) {
+		settleDraco(extension.document, context);
+		return;
+	}
+	settleUnits(extension.document);
 	settleTopology(extension.document);
 }
 
@@ -222,7 +254,7 @@ const SENTINEL = (array) => (array instanceof Uint8Array ? 0xff : array instance
 
 /** Remap the primitive's topology data from the snapshot's vertex and triangle order to the current one; returns
  * the problem (a phrase) when it cannot. */
-function remapPrimitive(document, prim, snapshot, ids, indices) {
+function remapPrimitive(document, prim, snapshot, ids, indices, inPlace = false) {
 	if (!ids) return 'its vertex ids were quantized';
 	const oldCount = snapshot.vertexCount;
 	const newCount = ids.length;
@@ -309,26 +341,90 @@ function remapPrimitive(document, prim, snapshot, ids, indices) {
 			updates.push([visibility, path, out]);
 		}
 	}
-	for (const [property, path, array] of updates) replaceAccessor(document, property, path, array);
+	for (const [property, path, array] of updates) {
+		// after the accessor prewrite phase no new accessor is written: the buffer phase sets the arrays in place
+		if (inPlace) property.getAccessor(path).setArray(array);
+		else replaceAccessor(document, property, path, array);
+	}
 	return null;
+}
+
+/** The decoded triangles and the decoded vertices' ids of a Draco stream. */
+function decodeDraco(data, idAttribute) {
+	const d = dracoDecoder;
+	const decoder = new d.Decoder();
+	const buffer = new d.DecoderBuffer();
+	const mesh = new d.Mesh();
+	try {
+		buffer.Init(new Int8Array(data.buffer, data.byteOffset, data.byteLength), data.byteLength);
+		if (!decoder.DecodeBufferToMesh(buffer, mesh).ok() || mesh.ptr === 0) return null;
+		const numIndices = mesh.num_faces() * 3;
+		let ptr = d._malloc(numIndices * 4);
+		decoder.GetTrianglesUInt32Array(mesh, numIndices * 4, ptr);
+		const indices = new Uint32Array(d.HEAPU32.buffer, ptr, numIndices).slice();
+		d._free(ptr);
+		const attribute = decoder.GetAttributeByUniqueId(mesh, idAttribute);
+		const count = mesh.num_points();
+		ptr = d._malloc(count * 4);
+		decoder.GetAttributeDataArrayForAllPoints(mesh, attribute, d.DT_UINT32, count * 4, ptr);
+		const ids = new Uint32Array(d.HEAPU32.buffer, ptr, count).slice();
+		d._free(ptr);
+		return { indices, ids };
+	} finally {
+		d.destroy(mesh);
+		d.destroy(buffer);
+		d.destroy(decoder);
+	}
+}
+
+/** Buffer prewrite phase, after KHR_draco_mesh_compression encoded its primitives (accessor phase): remap the edge
+ * data of each to the vertex and triangle order of its stream, and leave its id attribute out of the file. */
+export function settleDraco(document, context) {
+	const logger = document.getLogger();
+	const encoding = context.extensionData?.[DRACO];
+	for (const mesh of document.getRoot().listMeshes()) {
+		for (const [p, prim] of mesh.listPrimitives().entries()) {
+			const semantic = DRACO_IDS.get(prim);
+			if (!semantic) continue;
+			DRACO_IDS.delete(prim);
+			const hash = encoding?.primitiveHashMap.get(prim);
+			const encoded = hash && encoding.primitiveEncodingMap.get(hash);
+			const idAttribute = prim.getAttribute(semantic);
+			prim.setAttribute(semantic, null);
+			if (idAttribute.listParents().every((q) => q.propertyType === PropertyType.ROOT)) idAttribute.dispose();
+			if (!encoded) continue; // not compressed (Draco skipped it): the data stands in the order it was settled in
+			const id = encoded.attributeIDs[semantic];
+			delete encoded.attributeIDs[semantic]; // not a glTF attribute of the primitive
+			const decoded = id === undefined ? null : decodeDraco(encoded.data, id);
+			const snapshot = { indices: triangleIndices(prim), vertexCount: prim.getAttribute('POSITION').getCount() };
+			const problem = decoded ? remapPrimitive(document, prim, snapshot, Array.from(decoded.ids), decoded.indices, true)
+				: 'its Draco stream could not be read back';
+			if (problem) {
+				dropTopologyData(mesh, prim);
+				logger.warn(`@baker/gltf-transform: mesh ${JSON.stringify(mesh.getName())} primitive ${p}: ${problem} ` +
+					`(${DRACO}); its edge data (BAKER_edges, ${EDGE_VISIBILITY}) is dropped, re-run baker bake to rebuild it`);
+			}
+		}
+	}
 }
 
 /** The class of an extension whose data is indexed by vertex order (edge visibility, hair strands): `Base` with
  * every primitive's vertices marked on read and the data remapped (or dropped) before write. */
 export function tracksVertexOrder(Base) {
 	return class extends Base {
-		prewriteTypes = [PropertyType.ACCESSOR];
+		prewriteTypes = [PropertyType.ACCESSOR, PropertyType.BUFFER];
 
 		read(context) {
 			super.read(context);
+			rememberUnits(this.document);
 			for (const mesh of this.document.getRoot().listMeshes()) {
 				for (const prim of mesh.listPrimitives()) markVertices(this.document, prim);
 			}
 			return this;
 		}
 
-		prewrite(_context, _propertyType) {
-			prewriteTopology(this);
+		prewrite(context, propertyType) {
+			prewriteTopology(this, context, propertyType);
 			return this;
 		}
 	};

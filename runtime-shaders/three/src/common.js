@@ -173,6 +173,18 @@ export function trackViewport(object, uniforms) {
 	};
 }
 
+/** Keep `uniform` at `value` / the length scale of the object's world matrix (cube root of |det|): a length the
+ * stage adds in the object's space while it means world units (the outline's width, in pixels at the object's
+ * depth), under a node that scales (KHR_mesh_quantization's dequantization, after gltf-transform quantize). */
+export function trackWorldScale(object, uniform, value) {
+	const previous = object.onBeforeRender;
+	object.onBeforeRender = function (...args) {
+		const scale = Math.cbrt(Math.abs(this.matrixWorld.determinant())) || 1;
+		uniform.value = value / scale;
+		previous.call(this, ...args);
+	};
+}
+
 export function geometryHas(object, attribute) {
 	return Boolean(attribute && object.geometry.getAttribute(attribute.toLowerCase()));
 }

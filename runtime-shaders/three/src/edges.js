@@ -2,7 +2,7 @@
 // stages are runtime-shaders/hosts/web/edges_*.glsl and solid.frag.glsl.
 import * as THREE from 'three';
 import { runtime, wireframeCorners } from '@baker/shared';
-import { BAKER_EDGES, controls, geometryHas, primitiveOf, requireShader, stageMaterial, trackViewport } from './common.js';
+import { BAKER_EDGES, controls, geometryHas, primitiveOf, requireShader, stageMaterial, trackViewport, trackWorldScale } from './common.js';
 
 /**
  * Triangles of an indexed geometry as a non-indexed one with per-corner barycentrics and the triangle's wireframe
@@ -80,6 +80,7 @@ export class BakerEdgesPlugin {
 				shell.name = 'baker outline';
 				shell.frustumCulled = false;
 				trackViewport(shell, uniforms);
+				trackWorldScale(shell, uniforms.u_width, this.style.outlineWidth); // pixels -> world units, not node units
 				object.add(shell);
 				const parts = [shell];
 				if (hasOpenRim(geometry.attributes._outline_normal) && object.material.side !== THREE.DoubleSide) {
