@@ -275,3 +275,24 @@ def project(request: TransferRequest, low_points: np.ndarray, cage_points: np.nd
     normals = interpolate(source.normals, source.faces, triangle, bary)
     normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-30)
     return SourceHits(source, triangle, bary, points, normals, hit)
+
+
+def project_welded(request: TransferRequest, asset, welded, normals: np.ndarray) -> SourceHits:
+    """The high's surface for each vertex of a welded low mesh (:class:`~baker.geometry.asset.WeldedMesh`, with its
+    smooth ``normals``): per-vertex bakes of the low take the high's values there. The cage is the cage file's
+    vertices, or the vertices pushed out by the cage distance; a miss takes the nearest vertex's hit."""
+    if request.cage is not None:
+        cage = np.empty_like(welded.positions)
+        for i, g in enumerate(welded.geometries):
+            cage[welded.inverse[welded.offsets[i]: welded.offsets[i + 1]]] = request.cage[(g.mesh, g.primitive)][0]
+    else:
+        cage = welded.positions + cage_distance(request, asset) * normals
+
+    def nearest_hit(hit):
+        from scipy.spatial import cKDTree  # imported here: scipy is a large share of start-up
+
+        found = np.flatnonzero(hit)
+        _, nearest = cKDTree(welded.positions[found]).query(welded.positions)
+        return np.where(hit, np.arange(len(hit)), found[nearest])
+
+    return project(request, np.asarray(welded.positions), cage, nearest_hit)
