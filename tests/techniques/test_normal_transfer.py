@@ -235,3 +235,48 @@ def test_thickness_from_the_high_mesh_is_the_high_meshs_own(pair):
     own = float(np.sqrt(np.mean(((low_values - truth) / truth) ** 2)))
     print(f"thickness vertices: moved {moved:.4f}, the low's own {own:.4f} relative RMS")
     assert moved < 0.03 and own > 3 * moved
+
+
+def test_the_bake_is_byte_identical_run_to_run(pair):
+    folder, high, low = pair
+    outs = [folder / f"again_{k}.glb" for k in range(2)]
+    for out in outs:
+        baker("bake", low, "--from", high, "--bakes", "normal", "--normal-texture-size", 64, "-o", out, "-q")
+    assert outs[0].read_bytes() == outs[1].read_bytes()
+
+
+def test_a_low_mesh_without_uvs_is_unwrapped_with_a_note(pair):
+    folder, high, _ = pair
+    positions, _, faces = ds.uv_sphere(16, 16)
+    low = folder / "low_no_uv.obj"
+    ds.write_obj(low, positions, faces)
+    out = folder / "no_uv.glb"
+    done = baker("bake", low, "--from", high, "--bakes", "normal", "--normal-texture-size", 64, "-o", out)
+    assert "unwrapped into TEXCOORD_0" in done.stderr
+    gltf, _, _ = read_glb(out)
+    assert "TEXCOORD_0" in gltf["meshes"][0]["primitives"][0]["attributes"]
+
+
+def test_bad_input_exits_2_with_one_line_and_writes_nothing(pair):
+    folder, high, low = pair
+    far = folder / "far.obj"
+    positions, faces = ds.high_mesh(6)
+    ds.write_obj(far, positions + np.array([10.0, 0.0, 0.0]), faces)
+    cases = {
+        "missing": (["--from", folder / "nope.obj"], "no such file"),
+        "no overlap": (["--from", far], "does not overlap"),
+        "cage topology": (["--from", high, "--cage", far], "topology differs"),
+        "cage without source": (["--cage-distance", "0.1"], "need --from"),
+        "bake that cannot transfer": (["--from", high, "--bakes", "curvature"], "cannot bake from another mesh"),
+    }
+    for label, (extra, message) in cases.items():
+        out = folder / "refused.glb"
+        args = ["bake", low, "-o", out, *extra]
+        if "--bakes" not in extra:
+            args += ["--bakes", "normal"]
+        done = baker(*args, check=False)
+        lines = done.stderr.strip().splitlines()
+        assert done.returncode == 2, (label, done.stderr)
+        assert len(lines) == 1 and message in lines[0], (label, lines)
+        assert not out.exists(), label
+        assert not list(folder.glob("refused*")), label
