@@ -280,3 +280,28 @@ def test_bad_input_exits_2_with_one_line_and_writes_nothing(pair):
         assert len(lines) == 1 and message in lines[0], (label, lines)
         assert not out.exists(), label
         assert not list(folder.glob("refused*")), label
+
+
+def test_a_recipe_bakes_from_the_high_mesh_and_rebuilds_when_it_changes(pair, tmp_path):
+    _, high, low = pair
+    (tmp_path / "sculpt").mkdir()
+    (tmp_path / "sculpt" / "high.obj").write_bytes(high.read_bytes())
+    (tmp_path / "low.obj").write_bytes(low.read_bytes())
+    (tmp_path / "baker.toml").write_text('[build]\noutput = "out"\n\n[[assets]]\ninputs = ["low.obj"]\n'
+                                         'from = "sculpt/high.obj"\nbakes = ["normal"]\n\n'
+                                         '[options.normal]\ntexture-size = 32\n')
+    done = subprocess.run([sys.executable, "-m", "baker", "build", "-q"], cwd=tmp_path, capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    gltf, _, _ = read_glb(tmp_path / "out" / "low.glb")
+    assert "normalTexture" in gltf["materials"][0]
+    assert gltf["asset"]["extras"]["baker"]["transfer"]["source"] == "high.obj"
+    check = subprocess.run([sys.executable, "-m", "baker", "build", "--check"], cwd=tmp_path, capture_output=True,
+                           text=True)
+    assert check.returncode == 0, check.stdout + check.stderr
+    # the sculpt changed: the game mesh's bake is stale
+    with open(tmp_path / "sculpt" / "high.obj", "a") as f:
+        f.write("# edited\n")
+    check = subprocess.run([sys.executable, "-m", "baker", "build", "--check"], cwd=tmp_path, capture_output=True,
+                           text=True)
+    assert check.returncode == 1, check.stdout + check.stderr
