@@ -123,10 +123,10 @@ class SourceHits:
         return interpolate(per_vertex, self.source.faces, self.triangle, self.bary)
 
 
-def record(request: TransferRequest, bake: str, kind: str, hits: SourceHits) -> None:
-    """Count a bake's samples (``kind``: texels, vertices) and misses for the summary and ``asset.extras.baker``;
-    refuse a source that most rays miss."""
-    samples, misses = len(hits.hit), hits.misses
+def record(request: TransferRequest, bake: str, kind: str, hit: np.ndarray) -> None:
+    """Count a bake's samples (``kind``: texels, vertices; ``hit`` per sample) and misses for the summary and
+    ``asset.extras.baker``; refuse a source that most rays miss."""
+    samples, misses = len(hit), int((~hit).sum())
     request.summary.setdefault("bakes", {}).setdefault(bake, {})[kind] = {"samples": samples, "misses": misses}
     if samples and misses > (1.0 - OVERLAP_FRACTION) * samples:
         raise BakerError(request.source_path, f"the source does not overlap the low mesh: {misses} of {samples} "

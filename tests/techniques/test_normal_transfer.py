@@ -108,7 +108,7 @@ def angles_degrees(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.degrees(np.arccos(np.clip(np.sum(a * b, axis=1), -1.0, 1.0)))
 
 
-def baked_normals(out: Path, space: str):
+def baked_normals(out: Path, space: str, size: int = SIZE):
     """(analytic normals at the texels' hits, decoded normals, the document, radial directions) over the texel centres strictly inside triangles."""
     gltf, accessor, image = read_glb(out)
     prim = gltf["meshes"][0]["primitives"][0]
@@ -122,8 +122,8 @@ def baked_normals(out: Path, space: str):
     faces = accessor(prim["indices"]).reshape(-1, 3)
     uv = accessor(attributes[f"TEXCOORD_{info.get('texCoord', 0)}"])
     pixels = image(info["index"])
-    assert pixels.dtype == np.uint16 and pixels.shape == (SIZE, SIZE, 3)
-    rows, cols, tri, bary = texel_samples(uv, faces, SIZE)
+    assert pixels.dtype == np.uint16 and pixels.shape == (size, size, 3)
+    rows, cols, tri, bary = texel_samples(uv, faces, size)
     decoded = pixels[rows, cols].astype(np.float64) / 65535.0 * 2.0 - 1.0
 
     def at_texels(values):
@@ -305,3 +305,16 @@ def test_a_recipe_bakes_from_the_high_mesh_and_rebuilds_when_it_changes(pair, tm
     check = subprocess.run([sys.executable, "-m", "baker", "build", "--check"], cwd=tmp_path, capture_output=True,
                            text=True)
     assert check.returncode == 1, check.stdout + check.stderr
+
+
+def test_a_cage_mesh_with_the_low_topology(pair):
+    folder, high, low = pair
+    positions, uvs, faces = ds.uv_sphere(32, 32)
+    cage = folder / "cage.obj"
+    ds.write_obj(cage, positions * 1.1, faces, uvs)
+    out = folder / "caged.glb"
+    baker("bake", low, "--from", high, "--cage", cage, "--bakes", "normal", "--normal-space", "object",
+          "--normal-texture-size", 64, "-o", out, "-q")
+    truth, decoded, gltf, _ = baked_normals(out, "object", size=64)
+    assert np.sqrt(np.mean(angles_degrees(truth, decoded) ** 2)) < 2.0
+    assert gltf["asset"]["extras"]["baker"]["transfer"]["cage"] == "cage.obj"

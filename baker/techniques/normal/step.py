@@ -54,7 +54,7 @@ def run(asset: Asset, options: NormalOptions, seed: int = 0, progress: Progress 
         texels = gather_texels(asset, options.texture_size, options.texel_density, seed)
         advance(1)
     hits = texels.source
-    record(asset.transfer, "normal", "texels", hits)
+    record(asset.transfer, "normal", "texels", hits.hit)
     if options.space == "object":
         values = hits.normals
     else:

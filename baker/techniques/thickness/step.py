@@ -286,28 +286,28 @@ def run_from_source(asset: Asset, options: ThicknessOptions, seed: int, progress
     sums = {mat: [0.0, 0] for mat in groups}
     material_of = {mp: mat for mat, members in groups.items() for mp in members}
     if options.per_vertex:
-        samples, misses = 0, 0
+        found = []
         for m in range(len(asset.meshes())):
             prims = [p for p in asset.triangle_primitives(m) if (m, p) in material_of]
             if not prims:
                 continue
             mesh = asset.welded(m, prims)
             hits = project_welded(request, asset, mesh, vertex_normals(mesh.positions, mesh.faces))
-            samples, misses = samples + len(hits.hit), misses + hits.misses
+            found.append(hits.hit)
             per_welded = hits.interpolate(values)
             for i, p in enumerate(prims):
                 ids = mesh.inverse[mesh.offsets[i]: mesh.offsets[i + 1]]
                 ext.write_vertex_thickness(doc, m, p, per_welded[ids])
-                sums[material_of[(m, p)]][0] += float(per_welded[np.unique(ids)].sum())
-                sums[material_of[(m, p)]][1] += len(np.unique(ids))
-            record(request, "thickness", "vertices", hits)
-        if samples:
-            request.summary["bakes"]["thickness"]["vertices"] = {"samples": samples, "misses": misses}
+                unique = np.unique(ids)
+                sums[material_of[(m, p)]][0] += float(per_welded[unique].sum())
+                sums[material_of[(m, p)]][1] += len(unique)
+        if found:
+            record(request, "thickness", "vertices", np.concatenate(found))
     textured = {}
     if options.per_texel:
         texels = gather_texels(asset, options.texture_size, options.texel_density, seed,
                                auto_range=AUTO_TEXTURE_SIZE_RANGE)
-        record(request, "thickness", "texels", texels.source)
+        record(request, "thickness", "texels", texels.source.hit)
         per_texel = texels.source.interpolate(values)
         for texel_set, image, mask in texels.images(per_texel):
             if not options.per_vertex:
