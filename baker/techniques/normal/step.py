@@ -22,6 +22,10 @@ def frames(asset: Asset, texels, generated: list) -> tuple[np.ndarray, np.ndarra
     per_vertex = {}
     for texel_set in texels.sets:
         target = texel_set.target
+        existing = doc.json["materials"][target.material].get("normalTexture")
+        # a TANGENT belongs to the UV set of the normal map it was made for: kept only for that same layout
+        own_frame = not target.unwrapped and (not isinstance(existing, dict)
+                                              or existing.get("texCoord", 0) == target.texcoord)
         for pt in target.primitives:
             g = pt.geometry
             prim = doc.json["meshes"][g.mesh]["primitives"][g.primitive]
@@ -30,7 +34,7 @@ def frames(asset: Asset, texels, generated: list) -> tuple[np.ndarray, np.ndarra
             if "NORMAL" not in attributes:
                 attributes["NORMAL"] = doc.add_accessor(normals.astype(np.float32))
                 generated.append(f"mesh {g.mesh} primitive {g.primitive} NORMAL")
-            if "TANGENT" in attributes and not target.unwrapped:
+            if "TANGENT" in attributes and own_frame:
                 tangents = to_float(doc, attributes["TANGENT"])
             else:
                 tangents = vertex_tangents(g.positions, g.faces, normals, g.texcoords[target.texcoord])
