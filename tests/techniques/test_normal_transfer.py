@@ -318,3 +318,32 @@ def test_a_cage_mesh_with_the_low_topology(pair):
     truth, decoded, gltf, _ = baked_normals(out, "object", size=64)
     assert np.sqrt(np.mean(angles_degrees(truth, decoded) ** 2)) < 2.0
     assert gltf["asset"]["extras"]["baker"]["transfer"]["cage"] == "cage.obj"
+
+
+def test_the_map_follows_the_low_meshs_own_tangent_frame(pair):
+    """A low mesh that brings its own TANGENT (here turned 40 degrees about the normal, mirrored on half the
+    vertices) keeps it, and the map decodes through it."""
+    from baker.gltf.document import GltfDocument
+
+    folder, high, low = pair
+    plain = folder / "plain_for_tangents.glb"
+    baker("bake", low, "--from", high, "--bakes", "normal", "--normal-texture-size", 32, "-o", plain, "-q")
+    doc = GltfDocument.load(plain)
+    prim = doc.json["meshes"][0]["primitives"][0]
+    normal = doc.accessor(prim["attributes"]["NORMAL"]).astype(np.float64)
+    tangent = doc.accessor(prim["attributes"]["TANGENT"]).astype(np.float64)
+    bitangent = np.cross(normal, tangent[:, :3])
+    turned = np.cos(np.radians(40)) * tangent[:, :3] + np.sin(np.radians(40)) * bitangent
+    sign = np.where(np.arange(len(turned)) % 2 == 0, 1.0, -1.0)
+    prim["attributes"]["TANGENT"] = doc.add_accessor(np.concatenate([turned, sign[:, None]], axis=1)
+                                                     .astype(np.float32))
+    del doc.json["materials"][prim["material"]]["normalTexture"]
+    own = folder / "own_tangents.glb"
+    doc.save(own)
+    out = folder / "own_tangents_baked.glb"
+    baker("bake", own, "--from", high, "--bakes", "normal", "--normal-texture-size", 64, "-o", out, "-q")
+    truth, decoded, gltf, _ = baked_normals(out, "tangent", size=64)
+    assert np.sqrt(np.mean(angles_degrees(truth, decoded) ** 2)) < 2.0
+    _, accessor, _ = read_glb(out)
+    kept = accessor(gltf["meshes"][0]["primitives"][0]["attributes"]["TANGENT"])
+    assert np.allclose(kept[:, 3], sign) and np.allclose(kept[:, :3], turned, atol=1e-6)
