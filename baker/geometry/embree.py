@@ -25,7 +25,8 @@ INVALID_ID = 0xFFFFFFFF  # Embree's RTC_INVALID_GEOMETRY_ID: mask all, and no hi
 _RTC_GEOMETRY_TYPE_TRIANGLE = 0
 _RTC_BUFFER_TYPE_INDEX, _RTC_BUFFER_TYPE_VERTEX = 0, 1
 _RTC_FORMAT_UINT3, _RTC_FORMAT_FLOAT3 = 0x5003, 0x9003
-_RTC_BUILD_QUALITY_HIGH = 2
+_RTC_BUILD_QUALITY_MEDIUM, _RTC_BUILD_QUALITY_HIGH = 1, 2
+BUILD_QUALITIES = {"medium": _RTC_BUILD_QUALITY_MEDIUM, "high": _RTC_BUILD_QUALITY_HIGH}
 
 
 def _load_library():
@@ -72,9 +73,11 @@ if AVAILABLE:
 
 
 class DirectScene:
-    """A committed Embree triangle scene (high build quality); ``pointer`` is the ``RTCScene`` handle."""
+    """A committed Embree triangle scene; ``pointer`` is the ``RTCScene`` handle. ``quality``: "high" (SAH with
+    spatial splits: for many rays per triangle) or "medium" (a few rays per triangle: a 300k-triangle sculpt builds
+    in 0.16 s of CPU instead of 0.73 and traces 1M rays in the same time)."""
 
-    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray, quality: str = "high"):
         if not AVAILABLE:
             raise RuntimeError("Embree library not found")
         # BAKER_THREADS (set per `baker build --jobs` worker) also caps Embree's own (TBB) build threads
@@ -84,7 +87,7 @@ class DirectScene:
             raise RuntimeError("rtcNewDevice failed")
         self.pointer = _lib.rtcNewScene(self._device)
         # one build, millions of rays: the slower SAH build with spatial splits pays for itself
-        _lib.rtcSetSceneBuildQuality(self.pointer, _RTC_BUILD_QUALITY_HIGH)
+        _lib.rtcSetSceneBuildQuality(self.pointer, BUILD_QUALITIES[quality])
         geom = _lib.rtcNewGeometry(self._device, _RTC_GEOMETRY_TYPE_TRIANGLE)
         v = np.ascontiguousarray(vertices, np.float32).reshape(-1)
         f = np.ascontiguousarray(faces, np.uint32).reshape(-1)

@@ -79,7 +79,9 @@ class SourceMesh:
         if self._scene is None:
             from baker.geometry.raycast import RayScene
 
-            self._scene = RayScene(self.positions, self.faces)
+            # about one ray per texel, a few per triangle: the medium build (a 300k-triangle sculpt: 0.16 s of CPU
+            # against 0.73 s for the high build's spatial splits, the same 1.1 s for 1M rays)
+            self._scene = RayScene(self.positions, self.faces, quality="medium")
         return self._scene
 
     def per_vertex(self, name: str, options_key: str, compute) -> np.ndarray:
