@@ -316,6 +316,10 @@ def run_from_source(asset: Asset, options: ThicknessOptions, seed: int, progress
             png, factor = ext.encode_thickness_texture(image, options.texture_bits)
             textured[texel_set.material] = ext.write_thickness_texture(doc, texel_set.material, png, factor,
                                                                        texel_set.texcoord)
+        double_sided = [asset.material_label(m) for m in textured if not ext.volume_allowed(doc, m)]
+        if double_sided:
+            asset.note("KHR_materials_volume is not valid on double-sided materials: their thickness texture is in "
+                       f"BAKER_thickness only: {', '.join(double_sided)}")
     for material, members in groups.items():
         total, count = sums[material]
         ext.write_material_parameters(doc, material, options=options, max_distance=max_distance, bias=bias,
