@@ -10,7 +10,8 @@ counted, :attr:`SourceHits.misses`).
 
 The cage distance, when not given, follows the two meshes: rays from the low's vertices and triangle centres along
 both senses of its normals meet the high at its distance from the low; a robust maximum of those (the 99.5th
-percentile) times :data:`CAGE_MARGIN`, plus :data:`CAGE_FLOOR` of the low's bounding-box diagonal.
+percentile of those within :data:`MAX_OFFSET` of the low's bounding-box diagonal: rays through a hole of the high
+cross the shape) times :data:`CAGE_MARGIN`, plus :data:`CAGE_FLOOR` of the low's bounding-box diagonal.
 """
 from __future__ import annotations
 
@@ -27,6 +28,7 @@ from baker.errors import BakerError
 CAGE_QUANTILE = 0.995  # a robust maximum of the high's distance from the low: a few stray spikes are misses
 CAGE_MARGIN = 1.25  # the cage lies this far beyond that distance
 CAGE_FLOOR = 0.002  # ... plus this share of the low's bounding-box diagonal (a high lying on the low: distance 0)
+MAX_OFFSET = 0.1  # share of the low's bounding-box diagonal: farther hits along its normals are not the high's offset
 OVERLAP_FRACTION = 0.5  # fewer texels than this share meeting the high: the source is not the low's shape
 TRACE_CHUNK = 65536  # rays per task of the thread pool
 
@@ -237,11 +239,14 @@ def automatic_cage_distance(request: TransferRequest, low_asset) -> float:
     outward = trace(scene, points, normals)[0].astype(np.float64)
     inward = trace(scene, points, -normals)[0].astype(np.float64)
     distance = np.minimum(outward, inward)
-    found = distance < 1e36
-    if found.mean() < OVERLAP_FRACTION or np.median(distance[found]) > 0.25 * low_diag:
+    # a ray through a hole of the high (an open scan, a cut) crosses the whole shape: a sculpt lies within
+    # MAX_OFFSET of the low's diagonal from it, and farther hits are not its offset
+    found = distance <= MAX_OFFSET * low_diag
+    if found.mean() < OVERLAP_FRACTION:
         raise BakerError(request.source_path, "the source does not overlap the low mesh (its surface is not near "
                          "the low's along the low's normals): bake from the high mesh of the same object")
-    return float(CAGE_MARGIN * np.quantile(distance[found], CAGE_QUANTILE) + CAGE_FLOOR * low_diag)
+    distance = distance[found]
+    return float(CAGE_MARGIN * np.quantile(distance, CAGE_QUANTILE) + CAGE_FLOOR * low_diag)
 
 
 def cage_distance(request: TransferRequest, low_asset) -> float:

@@ -347,3 +347,29 @@ def test_the_map_follows_the_low_meshs_own_tangent_frame(pair):
     _, accessor, _ = read_glb(out)
     kept = accessor(gltf["meshes"][0]["primitives"][0]["attributes"]["TANGENT"])
     assert np.allclose(kept[:, 3], sign) and np.allclose(kept[:, :3], turned, atol=1e-6)
+
+
+def test_misses_are_filled_from_neighbours_and_counted(pair):
+    """A sculpt with its top cap cut away: the texels there find no surface, take their nearest hit texel's and
+    are counted in the note and in asset.extras.baker."""
+    folder, _, low = pair
+    positions, faces = ds.high_mesh(30)
+    centres = positions[faces].mean(axis=1)
+    open_top = folder / "open_top.obj"
+    ds.write_obj(open_top, positions, faces[centres[:, 1] < 0.8])
+    out = folder / "open_top.glb"
+    done = baker("bake", low, "--from", open_top, "--bakes", "normal", "--normal-space", "object",
+                 "--normal-texture-size", 64, "-o", out)
+    gltf, accessor, image = read_glb(out)
+    counts = gltf["asset"]["extras"]["baker"]["transfer"]["bakes"]["normal"]["texels"]
+    assert 0 < counts["misses"] < 0.2 * counts["samples"]
+    assert f"{counts['misses']} of {counts['samples']} texels found no source surface" in done.stderr
+    info = gltf["materials"][0]["extras"]["baker"]["objectSpaceNormalTexture"]
+    pixels = image(info["index"]).astype(np.float64) / 65535.0 * 2.0 - 1.0
+    length = np.linalg.norm(pixels, axis=2)
+    assert np.all(np.abs(length - 1.0) < 1e-3)  # every texel (filled, dilated) holds a unit normal
+    # the filled texels near the pole copy hits at the cut's rim: normals pointing up, not the low's own
+    prim = gltf["meshes"][0]["primitives"][0]
+    uv = accessor(prim["attributes"]["TEXCOORD_0"])
+    top_row = int(np.floor(uv[:, 1].min() * 64)) + 1
+    assert pixels[top_row, :, 1].mean() > 0.5
