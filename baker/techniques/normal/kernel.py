@@ -49,3 +49,22 @@ def decode_pixels(pixels: np.ndarray) -> np.ndarray:
     """RGB pixels (8 or 16 bits) -> (..., 3) vectors ``2 p / max - 1`` (not normalized)."""
     top = 65535.0 if pixels.dtype == np.uint16 else 255.0
     return pixels[..., :3].astype(np.float64) / top * 2.0 - 1.0
+
+
+BANDING_SHARE = 0.05  # of neighbouring covered texel pairs changing by a slow ramp: then 8 bits band
+RAMP = (0.05, 0.25)  # a change per texel, in steps of 8 bits, that is a slow ramp: bands of 4 texels and wider
+
+
+def bits_needed(image: np.ndarray, mask: np.ndarray) -> int:
+    """16 when 8 bits would band the (H, W, 3) map of unit vectors over the covered texels ``mask``, else 8: more
+    than :data:`BANDING_SHARE` of the horizontally or vertically neighbouring covered texels differ (largest
+    channel) by a slow ramp of :data:`RAMP` steps of 8 bits, which rounding to 8 bits turns into flat bands a few
+    texels wide with a step between (a smooth sculpt's gentle curvature; a constant region does not band)."""
+    steps = (image + 1.0) * 0.5 * 255.0
+    ramps, pairs = 0, 0
+    for axis in (0, 1):
+        change = np.abs(np.diff(steps, axis=axis)).max(axis=2)
+        both = mask[1:, :] & mask[:-1, :] if axis == 0 else mask[:, 1:] & mask[:, :-1]
+        pairs += int(both.sum())
+        ramps += int((both & (change > RAMP[0]) & (change < RAMP[1])).sum())
+    return 16 if pairs and ramps > BANDING_SHARE * pairs else 8

@@ -19,5 +19,6 @@ class NormalOptions:
     texel_density: float | None = opt(None, "texels per mesh unit (metre) of the normal map, sizing each material's "
                                             "texture to a power of two in [16, 8192] (default: 8 texels along the "
                                             "low mesh's mean triangle edge, in [64, 2048])", min=1e-9)
-    texture_bits: int = opt(16, "bits per channel of the normal map PNG (8 bits band on smooth surfaces: steps of "
-                                "0.45 degrees near the normal)", choices=(8, 16))
+    texture_bits: int = opt(0, "bits per channel of the normal map PNG: 8, 16, or 0 for 16 where 8 bits would band (more "
+                               "than 5% of neighbouring texels change by 0.05 to 0.25 of a step of 8 bits: slow ramps "
+                               "that 8 bits turn into bands 4 texels wide and more), else 8 (8x smaller files)", choices=(0, 8, 16))

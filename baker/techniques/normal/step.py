@@ -50,7 +50,7 @@ def run(asset: Asset, options: NormalOptions, seed: int = 0, progress: Progress 
     from baker.texels.sets import gather_texels
     from baker.texels.transfer import record
     from baker.techniques.normal import extension as ext
-    from baker.techniques.normal.kernel import encode_pixels, tangent_space
+    from baker.techniques.normal.kernel import bits_needed, encode_pixels, tangent_space
 
     if asset.transfer is None:
         raise NothingToBake("a normal map is baked from a high-poly source: give --from HIGH")
@@ -72,8 +72,9 @@ def run(asset: Asset, options: NormalOptions, seed: int = 0, progress: Progress 
         if texel_set.target.unwrapped:
             asset.note(f"normal: material {asset.material_label(texel_set.material)} has no usable UVs: unwrapped "
                        f"into TEXCOORD_{texel_set.texcoord}, which the normal map uses")
-        png = ext.encode_png(encode_pixels(image, options.texture_bits))
+        bits = options.texture_bits or bits_needed(image, mask)
+        png = ext.encode_png(encode_pixels(image, bits))
         if ext.write_normal_texture(asset.doc, texel_set.material, png, texel_set.texcoord, options.space, source,
-                                    options.texture_bits):
+                                    bits):
             asset.note(f"normal: material {asset.material_label(texel_set.material)}: its normalTexture is replaced "
                        f"by the map baked from {source}")
