@@ -6,6 +6,11 @@ mesh, material and image cell, stacked over all texture sets so that one ray str
 covers them all. The technique computes one value per texel, and :meth:`TexelSets.images` puts the values back
 into one dilated image per material.
 
+Baking from another mesh (``asset.transfer``, ``baker bake --from HIGH``): each texel's ray also leaves the cage
+toward its surface point and lands on the high mesh (:mod:`baker.texels.transfer`); :attr:`TexelSets.source` holds
+where (point, normal, triangle and barycentrics for the high's per-vertex bakes), misses taking the nearest hit
+texel's (:meth:`TexelSets.nearest_hits`).
+
 Texture sizes follow the mesh unless forced (:func:`baker.texels.texture_space.size_for_density`): about
 :data:`~baker.texels.texture_space.TEXELS_PER_EDGE` texels along the average triangle edge, or a given density.
 """
