@@ -124,6 +124,8 @@ def write_transfer_summary(asset: Asset) -> None:
     elif request.cage_distance is not None:
         summary["cageDistance"] = float(request.cage_distance)
         summary["cageDistanceAutomatic"] = bool(request.summary.get("cageDistanceAutomatic", False))
+    if request.summary.get("parts"):
+        summary["parts"] = request.summary["parts"]
     bakes = request.summary.get("bakes", {})
     if bakes:
         summary["bakes"] = bakes

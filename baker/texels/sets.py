@@ -24,7 +24,7 @@ import numpy as np
 from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.texels.texture_space import AUTO_SIZE_RANGE, dilate, interpolate, window_mean
 from baker.texels.targets import MaterialTarget, PrimitiveTexels, material_targets
-from baker.texels.transfer import SourceHits, cage_distance, cage_positions, project
+from baker.texels.transfer import SourceHits, cage_distance, cage_positions, low_parts, project
 
 
 @dataclass
@@ -220,5 +220,6 @@ def gather_texels(asset: Asset, size: int | None = None, density: float | None =
                        stack(material, 0).astype(np.int64), stack(rows, 0).astype(np.int64),
                        stack(cols, 0).astype(np.int64))
     if request is not None:
-        texels.source = project(request, texels.positions, stack(cages, (0, 3)), texels.nearest_hits)
+        texels.source = project(request, texels.positions, stack(cages, (0, 3)), texels.nearest_hits,
+                                low_parts(request, asset)[texels.mesh] if len(texels) else None)
     return texels

@@ -45,11 +45,20 @@ class TransferRequest:
     summary: dict = field(default_factory=dict)  # what the bakes found (misses, cage distance), for extras
 
 
+def part_name(name, suffix: str) -> str | None:
+    """A mesh's part: its name without the ``_low``/``_high`` suffix (case-insensitive), as the anchors and
+    Substance/Marmoset match low and high parts; None for a mesh without a name."""
+    if not isinstance(name, str) or not name:
+        return None
+    return name[: -len(suffix)] if name.lower().endswith(suffix) else name
+
+
 class SourceMesh:
     """The high mesh: every triangle primitive of every mesh, each mesh welded (one vertex per position), as one
-    triangle soup in mesh space, with area-weighted smooth vertex normals and one Embree scene."""
+    triangle soup in mesh space, with area-weighted smooth vertex normals and one Embree scene; ``parts`` maps a
+    part name (:func:`part_name`) to its triangles when the file holds several named meshes."""
 
-    def __init__(self, positions: np.ndarray, faces: np.ndarray):
+    def __init__(self, positions: np.ndarray, faces: np.ndarray, parts: dict | None = None):
         from baker.geometry.normals import vertex_normals
 
         self.positions = np.ascontiguousarray(positions, np.float64)
@@ -59,11 +68,13 @@ class SourceMesh:
         digest.update(np.ascontiguousarray(self.positions, "<f8").tobytes())
         digest.update(np.ascontiguousarray(self.faces, "<i8").tobytes())
         self.key = digest.hexdigest()
+        self.parts = parts or {}
         self._scene = None
+        self._part_scenes = {}
 
     @classmethod
     def from_asset(cls, asset) -> "SourceMesh":
-        positions, faces, base = [], [], 0
+        positions, faces, base, parts, first = [], [], 0, {}, 0
         for m in range(len(asset.meshes())):
             prims = asset.triangle_primitives(m)
             if not prims:
@@ -72,9 +83,24 @@ class SourceMesh:
             positions.append(welded.positions)
             faces.append(welded.faces + base)
             base += len(welded.positions)
+            name = part_name(asset.meshes()[m].get("name"), "_high")
+            if name is not None:
+                parts.setdefault(name, []).append(np.arange(first, first + len(welded.faces)))
+            first += len(welded.faces)
         if not faces or not sum(len(f) for f in faces):
             raise BakerError(asset.source, "the --from source has no triangles")
-        return cls(np.concatenate(positions), np.concatenate(faces))
+        parts = {name: np.concatenate(ranges) for name, ranges in parts.items()} if len(parts) > 1 else {}
+        return cls(np.concatenate(positions), np.concatenate(faces), parts)
+
+    def part_scene(self, name: str):
+        """(scene of the part's triangles, their indices in the whole high)."""
+        if name not in self._part_scenes:
+            from baker.geometry.raycast import RayScene
+
+            triangles = self.parts[name]
+            self._part_scenes[name] = (RayScene(self.positions, self.faces[triangles], quality="medium", robust=True),
+                                       triangles)
+        return self._part_scenes[name]
 
     @property
     def scene(self):
@@ -259,16 +285,47 @@ def cage_distance(request: TransferRequest, low_asset) -> float:
     return request.cage_distance
 
 
+def low_parts(request: TransferRequest, low_asset) -> np.ndarray:
+    """Per mesh of the low asset, the index into ``sorted(request.source.parts)`` of the high part it bakes from
+    (its name less ``_low`` is a part's name less ``_high``), or -1: the whole high."""
+    names = sorted(request.source.parts)
+    out = np.full(len(low_asset.meshes()), -1, np.int64)
+    for m, mesh in enumerate(low_asset.meshes()):
+        name = part_name(mesh.get("name"), "_low")
+        if name in request.source.parts:
+            out[m] = names.index(name)
+    if (out >= 0).any():
+        request.summary["parts"] = sorted({names[k] for k in out if k >= 0})
+    return out
+
+
 def project(request: TransferRequest, low_points: np.ndarray, cage_points: np.ndarray,
-            neighbours=None) -> SourceHits:
+            neighbours=None, parts: np.ndarray | None = None) -> SourceHits:
     """Rays from ``cage_points`` through ``low_points`` (as far again behind them) onto the high: the first hit.
-    ``neighbours(hit) -> index``: for each sample the sample whose hit a miss copies (None: misses keep triangle 0)."""
+    ``neighbours(hit) -> index``: for each sample the sample whose hit a miss copies (None: misses keep triangle 0).
+    ``parts``: per sample the high part (:func:`low_parts`) its ray may hit, -1 for any."""
     source = request.source
     direction = low_points - cage_points
     length = np.linalg.norm(direction, axis=1)
     # a cage point on the low surface (cage distance 0, or a cage touching the low): the ray leaves along the normal
     unit = direction / np.maximum(length, 1e-30)[:, None]
-    distance, triangle, u, v = trace(source.scene, cage_points, unit)
+    if parts is None or not (parts >= 0).any():
+        distance, triangle, u, v = trace(source.scene, cage_points, unit)
+    else:
+        n = len(cage_points)
+        distance, triangle = np.empty(n, np.float32), np.empty(n, np.int64)
+        u, v = np.empty(n, np.float32), np.empty(n, np.float32)
+        names = sorted(source.parts)
+        for part in np.unique(parts):
+            rows = np.flatnonzero(parts == part)
+            if part < 0:
+                scene, triangles = source.scene, None
+            else:
+                scene, triangles = source.part_scene(names[part])
+            d, t, pu, pv = trace(scene, cage_points[rows], unit[rows])
+            if triangles is not None:
+                t = np.where(t >= 0, triangles[np.maximum(t, 0)], -1)
+            distance[rows], triangle[rows], u[rows], v[rows] = d, t, pu, pv
     hit = (triangle >= 0) & (distance.astype(np.float64) <= 2.0 * length * (1.0 + 1e-6) + 1e-12)
     if neighbours is not None and hit.any() and not hit.all():
         take = neighbours(hit)
@@ -303,4 +360,6 @@ def project_welded(request: TransferRequest, asset, welded, normals: np.ndarray)
         _, nearest = cKDTree(welded.positions[found]).query(welded.positions)
         return np.where(hit, np.arange(len(hit)), found[nearest])
 
-    return project(request, np.asarray(welded.positions), cage, nearest_hit)
+    part = low_parts(request, asset)[welded.geometries[0].mesh]
+    return project(request, np.asarray(welded.positions), cage, nearest_hit,
+                   np.full(len(welded.positions), part, np.int64))

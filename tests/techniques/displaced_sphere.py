@@ -113,3 +113,21 @@ def write_obj(path, positions, faces, uvs=None) -> None:
     else:
         lines += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in faces]
     path.write_text("\n".join(lines) + "\n")
+
+
+def write_obj_parts(path, parts) -> None:
+    """Wavefront OBJ of several named meshes (one ``usemtl NAME`` group each: baker reads a mesh per material, named
+    by it): ``parts`` lists (name, positions, faces, uvs or None)."""
+    lines, base, base_uv = [], 0, 0
+    for name, positions, faces, uvs in parts:
+        lines.append(f"usemtl {name}")
+        lines += [f"v {x:.9f} {y:.9f} {z:.9f}" for x, y, z in positions]
+        if uvs is not None:
+            lines += [f"vt {u:.9f} {1.0 - v:.9f}" for u, v in uvs]
+            lines += [f"f {a + base + 1}/{a + base_uv + 1} {b + base + 1}/{b + base_uv + 1} {c + base + 1}/{c + base_uv + 1}"
+                      for a, b, c in faces]
+            base_uv += len(uvs)
+        else:
+            lines += [f"f {a + base + 1} {b + base + 1} {c + base + 1}" for a, b, c in faces]
+        base += len(positions)
+    path.write_text("\n".join(lines) + "\n")

@@ -387,3 +387,52 @@ def test_misses_are_filled_from_neighbours_and_counted(pair):
     uv = accessor(prim["attributes"]["TEXCOORD_0"])
     top_row = int(np.floor(uv[:, 1].min() * 64)) + 1
     assert pixels[top_row, :, 1].mean() > 0.5
+
+
+def named_parts(path: Path, parts) -> Path:
+    """A GLB of the named meshes, each with a material of its own (OBJ names its meshes after the file: the parts are
+    told apart by their radius, each a sphere of its own radius here)."""
+    from baker import readers
+
+    ds.write_obj_parts(path, parts)
+    doc = readers.read(path).doc
+    radii = {name: float(np.linalg.norm(positions, axis=1).mean()) for name, positions, _, _ in parts}
+    for mesh in doc.json["meshes"]:
+        radius = float(np.linalg.norm(doc.accessor(mesh["primitives"][0]["attributes"]["POSITION"]), axis=1).mean())
+        mesh["name"] = min(radii, key=lambda name: abs(radii[name] - radius))
+        # a material of its own: each part's map in its own texture, on its own UVs
+        doc.json.setdefault("materials", []).append({"name": mesh["name"]})
+        mesh["primitives"][0]["material"] = len(doc.json["materials"]) - 1
+    assert sorted(m["name"] for m in doc.json["meshes"]) == sorted(radii)
+    out = path.with_suffix(".glb")
+    doc.save(out)
+    return out
+
+
+def test_parts_bake_from_the_high_part_of_the_same_name(pair):
+    """Two parts in one place: the displaced sphere ``rock_high`` and a plain sphere ``shell_high`` just outside
+    it. ``rock_low`` takes only ``rock_high``'s surface (the shell would be the first surface along its rays)."""
+    folder, _, _ = pair
+    rock_positions, rock_faces = ds.high_mesh(30)
+    shell_positions, shell_faces = ds.geodesic_sphere(12)
+    high = named_parts(folder / "parts_high.obj", [("rock_high", rock_positions, rock_faces, None),
+                                                   ("shell_high", shell_positions * 1.06, shell_faces, None)])
+    positions, uvs, faces = ds.uv_sphere(32, 32)
+    low = named_parts(folder / "parts_low.obj", [("rock_low", positions, faces, uvs),
+                                                 ("shell_low", positions * 1.06, faces, uvs)])
+    out = folder / "parts.glb"
+    baker("bake", low, "--from", high, "--cage-distance", 0.1, "--bakes", "normal", "--normal-space", "object",
+          "--normal-texture-size", 64, "-o", out, "-q")
+    gltf, accessor, image = read_glb(out)
+    rock = next(m for m in gltf["meshes"] if m["name"] == "rock_low")["primitives"][0]
+    info = gltf["materials"][rock["material"]]["extras"]["baker"]["objectSpaceNormalTexture"]
+    pixels = image(info["index"])
+    rows, cols, tri, bary = texel_samples(accessor(rock["attributes"]["TEXCOORD_0"]),
+                                          accessor(rock["indices"]).reshape(-1, 3), 64)
+    point = np.einsum("kj,kjd->kd", bary, accessor(rock["attributes"]["POSITION"])[accessor(rock["indices"])
+                                                                                  .reshape(-1, 3)[tri]])
+    u = point / np.linalg.norm(point, axis=1, keepdims=True)
+    decoded = pixels[rows, cols].astype(np.float64) / np.iinfo(pixels.dtype).max * 2.0 - 1.0
+    error = angles_degrees(ds.analytic_normal(ds.surface_point(u)), decoded)
+    assert np.sqrt(np.mean(error ** 2)) < 2.0
+    assert gltf["asset"]["extras"]["baker"]["transfer"]["parts"] == ["rock", "shell"]
