@@ -280,7 +280,7 @@ def test_bad_input_exits_2_with_one_line_and_writes_nothing(pair):
         "no overlap": (["--from", far], "does not overlap"),
         "cage topology": (["--from", high, "--cage", far], "topology differs"),
         "cage without source": (["--cage-distance", "0.1"], "need --from"),
-        "bake that cannot transfer": (["--from", high, "--bakes", "curvature"], "cannot bake from another mesh"),
+        "bake that cannot transfer": (["--from", high, "--bakes", "edges"], "cannot bake from another mesh"),
     }
     for label, (extra, message) in cases.items():
         out = folder / "refused.glb"
@@ -436,3 +436,36 @@ def test_parts_bake_from_the_high_part_of_the_same_name(pair):
     error = angles_degrees(ds.analytic_normal(ds.surface_point(u)), decoded)
     assert np.sqrt(np.mean(error ** 2)) < 2.0
     assert gltf["asset"]["extras"]["baker"]["transfer"]["parts"] == ["rock", "shell"]
+
+
+def test_curvature_from_the_high_mesh_is_the_high_meshs_own(pair):
+    """Each low vertex takes the high's own mean and principal curvatures at its hit, and the high's principal
+    direction turned into its tangent plane."""
+    folder, high, low = pair
+    own = folder / "high_curvature.glb"
+    baker("bake", high, "--bakes", "curvature", "-o", own, "-q")
+    gltf, accessor, _ = read_glb(own)
+    attributes = gltf["meshes"][0]["primitives"][0]["attributes"]
+    high_positions = accessor(attributes["POSITION"])
+    high_faces = accessor(gltf["meshes"][0]["primitives"][0]["indices"]).reshape(-1, 3)
+
+    def scalar(values):
+        return values[:, 0] if values.ndim == 2 else values
+
+    high_mean = scalar(accessor(attributes["_CURVATURE"]))
+    out = folder / "curvature_from_high.glb"
+    baker("bake", low, "--from", high, "--bakes", "curvature", "-o", out, "-q")
+    gltf, accessor, _ = read_glb(out)
+    attributes = gltf["meshes"][0]["primitives"][0]["attributes"]
+    positions = accessor(attributes["POSITION"])
+    moved = scalar(accessor(attributes["_CURVATURE"]))
+    hit_tri, hit_bary = radial_hits(high_positions, high_faces,
+                                    positions / np.linalg.norm(positions, axis=1, keepdims=True))
+    truth = np.einsum("kj,kj->k", hit_bary, high_mean[high_faces[hit_tri]])
+    assert np.sqrt(np.mean((moved - truth) ** 2)) < 0.03 * np.sqrt(np.mean(truth ** 2))
+    # the sculpt's bumps: its curvature is not the unit sphere's (H = 1 everywhere)
+    assert np.sqrt(np.mean((truth - 1.0) ** 2)) > 0.1
+    direction = accessor(attributes["_PRINCIPAL_DIRECTION"])[:, :3]
+    normal = accessor(attributes["NORMAL"])
+    assert np.allclose(np.linalg.norm(direction, axis=1), 1.0, atol=1e-5)
+    assert np.abs(np.sum(direction * normal, axis=1)).max() < 0.02
