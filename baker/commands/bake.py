@@ -82,8 +82,20 @@ def run(args) -> int:
             print(f"baker: {warning.category.label}: {warning.message}", file=sys.stderr)
         else:  # not ours (a library's): shown as Python would have
             warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
+    transfer = asset.doc.json.get("asset", {}).get("extras", {}).get("baker", {}).get("transfer") \
+        if asset.transfer is not None else None
     asset.cache.clear()  # decoded and welded geometry is done with: free it before the file is assembled
     save(asset, args.output, compress=args.compress)
     if not args.quiet:
         print(f"baked {', '.join(names)} -> {args.output}", file=sys.stderr)
+        if transfer:
+            print(transfer_summary(transfer), file=sys.stderr)
     return 0
+
+
+def transfer_summary(transfer: dict) -> str:
+    """One line on a bake from another mesh: the source, the cage, each bake's samples and misses."""
+    cage = f"cage {transfer['cage']}" if "cage" in transfer else f"cage distance {transfer.get('cageDistance', 0):.4g}"
+    counts = "; ".join(f"{bake} {kind} {c['samples'] - c['misses']}/{c['samples']} hit"
+                       for bake, kinds in transfer.get("bakes", {}).items() for kind, c in kinds.items())
+    return f"from {transfer['source']} ({transfer['sourceTriangles']} triangles, {cage}): {counts}"
