@@ -6,7 +6,8 @@ low surface point and goes on as far again behind it; the first high surface it 
 hit carries the high's point, its interpolated smooth normal and the triangle and barycentrics that interpolate any
 per-vertex bake of the high (computed once per high mesh and cached by content hash, :meth:`SourceMesh.per_vertex`).
 Texels whose ray meets nothing take the hit of the nearest texel of their texture that found one (the misses are
-counted, :attr:`SourceHits.misses`).
+counted, :attr:`SourceHits.misses`). When the source holds several named meshes, a low mesh ``NAME_low`` traces only
+the part ``NAME_high`` (:func:`low_parts`), in a scene of its own.
 
 The cage distance, when not given, follows the two meshes: rays from the low's vertices and triangle centres along
 both senses of its normals meet the high at its distance from the low; a robust maximum of those (the 99.5th
