@@ -21,6 +21,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 import displaced_sphere as ds  # noqa: E402
+from conftest import assert_khronos_clean  # noqa: E402
 
 SIZE = 256
 COMPONENTS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
@@ -171,6 +172,12 @@ def test_baked_normals_match_the_analytic_surface(pair, space):
     assert np.sqrt(np.mean(angles_degrees(truth, radial) ** 2)) > 5.0 * rms
     transfer = gltf["asset"]["extras"]["baker"]["transfer"]
     assert transfer["source"] == "high.obj" and transfer["bakes"]["normal"]["texels"]["misses"] == 0
+    # both validators clean: baker's checks and Khronos glTF-Validator (no new warnings: the map is core glTF)
+    from baker import validate
+
+    assert validate.validate_file(out, khronos=False)["issues"]["numErrors"] == 0
+    report = assert_khronos_clean(out)
+    assert report["issues"]["numWarnings"] == 0, report["issues"]["messages"]
 
 
 def radial_hits(positions: np.ndarray, faces: np.ndarray, directions: np.ndarray):
