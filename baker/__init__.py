@@ -52,16 +52,19 @@ else:
 
 
 def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progress=None, allow_outside=None,
-         max_memory: int | None = None, attribute_layout: str = "blender"):
+         max_memory: int | None = None, attribute_layout: str = "blender", source=None, cage=None,
+         cage_distance: float | None = None):
     """Bake ``bakes`` into an asset and return it (an ``Asset``); write it with :func:`baker.api.save`.
 
     ``options`` maps a bake name to its options dataclass instance or to a dict of option values;
     ``allow_outside`` and ``max_memory`` are those of :func:`baker.api.bake` (more folders the asset's URIs may
     point into; a memory limit in bytes, None for none). ``attribute_layout``: ``"blender"`` (default: custom
     vertex attributes padded to one width per mesh, which Blender 4.5 imports) or ``"native"`` (each at its own
-    width: SCALAR, VEC2, VEC3).
+    width: SCALAR, VEC2, VEC3). ``source``, ``cage``, ``cage_distance``: bake from a high mesh through a cage
+    (``baker bake --from HIGH --cage MESH --cage-distance D``).
     """
     from baker.api import bake as api_bake
 
     return api_bake(path_or_asset, bakes=bakes, options=options, seed=seed, progress=progress,
-                    allow_outside=allow_outside, max_memory=max_memory, attribute_layout=attribute_layout)
+                    allow_outside=allow_outside, max_memory=max_memory, attribute_layout=attribute_layout,
+                    source=source, cage=cage, cage_distance=cage_distance)

@@ -52,6 +52,8 @@ class Technique:
     # the bake splits the vertices of the primitives it covers (a new vertex layout): it runs after every bake that
     # does not, so that their per-vertex output never depends on whether it ran (tam's stroke texture coordinates)
     splits_vertices: bool = False
+    # the bake can sample a high mesh through a cage (``baker bake --from HIGH``, :mod:`baker.texels.transfer`)
+    transfers: bool = False
     # a folder laid out like the repo's ``schemas/`` (``<EXT>/schema/<kind>.<EXT>.schema.json``), for a technique
     # that brings its own: "package:folder" (a folder inside an importable package) or a path; None: the built-in
     # techniques, whose schemas live in the repo's top-level ``schemas/``

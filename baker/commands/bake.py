@@ -30,6 +30,14 @@ def add_parser(sub) -> None:
                    "Babylon.js read it): 'meshopt' makes each bufferView as small as it gets, 'meshopt-gzip' as "
                    "small as it gets once gzipped, for servers that gzip (a view stays plain where that is smaller) "
                    "(default: none)")
+    p.add_argument("--from", dest="source", metavar="HIGH", help="bake from this high-poly mesh onto the input's UVs: "
+                   "each texel's ray leaves the cage toward the input's surface and samples the first HIGH surface "
+                   "it meets (works with: " + ", ".join(n for n, t in bakes.items() if t.transfers) + ")")
+    p.add_argument("--cage", metavar="MESH", help="with --from: the cage, a mesh with the input's topology whose "
+                   "vertices the rays leave from (default: the input pushed out along its smoothed normals)")
+    p.add_argument("--cage-distance", type=float, metavar="D", help="with --from: push the cage out by D mesh units "
+                   "(default: 1.25 x the 99.5th percentile of the high's distance from the input, plus 0.2%% of its "
+                   "bounding-box diagonal)")
     for name, technique in bakes.items():
         add_arguments(p, technique.options, name)
     p.set_defaults(func=run)
@@ -67,14 +75,27 @@ def run(args) -> int:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BakeNote)
         asset = bake(args.input, bakes=names, options=options, seed=args.seed, progress=progress,
-                     allow_outside=args.allow_outside, max_memory=max_memory, attribute_layout=args.attribute_layout)
+                     allow_outside=args.allow_outside, max_memory=max_memory, attribute_layout=args.attribute_layout,
+                     source=args.source, cage=args.cage, cage_distance=args.cage_distance)
     for warning in caught:
         if issubclass(warning.category, BakeNote):
             print(f"baker: {warning.category.label}: {warning.message}", file=sys.stderr)
         else:  # not ours (a library's): shown as Python would have
             warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
+    transfer = asset.doc.json.get("asset", {}).get("extras", {}).get("baker", {}).get("transfer") \
+        if asset.transfer is not None else None
     asset.cache.clear()  # decoded and welded geometry is done with: free it before the file is assembled
     save(asset, args.output, compress=args.compress)
     if not args.quiet:
         print(f"baked {', '.join(names)} -> {args.output}", file=sys.stderr)
+        if transfer:
+            print(transfer_summary(transfer), file=sys.stderr)
     return 0
+
+
+def transfer_summary(transfer: dict) -> str:
+    """One line on a bake from another mesh: the source, the cage, each bake's samples and misses."""
+    cage = f"cage {transfer['cage']}" if "cage" in transfer else f"cage distance {transfer.get('cageDistance', 0):.4g}"
+    counts = "; ".join(f"{bake} {kind} {c['samples'] - c['misses']}/{c['samples']} hit"
+                       for bake, kinds in transfer.get("bakes", {}).items() for kind, c in kinds.items())
+    return f"from {transfer['source']} ({transfer['sourceTriangles']} triangles, {cage}): {counts}"

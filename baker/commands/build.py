@@ -74,6 +74,10 @@ class Task:
     seed: int = 0
     attribute_layout: str = "blender"  # baker.gltf.vertex_attributes: "blender" | "native"
     compress: str = "none"  # baker.gltf.meshopt_encode.COMPRESSIONS
+    # baking from another mesh: recipe-relative high mesh and cage, the cage distance (None: automatic)
+    source: str | None = None
+    cage: str | None = None
+    cage_distance: float | None = None
     command: str | None = None
     args: list = field(default_factory=list)
     inputs: list = field(default_factory=list)  # recipe-relative files whose bytes the task needs
@@ -217,9 +221,16 @@ def load_recipe(path) -> Recipe:
     per_input: dict[str, dict] = {}
     for entry in data.get("assets", []):
         for key in entry:
-            if key not in ("inputs", "bakes", "options", "seed", "attribute-layout", "compress"):
+            if key not in ("inputs", "bakes", "options", "seed", "attribute-layout", "compress", "from", "cage",
+                           "cage-distance"):
                 _fail(path, text, key, f"unknown [[assets]] key '{key}' (known: inputs, bakes, options, seed, "
-                      "attribute-layout, compress)")
+                      "attribute-layout, compress, from, cage, cage-distance)")
+        for key in ("from", "cage"):
+            if key in entry and not (root / entry[key]).is_file():
+                _fail(path, text, key, f"{key} = {entry[key]!r}: no such file")
+            if key in entry and not (root / entry[key]).resolve().is_relative_to(root.resolve()):
+                _fail(path, text, key, f"{key} = {entry[key]!r}: outside the recipe's folder (a build ships and "
+                      "hashes only the files under it)")
         globs = entry.get("inputs", [])
         if isinstance(globs, str):
             globs = [globs]
@@ -229,7 +240,7 @@ def load_recipe(path) -> Recipe:
         for rel in matched:
             config = per_input.setdefault(rel, {"bakes": default_bakes, "layers": [global_options], "seed": seed,
                                                 "attribute-layout": layout, "compress": compress})
-            for key in ("bakes", "seed", "attribute-layout", "compress"):
+            for key in ("bakes", "seed", "attribute-layout", "compress", "from", "cage", "cage-distance"):
                 if key in entry:
                     config[key] = entry[key]
             config["layers"] = config["layers"] + [entry.get("options", {})]
@@ -243,10 +254,13 @@ def load_recipe(path) -> Recipe:
         options = _resolve_options(path, text, config["bakes"], config["layers"])
         if config["compress"] != "none" and fmt not in ("glb", "gltf"):
             _fail(path, text, "compress", f"compress = {config['compress']!r} writes glb or gltf, not {fmt}")
+        transfer_files = [Path(config[k]).as_posix() for k in ("from", "cage") if config.get(k)]
         tasks.append(Task(output=output, kind="bake", input=rel, bakes=list(config["bakes"]), options=options,
                           seed=int(config["seed"]), attribute_layout=config["attribute-layout"],
-                          compress=config["compress"],
-                          inputs=[rel] + referenced_files(root, rel)))
+                          compress=config["compress"], source=config.get("from"), cage=config.get("cage"),
+                          cage_distance=config.get("cage-distance"),
+                          inputs=[rel] + referenced_files(root, rel)
+                          + [f for t in transfer_files for f in [t] + referenced_files(root, t)]))
     for entry in data.get("commands", []):
         for key in entry:
             if key not in ("command", "args", "input", "output"):
@@ -305,6 +319,8 @@ def task_key(root: Path, task: Task) -> tuple[str, dict]:
         payload["attributeLayout"] = task.attribute_layout
     if task.compress != "none":  # likewise
         payload["compress"] = task.compress
+    if task.source is not None:  # likewise: the source's and cage's bytes are among the inputs
+        payload["transfer"] = {"from": task.source, "cage": task.cage, "cageDistance": task.cage_distance}
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest(), inputs
 
 
@@ -336,7 +352,8 @@ def run_task(payload: dict) -> dict:
                     warnings.simplefilter("always", BakeNote)
                     asset = bake(scratch / "in" / payload["input"], bakes=payload["bakes"],
                                  options=payload["options"], seed=payload["seed"],
-                                 max_memory=payload.get("max_memory"), attribute_layout=payload["attribute_layout"])
+                                 max_memory=payload.get("max_memory"), attribute_layout=payload["attribute_layout"],
+                                 **transfer_arguments(scratch / "in", payload))
                 # a note naming an input names it as the recipe does, not inside this scratch folder
                 notes = [str(w.message) for w in caught if issubclass(w.category, BakeNote)]
                 for inputs in {scratch / "in", (scratch / "in").resolve()}:  # an MTL's path is resolved
@@ -369,7 +386,17 @@ def _payload(root: Path, task: Task, max_memory: int | None = None) -> dict:
     return {"kind": task.kind, "output": task.output, "input": task.input, "bakes": task.bakes,
             "options": task.options, "seed": task.seed, "attribute_layout": task.attribute_layout,
             "compress": task.compress, "command": task.command, "args": task.args, "max_memory": max_memory,
+            "source": task.source, "cage": task.cage, "cage_distance": task.cage_distance,
             "files": {rel: (root / rel).read_bytes() for rel in task.inputs}}
+
+
+def transfer_arguments(folder: Path, payload: dict) -> dict:
+    """The ``source``/``cage``/``cage_distance`` arguments of a bake task, its files inside ``folder``."""
+    if not payload.get("source"):
+        return {}
+    return {"source": folder / payload["source"],
+            "cage": folder / payload["cage"] if payload.get("cage") else None,
+            "cage_distance": payload.get("cage_distance")}
 
 
 def worker_threads(jobs: int) -> int:

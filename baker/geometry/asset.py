@@ -51,6 +51,8 @@ class Asset:
     source: Path
     cache: dict = field(default_factory=dict, repr=False, compare=False)
     notes: list = field(default_factory=list, repr=False, compare=False)  # said once on stderr after the bakes
+    # baking from another mesh (``--from``): a baker.texels.transfer.TransferRequest the texel layer traces through
+    transfer: object = field(default=None, repr=False, compare=False)
 
     def note(self, text: str) -> None:
         """Something the user should know about the result (a Khronos field left out, materials skipped); each

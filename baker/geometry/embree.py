@@ -25,7 +25,9 @@ INVALID_ID = 0xFFFFFFFF  # Embree's RTC_INVALID_GEOMETRY_ID: mask all, and no hi
 _RTC_GEOMETRY_TYPE_TRIANGLE = 0
 _RTC_BUFFER_TYPE_INDEX, _RTC_BUFFER_TYPE_VERTEX = 0, 1
 _RTC_FORMAT_UINT3, _RTC_FORMAT_FLOAT3 = 0x5003, 0x9003
-_RTC_BUILD_QUALITY_HIGH = 2
+_RTC_BUILD_QUALITY_MEDIUM, _RTC_BUILD_QUALITY_HIGH = 1, 2
+BUILD_QUALITIES = {"medium": _RTC_BUILD_QUALITY_MEDIUM, "high": _RTC_BUILD_QUALITY_HIGH}
+_RTC_SCENE_FLAG_ROBUST = 4
 
 
 def _load_library():
@@ -59,6 +61,7 @@ if AVAILABLE:
         ("rtcNewScene", _P, [_P]),
         ("rtcReleaseScene", None, [_P]),
         ("rtcSetSceneBuildQuality", None, [_P, ctypes.c_int]),
+        ("rtcSetSceneFlags", None, [_P, ctypes.c_int]),
         ("rtcCommitScene", None, [_P]),
         ("rtcNewGeometry", _P, [_P, ctypes.c_int]),
         ("rtcSetNewGeometryBuffer", _P, [_P, ctypes.c_int, ctypes.c_uint, ctypes.c_int, ctypes.c_size_t, ctypes.c_size_t]),
@@ -72,9 +75,13 @@ if AVAILABLE:
 
 
 class DirectScene:
-    """A committed Embree triangle scene (high build quality); ``pointer`` is the ``RTCScene`` handle."""
+    """A committed Embree triangle scene; ``pointer`` is the ``RTCScene`` handle. ``quality``: "high" (SAH with
+    spatial splits: for many rays per triangle) or "medium" (a few rays per triangle: a 300k-triangle sculpt builds
+    in 0.16 s of CPU instead of 0.73 and traces 1M rays in the same time). ``robust``: Embree's robust traversal
+    and intersection, so a ray through an edge or a vertex shared by triangles never slips between them (about 25%
+    more time per ray)."""
 
-    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray, quality: str = "high", robust: bool = False):
         if not AVAILABLE:
             raise RuntimeError("Embree library not found")
         # BAKER_THREADS (set per `baker build --jobs` worker) also caps Embree's own (TBB) build threads
@@ -84,7 +91,9 @@ class DirectScene:
             raise RuntimeError("rtcNewDevice failed")
         self.pointer = _lib.rtcNewScene(self._device)
         # one build, millions of rays: the slower SAH build with spatial splits pays for itself
-        _lib.rtcSetSceneBuildQuality(self.pointer, _RTC_BUILD_QUALITY_HIGH)
+        _lib.rtcSetSceneBuildQuality(self.pointer, BUILD_QUALITIES[quality])
+        if robust:
+            _lib.rtcSetSceneFlags(self.pointer, _RTC_SCENE_FLAG_ROBUST)
         geom = _lib.rtcNewGeometry(self._device, _RTC_GEOMETRY_TYPE_TRIANGLE)
         v = np.ascontiguousarray(vertices, np.float32).reshape(-1)
         f = np.ascontiguousarray(faces, np.uint32).reshape(-1)

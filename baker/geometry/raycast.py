@@ -12,12 +12,13 @@ class RayScene:
 
     MISS = 1e37
 
-    def __init__(self, vertices: np.ndarray, faces: np.ndarray, backend: str = "auto"):
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray, backend: str = "auto", quality: str = "high",
+                 robust: bool = False):
         if backend not in ("auto", "direct", "embreex"):
             raise ValueError(f"unknown ray backend {backend!r}")
         self.direct = None
         if backend in ("auto", "direct") and embree.AVAILABLE:
-            self.direct = embree.DirectScene(vertices, faces)
+            self.direct = embree.DirectScene(vertices, faces, quality, robust)
         elif backend == "direct":
             raise RuntimeError("the Embree library is not available")
         else:

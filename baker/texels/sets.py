@@ -6,6 +6,11 @@ mesh, material and image cell, stacked over all texture sets so that one ray str
 covers them all. The technique computes one value per texel, and :meth:`TexelSets.images` puts the values back
 into one dilated image per material.
 
+Baking from another mesh (``asset.transfer``, ``baker bake --from HIGH``): each texel's ray also leaves the cage
+toward its surface point and lands on the high mesh (:mod:`baker.texels.transfer`); :attr:`TexelSets.source` holds
+where (point, normal, triangle and barycentrics for the high's per-vertex bakes), misses taking the nearest hit
+texel's (:meth:`TexelSets.nearest_hits`).
+
 Texture sizes follow the mesh unless forced (:func:`baker.texels.texture_space.size_for_density`): about
 :data:`~baker.texels.texture_space.TEXELS_PER_EDGE` texels along the average triangle edge, or a given density.
 """
@@ -19,6 +24,7 @@ import numpy as np
 from baker.geometry.asset import Asset, PrimitiveGeometry
 from baker.texels.texture_space import AUTO_SIZE_RANGE, dilate, interpolate, window_mean
 from baker.texels.targets import MaterialTarget, PrimitiveTexels, material_targets
+from baker.texels.transfer import SourceHits, cage_distance, cage_positions, low_parts, project
 
 
 @dataclass
@@ -53,6 +59,8 @@ class TexelSets:
     material: np.ndarray  # (n,) material index
     rows: np.ndarray  # (n,) image row
     cols: np.ndarray  # (n,) image column
+    # baking from another mesh (``asset.transfer``): where each texel's ray through the cage met the high mesh
+    source: "SourceHits | None" = None
 
     def __len__(self) -> int:
         return len(self.positions)
@@ -153,6 +161,25 @@ class TexelSets:
             mask[rows, cols] = True
             yield texel_set, dilate(image, mask), mask
 
+    def nearest_hits(self, hit: np.ndarray) -> np.ndarray:
+        """Per texel, the texel whose source hit it takes: itself where ``hit``, else the nearest texel of its own
+        texture that hit (Euclidean in the image; itself when none in its texture did)."""
+        from baker.texels.texture_space import nearest_inside
+
+        take = np.arange(len(self))
+        for s in self.sets:
+            part = slice(s.start, s.stop)
+            rows, cols, found = self.rows[part], self.cols[part], hit[part]
+            if found.all() or not found.any():
+                continue
+            index = np.full((s.size, s.size), -1, np.int64)
+            index[rows, cols] = np.arange(s.start, s.stop)
+            mask = np.zeros((s.size, s.size), bool)
+            mask[rows[found], cols[found]] = True
+            near_rows, near_cols = nearest_inside(mask)
+            take[part] = index[near_rows[rows, cols], near_cols[rows, cols]]
+        return take
+
     def describe(self) -> str:
         """The chosen sizes, for progress lines: ``material 0 256², material 3 1024²``."""
         return ", ".join(f"material {s.material} {s.size}²" for s in self.sets)
@@ -164,12 +191,17 @@ def gather_texels(asset: Asset, size: int | None = None, density: float | None =
     :func:`baker.texels.targets.material_targets`): ``size`` forces the width and height, else ``density``
     texels per mesh unit, else the automatic density (its size within ``auto_range``). ``layouts`` ({material: (texcoord, size)}) bakes only those
     materials, in the UV set and size given."""
-    sets, positions, normals, mesh, material, rows, cols = [], [], [], [], [], [], []
+    sets, positions, normals, mesh, material, rows, cols, cages = [], [], [], [], [], [], [], []
     start = 0
+    request = asset.transfer
     for target in material_targets(asset, size, seed, density=density, layouts=layouts, auto_range=auto_range):
         for pt in target.primitives:
             g, t = pt.geometry, pt.texels
             positions.append(interpolate(g.positions, g.faces, t.triangle, t.bary))
+            if request is not None:
+                distance = cage_distance(request, asset) if request.cage is None else 0.0
+                cages.append(interpolate(cage_positions(request, g, pt.source_vertex, distance), g.faces,
+                                         t.triangle, t.bary))
             normals.append(interpolate(pt.normals, g.faces, t.triangle, t.bary))
             mesh.append(np.full(len(t.rows), g.mesh, np.int64))
             material.append(np.full(len(t.rows), target.material, np.int64))
@@ -184,6 +216,10 @@ def gather_texels(asset: Asset, size: int | None = None, density: float | None =
 
     normals_all = stack(normals, (0, 3))
     normals_all = normals_all / np.maximum(np.linalg.norm(normals_all, axis=1, keepdims=True), 1e-30)
-    return TexelSets(sets, stack(positions, (0, 3)), normals_all, stack(mesh, 0).astype(np.int64),
-                     stack(material, 0).astype(np.int64), stack(rows, 0).astype(np.int64),
-                     stack(cols, 0).astype(np.int64))
+    texels = TexelSets(sets, stack(positions, (0, 3)), normals_all, stack(mesh, 0).astype(np.int64),
+                       stack(material, 0).astype(np.int64), stack(rows, 0).astype(np.int64),
+                       stack(cols, 0).astype(np.int64))
+    if request is not None:
+        texels.source = project(request, texels.positions, stack(cages, (0, 3)), texels.nearest_hits,
+                                low_parts(request, asset)[texels.mesh] if len(texels) else None)
+    return texels

@@ -8,4 +8,5 @@ TECHNIQUE = Technique(
     options=CurvatureOptions,
     run="baker.techniques.curvature.step:run",
     extensions=("baker.techniques.curvature.extension",),
+    transfers=True,
 )

@@ -9,4 +9,5 @@ TECHNIQUE = Technique(
     run="baker.techniques.thickness.step:run",
     extensions=("baker.techniques.thickness.extension",),
     panels="baker.techniques.thickness.panel:PANELS",
+    transfers=True,
 )
