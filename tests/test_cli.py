@@ -69,7 +69,7 @@ def _points_only_gltf(path):
 BAD_INPUTS = {
     "missing.glb": (None, "file not found"),
     "truncated.glb": ("truncated", "truncated GLB"),
-    "broken.gltf": ("broken", "broken JSON"),
+    "broken.gltf": ("broken", "truncated JSON"),
     "points.gltf": ("points", "no triangle faces"),
     "empty.obj": ("empty_obj", "no triangle faces"),
     "model.fbx": ("fbx", "unsupported input type"),
