@@ -96,7 +96,7 @@ def test_tam(baked):
     assert [lv.textures for lv in got.levels] == [tuple(t["index"] for t in lv["textures"]) for lv in ext["levels"]]
     assert got.texcoord == ext["texCoord"] == 1  # the stroke set, after the mesh's own TEXCOORD_0
     assert got.style == ext["style"] and got.parameters["seed"] == ext["seed"] and "strokes" not in got.parameters
-    assert got.strokes == ext["strokes"] and got.strokes["directionAttribute"] == "_HATCHING_DIRECTION"
+    assert got.strokes == ext["strokes"] and "directionAttribute" not in got.strokes  # --tam-direction false
 
 
 def test_fur(baked):
