@@ -121,7 +121,8 @@ def test_edges(baked):
     assert got.outline_normal == "_OUTLINE_NORMAL" and got.fins == ext["fins"]
     np.testing.assert_array_equal(got.wireframe_mask, baked.accessor(ext["wireframeMask"]))
     np.testing.assert_array_equal(got.edges, baked.accessor(ext["edges"]))
-    assert len(got.flags) == len(got.edges) == len(got.dihedral_angles) == ext["counts"]["edges"]
+    assert len(got.flags) == len(got.edges) == ext["counts"]["edges"]
+    assert got.dihedral_angles is None and got.opposite_vertices is None  # derivable: only on request
     fins = read(baked, 0, got.fins)
     assert fins.fins_of == 0 and sorted(fins.fin_attributes) == sorted(FIN_ATTRIBUTES)
     assert fins.fin_indices.shape == (2 * ext["counts"]["edges"], 3)
