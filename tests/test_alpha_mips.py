@@ -281,11 +281,19 @@ def test_check_catches_broken_chains(fur_files):
     }
     for name, (severity, code, blob) in cases.items():
         broken = GltfDocument.load(fur_files[0])
-        entry = dict(entries[0])
+        entry = {**entries[0], "firstLevel": 0}  # these KTX2s hold every level
         entry["accessor"] = broken.add_accessor(np.frombuffer(blob, np.uint8), target=None)
         issues = Issues()
         check_coverage_mips(broken, [entry], "/x", issues)
         assert issues.items == [(severity, code, issues.items[0][2])], (name, issues.items)
+    # baker's chains start at level 1 (level 0 is the PNG): a KTX2 whose first level is not the image's half is refused
+    assert entries[0]["firstLevel"] == 1 and len(read_coverage_mips(doc, entries[0])) == entries[0]["levelCount"]
+    broken = GltfDocument.load(fur_files[0])
+    entry = {**entries[0], "accessor": broken.add_accessor(
+        np.frombuffer(encode_ktx2(alpha_mip_chain(pixels, 0.5).levels[2:]), np.uint8), target=None)}
+    issues = Issues()
+    check_coverage_mips(broken, [entry], "/x", issues)
+    assert [i[1] for i in issues.items] == ["BAKER_COVERAGE_MIPS_KTX2"]
     issues = Issues()
     check_coverage_mips(doc, [{**entries[0], "accessor": 10 ** 6}, {**entries[0], "alphaCutoff": 2}], "/x", issues)
     assert [i[1] for i in issues.items] == ["BAKER_COVERAGE_MIPS_KTX2", "BAKER_COVERAGE_MIPS_CUTOFF"]
@@ -338,8 +346,10 @@ def test_usd_references_each_chain(fur_files, tmp_path):
         spec = read_ktx2_per_spec(ktx2.read_bytes())
         blob = ktx2.read_bytes()
         expected = read_coverage_mips(doc, entry)
-        assert spec["levelCount"] == material.GetAttribute(f"{at}:levelCount").Get() == len(expected)
-        for (offset, length, _), level in zip(spec["levels"], expected):
+        first = material.GetAttribute(f"{at}:firstLevel").Get()
+        assert first == entry["firstLevel"] == 1  # the KTX2 starts at level 1, level 0 is the PNG beside it
+        assert spec["levelCount"] + first == material.GetAttribute(f"{at}:levelCount").Get() == len(expected)
+        for (offset, length, _), level in zip(spec["levels"], expected[first:]):
             assert blob[offset: offset + length] == level.tobytes()
         texture = doc.json["textures"][entry["texture"]]
         assert png.read_bytes() == doc.image_bytes(texture["source"])
@@ -359,6 +369,7 @@ def _replace_chains(source, target, make_levels):
         base = read_coverage_mips(doc, entry)[0]
         levels = make_levels(base, entry["alphaCutoff"])
         entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(levels), np.uint8), target=None)
+        entry["firstLevel"] = 0  # the whole chain in the KTX2 (the form before issue 48, which readers still take)
     doc.save(target)
     return target
 

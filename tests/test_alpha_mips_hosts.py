@@ -66,7 +66,9 @@ def site(tmp_path_factory):
     for entry in ext["coverageMips"]:
         base = read_coverage_mips(doc, entry)[0]
         box = alpha_mip_chain(base, entry["alphaCutoff"], transfer="gamma2.2", preserve_coverage=False)
-        entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels), np.uint8), target=None)
+        # from level 1, as baker writes it (firstLevel 1: level 0 is the PNG)
+        entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels[entry["firstLevel"]:]), np.uint8),
+                                             target=None)
     doc.save(root / "fur_box.glb")
     # hair cards of an independent groom, and the same with the atlas's chain replaced by its box chain
     from techniques.cards_groom import make_groom, write_groom_usd
@@ -79,7 +81,8 @@ def site(tmp_path_factory):
     doc = GltfDocument.load(root / "cards.glb")
     (entry,) = doc.json["materials"][0]["extensions"]["BAKER_hair_cards"]["coverageMips"]
     box = alpha_mip_chain(read_coverage_mips(doc, entry)[0], entry["alphaCutoff"], preserve_coverage=False)
-    entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels), np.uint8), target=None)
+    entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels[entry["firstLevel"]:]), np.uint8),
+                                         target=None)
     doc.save(root / "cards_box.glb")
     server, url = serve(root)
     yield {"url": url, "root": root}

@@ -302,7 +302,7 @@ def test_inspect_lists_tam_textures_and_summarises_edges(tmp_path, capsys):
     spot = Path(__file__).parents[1] / "examples" / "spot" / "spot.obj"
     out = tmp_path / "spot.glb"
     assert main(["bake", str(spot), "-o", str(out), "--bakes", "tam,edges", "--edges-fins", "true",
-                 "--tam-size", "64", "-q"]) == 0
+                 "--edges-dihedral-angles", "true", "--tam-size", "64", "-q"]) == 0
     capsys.readouterr()
     assert main(["inspect", str(out), "--format", "json"]) == 0
     info = json.loads(capsys.readouterr().out)

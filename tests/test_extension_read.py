@@ -96,7 +96,7 @@ def test_tam(baked):
     assert [lv.textures for lv in got.levels] == [tuple(t["index"] for t in lv["textures"]) for lv in ext["levels"]]
     assert got.texcoord == ext["texCoord"] == 1  # the stroke set, after the mesh's own TEXCOORD_0
     assert got.style == ext["style"] and got.parameters["seed"] == ext["seed"] and "strokes" not in got.parameters
-    assert got.strokes == ext["strokes"] and got.strokes["directionAttribute"] == "_HATCHING_DIRECTION"
+    assert got.strokes == ext["strokes"] and "directionAttribute" not in got.strokes  # --tam-direction false
 
 
 def test_fur(baked):
@@ -121,7 +121,8 @@ def test_edges(baked):
     assert got.outline_normal == "_OUTLINE_NORMAL" and got.fins == ext["fins"]
     np.testing.assert_array_equal(got.wireframe_mask, baked.accessor(ext["wireframeMask"]))
     np.testing.assert_array_equal(got.edges, baked.accessor(ext["edges"]))
-    assert len(got.flags) == len(got.edges) == len(got.dihedral_angles) == ext["counts"]["edges"]
+    assert len(got.flags) == len(got.edges) == ext["counts"]["edges"]
+    assert got.dihedral_angles is None and got.opposite_vertices is None  # derivable: only on request
     fins = read(baked, 0, got.fins)
     assert fins.fins_of == 0 and sorted(fins.fin_attributes) == sorted(FIN_ATTRIBUTES)
     assert fins.fin_indices.shape == (2 * ext["counts"]["edges"], 3)

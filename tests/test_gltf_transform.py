@@ -127,7 +127,7 @@ def assets(tmp_path_factory):
     }), spot)
     fins = folder / "spot_fins.glb"
     save(baker.bake(SPOT, bakes=["edges", "fur", "caustics"], options={
-        "edges": {"fins": True, "opposite_vertices": True},
+        "edges": {"fins": True, "opposite_vertices": True, "dihedral_angles": True},
         "caustics": {"size": 16, "frames": 2, "waves": 8},
         "fur": {"fins": True, "shells": 3, "texture_size": 16, "hairs": 50},
     }), fins)

@@ -1,6 +1,7 @@
 """USD input (read_usd through baker.readers.read) and output (write_usd through pipeline.save)."""
 from __future__ import annotations
 
+import math
 import zipfile
 from pathlib import Path
 
@@ -318,6 +319,9 @@ def test_extension_textures_and_edge_curves_reach_usd(tmp_path):
     curves = [UsdGeom.BasisCurves(p) for p in stage.Traverse() if p.IsA(UsdGeom.BasisCurves)]
     assert len(curves) == 1
     assert len(curves[0].GetCurveVertexCountsAttr().Get()) == 12  # the box's 12 crease edges
+    # their dihedral angles (not stored in the glTF by default: derived from the triangles) are the box's +90 degrees
+    angles = UsdGeom.PrimvarsAPI(curves[0].GetPrim()).GetPrimvar("baker:dihedralAngle").Get()
+    assert len(angles) == 12 and all(abs(a - math.pi / 2) < 1e-5 for a in angles)
     material = UsdShade.Material([p for p in stage.Traverse() if p.IsA(UsdShade.Material)][0])
     output = material.GetOutput("baker:skin_lut:lutTexture")
     assert output and output.HasConnectedSource()

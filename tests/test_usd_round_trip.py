@@ -70,7 +70,7 @@ def test_inspect_reports_the_glb_baked_data(bake, suffix):
     glb, usd = describe(bake / "spot.glb"), describe(bake / f"spot{suffix}")
     # the surface, then the fins of edges and of fur (finsOf), each with its baked attributes and extensions
     assert len(glb["meshes"]) == len(usd["meshes"]) == 3
-    assert set(glb["meshes"][0]["baked"]) >= {"_THICKNESS", "_CURVATURE", "_HATCHING_DIRECTION", "_OUTLINE_NORMAL"}
+    assert set(glb["meshes"][0]["baked"]) >= {"_THICKNESS", "_CURVATURE", "_OUTLINE_NORMAL"}
     assert set(glb["meshes"][0]["extensions"]) == {"BAKER_edges", "EXT_mesh_primitive_edge_visibility"}
     for a, b in zip(glb["meshes"], usd["meshes"]):
         assert [b[k] for k in ("mesh", "primitive", "vertices", "triangles", "attributes", "extensions")] == \

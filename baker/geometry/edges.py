@@ -329,6 +329,26 @@ def classify_edges(positions: np.ndarray, faces: np.ndarray, topology: EdgeTopol
     return EdgeClasses(flags, angle, int(inconsistent))
 
 
+def dihedral_angles_of(positions: np.ndarray, faces: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """The signed dihedral angle (radians, + convex; 0 on boundary and non-manifold edges) of each edge (v0, v1) of
+    ``edges`` (E, 2), vertex indices of ``faces`` (F, 3) over ``positions``: what ``BAKER_edges.dihedralAngles``
+    holds when written, derived from the triangles (copies of a position, as vertex splits make, are one vertex)."""
+    positions = np.asarray(positions, np.float64)
+    edges = np.asarray(edges, np.int64).reshape(-1, 2)
+    if not len(edges):
+        return np.zeros(0, np.float64)
+    unique, welded = np.unique(positions, axis=0, return_inverse=True)
+    welded = welded.reshape(-1)
+    faces_welded = welded[np.asarray(faces, np.int64).reshape(-1, 3)]
+    topology = edge_topology(faces_welded, len(unique))
+    angle = classify_edges(unique, faces_welded, topology).angle
+    key = topology.edges[:, 0].astype(np.int64) * len(unique) + topology.edges[:, 1]  # sorted: lo-major, then hi
+    ends = np.sort(welded[edges], axis=1)
+    wanted = ends[:, 0] * len(unique) + ends[:, 1]
+    at = np.clip(np.searchsorted(key, wanted), 0, len(key) - 1)
+    return np.where(key[at] == wanted, angle[at], 0.0)
+
+
 @numba.njit(cache=True, nogil=True, parallel=True)
 def _seams(faces_welded, edges, halfedges, edge_start, corner_values, tolerance, flag, out):
     """One pass over the manifold edges: ``flag`` where the two faces' corner values differ at either end."""

@@ -561,7 +561,8 @@ class _Writer:
 
     def _coverage_mips(self, prim, namespace: str, entries: list) -> None:
         """Each coverage-preserving mip chain (:mod:`baker.texels.alpha_mips`) as its KTX2 file beside the textures:
-        ``<namespace>:_<i>:file`` (the KTX2), ``:image`` (level 0, the PNG), ``:alphaCutoff``, ``:levelCount``.
+        ``<namespace>:_<i>:file`` (the KTX2), ``:image`` (level 0, the PNG), ``:alphaCutoff``, ``:levelCount``,
+        ``:firstLevel`` (1: the KTX2 starts at level 1, level 0 is the image).
         UsdUVTexture reads no KTX2 and its PNG gets mips from the renderer; the chain is there for a runtime
         that loads it, as the glTF plugins do."""
         from pxr import Sdf
@@ -585,7 +586,8 @@ class _Writer:
             prim.CreateAttribute(f"{at}:file", Sdf.ValueTypeNames.Asset, custom=True).Set(
                 Sdf.AssetPath(self.image_paths[key]))
             prim.CreateAttribute(f"{at}:image", Sdf.ValueTypeNames.Asset, custom=True).Set(Sdf.AssetPath(image))
-            for field, type_name in (("alphaCutoff", Sdf.ValueTypeNames.Float), ("levelCount", Sdf.ValueTypeNames.Int)):
+            for field, type_name in (("alphaCutoff", Sdf.ValueTypeNames.Float), ("levelCount", Sdf.ValueTypeNames.Int),
+                                     ("firstLevel", Sdf.ValueTypeNames.Int)):
                 if isinstance(entry.get(field), (int, float)):
                     prim.CreateAttribute(f"{at}:{field}", type_name, custom=True).Set(entry[field])
 

@@ -404,7 +404,7 @@ class _StageReader:
 
     def _coverage_mips(self, fields: dict, where: str) -> dict:
         """A ``coverageMips`` entry (:mod:`baker.texels.alpha_mips`) from the writer's ``file`` (the KTX2), ``image``
-        (its level 0, one of the material's textures), ``alphaCutoff`` and ``levelCount``: the KTX2 becomes an
+        (its level 0, one of the material's textures), ``alphaCutoff``, ``levelCount`` and ``firstLevel``: the KTX2 becomes an
         accessor again and the coverage is measured on its level 0."""
         from baker.texels.alpha_mips import alpha_coverage, read_coverage_mips
 
@@ -423,6 +423,8 @@ class _StageReader:
         entry = {"texture": texture, "accessor": accessor, "mimeType": "image/ktx2", "alphaCutoff": cutoff}
         if "levelCount" in fields:
             entry["levelCount"] = int(fields["levelCount"])
+        if "firstLevel" in fields:  # 1: the KTX2 starts at level 1, level 0 is the image
+            entry["firstLevel"] = int(fields["firstLevel"])
         try:
             entry["coverage"] = alpha_coverage(read_coverage_mips(self.doc, entry)[0][..., 3], cutoff)
         except ValueError:  # not a KTX2 chain: `baker validate` says why

@@ -18,10 +18,13 @@ In a glTF document the chain is an uncompressed RGBA8 KTX2 (:mod:`baker.gltf.ktx
 ``coverageMips`` list, one entry per chain::
 
     {"texture": 3, "accessor": 41, "mimeType": "image/ktx2", "alphaCutoff": 0.5, "levelCount": 8,
-     "coverage": 0.23}
+     "firstLevel": 1, "coverage": 0.23}
 
 ``texture`` is the glTF texture whose image is level 0 (a plain viewer keeps using it), ``coverage`` the fraction of
-level 0's texels with alpha >= ``alphaCutoff``. Not an ``images`` entry: glTF admits ``image/ktx2`` only through
+level 0's texels with alpha >= ``alphaCutoff``. ``firstLevel`` 1: the KTX2 holds levels 1.. (its header's size is
+level 1's) and a reader takes level 0 from the texture's image, so the PNG's texels are not stored twice (they were
+75% of a chain's bytes); without it (0, files before issue 48, and 1 x 1 images) the KTX2 holds every level.
+``levelCount`` counts the whole chain. Not an ``images`` entry: glTF admits ``image/ktx2`` only through
 KHR_texture_basisu, for Basis-compressed data, and the Khronos validator warns on an uncompressed one
 (VALUE_NOT_IN_LIST, IMAGE_UNRECOGNIZED_FORMAT). An accessor rather than a bare bufferView: glTF tools that rebuild
 the buffers (glTF-Transform) carry accessors an extension names through, as they do every other array baker
@@ -237,20 +240,45 @@ def write_coverage_mips(doc, texture: int, rgba: np.ndarray, alpha_cutoff: float
     """Build the coverage-preserving chain of ``rgba`` (texture ``texture``'s image), store it as an RGBA8 KTX2 in
     a new accessor, and return the ``coverageMips`` entry for the technique's extension to list."""
     chain = alpha_mip_chain(rgba, alpha_cutoff, transfer=transfer)
-    blob = np.frombuffer(encode_ktx2(chain.levels), np.uint8)
+    # level 0 is the texture's image unchanged: the KTX2 starts at level 1 (firstLevel; issue 48: level 0 was 75% of
+    # every chain's bytes, a second copy of the PNG). A 1 x 1 image has no level 1: its chain is level 0 alone.
+    first = 1 if len(chain.levels) > 1 else 0
+    blob = np.frombuffer(encode_ktx2(chain.levels[first:]), np.uint8)
     accessor = doc.add_accessor(blob, target=None, name=f"coverage mips of texture {int(texture)} (KTX2)")
-    return {"texture": int(texture), "accessor": int(accessor), "mimeType": MIME_TYPE,
-            "alphaCutoff": float(alpha_cutoff), "levelCount": len(chain.levels), "coverage": float(chain.coverage[0])}
+    entry = {"texture": int(texture), "accessor": int(accessor), "mimeType": MIME_TYPE,
+             "alphaCutoff": float(alpha_cutoff), "levelCount": len(chain.levels), "coverage": float(chain.coverage[0])}
+    if first:
+        entry["firstLevel"] = first
+    return entry
 
 
 def read_coverage_mips(doc, entry: dict) -> list:
-    """The levels (uint8 RGBA arrays, level 0 first) of one ``coverageMips`` entry; ValueError when unreadable."""
-    return decode_ktx2(coverage_mips_bytes(doc, entry))["levels"]
+    """The levels (uint8 RGBA arrays, level 0 first) of one ``coverageMips`` entry: the KTX2's, after the texture's
+    image as level 0 when the KTX2 starts at level 1 (``firstLevel`` 1); ValueError when unreadable."""
+    levels = decode_ktx2(coverage_mips_bytes(doc, entry))["levels"]
+    first = entry.get("firstLevel", 0)
+    if first == 0:
+        return levels
+    if first != 1:
+        raise ValueError(f"firstLevel {first!r} is neither 0 nor 1")
+    from baker.gltf.images import decoded_texture
+
+    texture = entry.get("texture")
+    base = decoded_texture(doc, texture) if isinstance(texture, int) and not isinstance(texture, bool) \
+        and 0 <= texture < len(doc.json.get("textures") or []) else None
+    if base is None or base.dtype != np.uint8 or base.ndim != 3 or base.shape[2] != 4:
+        raise ValueError(f"level 0 (the image of texture {texture!r}) is not an RGBA8 PNG")
+    expected = (max(1, base.shape[0] >> 1), max(1, base.shape[1] >> 1))
+    if levels[0].shape[:2] != expected:
+        raise ValueError(f"the KTX2's first level is {levels[0].shape[1]} x {levels[0].shape[0]}, level 1 of a "
+                         f"{base.shape[1]} x {base.shape[0]} image is {expected[1]} x {expected[0]}")
+    return [base, *levels]
 
 
 def check_coverage_mips(doc, entries, ptr: str, issues) -> None:
     """Rules of a ``coverageMips`` list at JSON pointer ``ptr``: each entry names an existing texture and accessor;
-    the accessor holds an RGBA8 KTX2 with the full chain of the texture's image, level 0 equal to it; the coverage
+    the accessor holds an RGBA8 KTX2 with the full chain of the texture's image, from level 1 (``firstLevel`` 1:
+    level 0 is the image) or level 0 equal to the image; the coverage
     of every level down to 8 x 8 stays within 10% (or one texel) of level 0's (else a warning: the chain is valid,
     it just does not preserve coverage)."""
     from baker.gltf.images import decoded_texture

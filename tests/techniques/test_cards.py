@@ -328,9 +328,11 @@ def test_atlas_chain_keeps_alpha_test_coverage_down_to_8x8(baked):
     assert entry["mimeType"] == "image/ktx2" and entry["alphaCutoff"] == material["alphaCutoff"]
     accessor = gltf["accessors"][entry["accessor"]]
     assert accessor["componentType"] == 5121 and accessor["type"] == "SCALAR"
-    levels = ktx2_levels(acc(entry["accessor"]).tobytes())
+    # the KTX2 starts at level 1 (firstLevel): level 0 is the PNG atlas, not stored twice
+    stored = ktx2_levels(acc(entry["accessor"]).tobytes())
+    assert entry["firstLevel"] == 1 and stored[0].shape == (ATLAS // 2, ATLAS // 2, 4)
+    levels = [cards["color"], *stored]
     assert len(levels) == entry["levelCount"] == int(np.log2(ATLAS)) + 1 and levels[-1].shape == (1, 1, 4)
-    assert np.array_equal(levels[0], cards["color"])
     cutoff = material["alphaCutoff"]
 
     def off(chain):
@@ -369,12 +371,14 @@ def test_coverage_mips_read_back_and_checked(baked, tmp_path):
     assert read.coverage_mips == {entry["texture"]: entry}
     levels = read_coverage_mips(doc, entry)
     _, acc, _ = read_glb(baked[".glb"])
-    assert all(np.array_equal(a, b) for a, b in zip(levels, ktx2_levels(acc(entry["accessor"]).tobytes())))
+    stored = ktx2_levels(acc(entry["accessor"]).tobytes())
+    assert len(levels) == len(stored) + 1 and all(np.array_equal(a, b) for a, b in zip(levels[1:], stored))
 
     def codes_of(levels, **changes):
         broken = GltfDocument.load(baked[".glb"])
         (e,) = broken.json["materials"][index]["extensions"]["BAKER_hair_cards"]["coverageMips"]
         e["accessor"] = broken.add_accessor(np.frombuffer(encode_ktx2(levels), np.uint8), target=None)
+        e["firstLevel"] = 0  # every level in the KTX2, level 0 included
         e.update(changes)
         out = tmp_path / f"broken{len(list(tmp_path.iterdir()))}.glb"
         broken.save(out)

@@ -76,7 +76,8 @@ def primitive_data(doc: GltfDocument, p: int = 0) -> dict:
 def cube(tmp_path_factory):
     mesh = split_cube()
     assert len(mesh.vertices) == 24
-    _, doc = bake_file(mesh, tmp_path_factory.mktemp("cube"), "cube", {"fins": True, "opposite_vertices": True})
+    _, doc = bake_file(mesh, tmp_path_factory.mktemp("cube"), "cube",
+                       {"fins": True, "opposite_vertices": True, "dihedral_angles": True})
     return primitive_data(doc)
 
 
@@ -203,10 +204,18 @@ def test_fandisk_crease_count_matches_trimesh(tmp_path):
     data = primitive_data(doc)
     assert data["ext"]["counts"]["crease"] == truth
     assert np.count_nonzero(data["flags"].astype(np.int64) & E.CREASE) == truth
-    # the dihedral angles of all interior edges agree with trimesh's too (as multisets)
+    # the dihedral angles are not stored by default; derived from the triangles as a reader does, those of all
+    # interior edges agree with trimesh's (as multisets)
+    assert "dihedralAngles" not in data["ext"]
+    derived = E.dihedral_angles_of(data["positions"], data["faces"], data["edges"])
     interior = (data["flags"].astype(np.int64) & (E.BOUNDARY | E.NON_MANIFOLD)) == 0
-    ours = np.sort(np.abs(data["dihedralAngles"][interior]).astype(np.float64))
+    ours = np.sort(np.abs(derived[interior]))
     np.testing.assert_allclose(ours, np.sort(angles), atol=1e-4)  # float32 positions, arccos near 0
+    # and they are what the bake stores on request (--edges-dihedral-angles true), sign included
+    _, doc = bake_file(trimesh.load(str(MESHES / "fandisk.obj")), tmp_path, "stored", {"dihedral_angles": True})
+    stored = primitive_data(doc)
+    np.testing.assert_allclose(E.dihedral_angles_of(stored["positions"], stored["faces"], stored["edges"]),
+                               stored["dihedralAngles"], atol=1e-5)
 
 
 # ---------------------------------------------------------------------------------------------------------- contours
@@ -287,7 +296,7 @@ def _codes(report) -> set:
 
 
 def test_validate_checks_bit_count_and_accessors(tmp_path):
-    out, doc = bake_file(split_cube(), tmp_path, "cube")
+    out, doc = bake_file(split_cube(), tmp_path, "cube", {"dihedral_angles": True})
     assert validate_file(out, khronos=False)["issues"]["numErrors"] == 0
     data = primitive_data(doc)
     packed = E.pack_visibility(data["codes"])

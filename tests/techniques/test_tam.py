@@ -326,7 +326,7 @@ def test_baked_gltf_validates(baked, written):
 def test_spot_baked_with_volume_tam_validates(tmp_path):
     out = tmp_path / "spot.gltf"
     asset = baker.bake(str(SPOT), bakes=["tam"],
-                       options={"tam": {"layout": "volume", "tones": 8, "size": 64, "levels": 3}})
+                       options={"tam": {"layout": "volume", "tones": 8, "size": 64, "levels": 3, "direction": True}})
     save(asset, out)
     report = validate_file(out, khronos=False)
     assert report["issues"]["numErrors"] == 0, report["issues"]["messages"]
@@ -359,7 +359,7 @@ def test_validator_catches_broken_tam(baked, tmp_path):
     prim = doc.json["meshes"][0]["primitives"][0]
     del prim["attributes"][f"TEXCOORD_{ext['texCoord']}"]
     ext["texCoord"] = 7
-    del prim["attributes"][ext["strokes"]["directionAttribute"]]
+    ext["strokes"]["directionAttribute"] = "_NO_SUCH_DIRECTION"  # named, not written
     ext["strokes"]["fallbackFaces"] = 10 ** 6
     broken = tmp_path / "broken.gltf"
     doc.save(broken)

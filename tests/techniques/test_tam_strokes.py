@@ -93,8 +93,9 @@ def torus_glb(tmp_path_factory):
     trimesh.Trimesh(positions, faces, process=False).export(str(source))
     out = folder / "torus_tam.glb"
     # 4 tiles per unit: 64 finest texels each
-    save(baker.bake(str(source), bakes=["tam", "edges"], options={"tam": {"size": 64, "levels": 2, "scale": 256.0}}),
-         out)
+    # the u axis written too (--tam-direction), to compare it with the u gradient a runtime derives
+    save(baker.bake(str(source), bakes=["tam", "edges"],
+                    options={"tam": {"size": 64, "levels": 2, "scale": 256.0, "direction": True}}), out)
     return out
 
 
@@ -116,7 +117,8 @@ def test_torus_stroke_uv_follows_the_analytic_principal_direction(torus_glb):
     error = cross_degrees(u_axis, meridian, normal)
     assert np.sqrt(np.mean(error ** 2)) < 5.0
     assert ext["strokes"]["fallbackFaces"] == 0 and ext["strokes"]["singularities"] == 0
-    # the direction attribute is the chart's u axis at its vertices (strokes along it, not just the cross)
+    # the direction attribute is the chart's u axis at its vertices (strokes along it, not just the cross): the u
+    # gradient of each face (u_axis, what a runtime derives at load without the attribute) agrees with it
     direction = glb.accessor(prim["attributes"][ext["strokes"]["directionAttribute"]]).astype(np.float64)[:, :3]
     along = np.einsum("fkj,fj->fk", direction[faces], u_axis)
     assert np.median(along) > 0.99

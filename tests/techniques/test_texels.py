@@ -118,14 +118,14 @@ def test_seven_spheres_default_sizes_and_cost(spheres, tmp_path):
         image = decode_image(doc.image_bytes(doc.json["textures"][info["thicknessTexture"]["index"]]["source"]))
         assert image.shape[:2] == (128, 128)
         # a sphere's mean chord with cosine-weighted rays is 4r/3: the texture's middle rows hold it
-        values = image[48:80, :, 0].astype(np.float64) / 65535.0 * info["thicknessFactor"]
+        values = image[48:80, :, 0].astype(np.float64) / np.iinfo(image.dtype).max * info["thicknessFactor"]
         assert np.abs(values - 4.0 / 3.0).max() < 0.05
 
 
 def _texture_values(asset, material=0):
     info = asset.doc.json["materials"][material]["extensions"]["KHR_materials_volume"]
     image = decode_image(asset.doc.image_bytes(asset.doc.json["textures"][info["thicknessTexture"]["index"]]["source"]))
-    return image[..., 0].astype(np.float64) / 65535.0 * info["thicknessFactor"]
+    return image[..., 0].astype(np.float64) / np.iinfo(image.dtype).max * info["thicknessFactor"]
 
 
 def torus_texels(tmp_path, size: int = 128, sections: tuple = (48, 24)):
@@ -152,7 +152,7 @@ def baked_texel_thickness(path, texels, **options) -> np.ndarray:
     ext = asset.doc.json["materials"][0]["extensions"]["BAKER_thickness"]
     image = decode_image(asset.doc.image_bytes(asset.doc.json["textures"][ext["thicknessTexture"]["index"]]["source"]))
     image = image if image.ndim == 2 else image[..., 0]
-    return image[texels.rows, texels.cols].astype(np.float64) / 65535.0 * ext["thicknessFactor"]
+    return image[texels.rows, texels.cols].astype(np.float64) / np.iinfo(image.dtype).max * ext["thicknessFactor"]
 
 
 def test_default_texels_error_no_worse_than_fixed_rays(tmp_path):
@@ -330,7 +330,7 @@ def test_curvature_texture_from_the_engine_matches_the_sphere(tmp_path):
     texels = gather_texels(readers.read(path))
     assert image.shape[:2] == (texels.sets[0].size,) * 2 and texels.sets[0].size >= 64
     lo, hi = ext["textureRange"]
-    values = lo + image[..., 0].astype(np.float64) / 65535.0 * (hi - lo)
+    values = lo + image[..., 0].astype(np.float64) / np.iinfo(image.dtype).max * (hi - lo)
     covered = values[texels.rows, texels.cols]
     assert np.abs(covered - 2.0).max() < 0.05
 

@@ -119,7 +119,7 @@ def test_thin_box_texels_match_numerical_integration(tmp_path):
     volume = material["extensions"]["KHR_materials_volume"]
     texcoord = volume["thicknessTexture"].get("texCoord", 0)
     image = decode_image(doc.image_bytes(doc.json["textures"][volume["thicknessTexture"]["index"]]["source"]))
-    image = image[..., 1 if image.shape[2] >= 3 else 0].astype(np.float64) / 65535.0 * volume["thicknessFactor"]
+    image = image[..., 1 if image.shape[2] >= 3 else 0].astype(np.float64) / np.iinfo(image.dtype).max * volume["thicknessFactor"]
     prim = doc.json["meshes"][0]["primitives"][0]
     positions = doc.accessor(prim["attributes"]["POSITION"]).astype(np.float64)
     uv = doc.accessor(prim["attributes"][f"TEXCOORD_{texcoord}"]).astype(np.float64)

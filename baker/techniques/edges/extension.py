@@ -4,7 +4,8 @@ Where the data goes (see ``schemas/BAKER_edges/README.md``):
 - ``EXT_mesh_primitive_edge_visibility`` on the triangle primitive (Bentley's vendor extension, Khronos registry):
   ``visibility`` (2 bits per triangle edge, LSB first, ceil(6N/8) bytes) and ``silhouetteMates``;
 - ``BAKER_edges`` on the primitive: accessors for the edge list, flags, dihedral angles and the wireframe mask
-  (opposite vertices only with the ``opposite_vertices`` option: the triangles and the edge list give them), the
+  (opposite vertices and dihedral angles only with the ``opposite_vertices`` and ``dihedral_angles`` options: the
+  triangles, positions and the edge list give them), the
   settings, per-class counts, and the index of the optional fin primitive;
 - the vertex attribute ``_OUTLINE_NORMAL`` (FLOAT VEC3): one averaged unit normal per welded position, zero at
   positions on a boundary or non-manifold edge (the shell outline is pinned to open boundaries);
@@ -124,8 +125,9 @@ def write_primitive_edges(doc: GltfDocument, mesh: int, primitive: int, pe: Prim
             opposite = np.where(pe.opposite < 0, np.iinfo(dtype).max, pe.opposite)
             ext["oppositeVertices"] = doc.add_accessor(opposite.astype(dtype), target=None, name="edges v2 v3")
         ext["flags"] = doc.add_accessor(pe.flags.astype(np.uint16), target=None, name="edge flags")
-        ext["dihedralAngles"] = doc.add_accessor(pe.angle.astype(np.float32), target=None, min_max=True,
-                                                 name="edge dihedral angles")
+        if options.dihedral_angles:  # derivable from the positions and the triangles: only on request
+            ext["dihedralAngles"] = doc.add_accessor(pe.angle.astype(np.float32), target=None, min_max=True,
+                                                     name="edge dihedral angles")
     if options.wireframe != "off":
         ext["wireframeMask"] = doc.add_accessor(pe.wireframe_mask.astype(np.uint8), target=None,
                                                 name="wireframe edge mask")
@@ -154,8 +156,14 @@ def usd_basis_curves(stage, path: str, doc: GltfDocument, mesh: int, primitive: 
     positions = doc.accessor(prim["attributes"]["POSITION"]).astype(np.float32)
     edges = doc.accessor(ext["edges"]).astype(np.int64).reshape(-1, 2)
     flags = doc.accessor(ext["flags"]).astype(np.int64)
-    angles = doc.accessor(ext["dihedralAngles"]).astype(np.float32) if "dihedralAngles" in ext else \
-        np.zeros(len(flags), np.float32)
+    if "dihedralAngles" in ext:
+        angles = doc.accessor(ext["dihedralAngles"]).astype(np.float32)
+    else:  # not stored by default: the triangles give them
+        from baker.geometry.edges import dihedral_angles_of
+
+        faces = doc.accessor(prim["indices"]).astype(np.int64).reshape(-1, 3) if "indices" in prim else \
+            np.arange(len(positions)).reshape(-1, 3)
+        angles = dihedral_angles_of(positions, faces, edges).astype(np.float32)
     keep = (flags & mask) != 0
     if not keep.any():
         return None

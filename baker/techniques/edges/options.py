@@ -25,6 +25,10 @@ class EdgesOptions:
     # reader rebuilds them from the triangles and the edge list; stored they are as large as the edge list itself
     opposite_vertices: bool = opt(False, "also write BAKER_edges oppositeVertices (each edge's two opposite vertices, "
                                          "derivable from the triangles and the edge list)")
+    # off by default (compact files, issue 48): no runtime reads them and the positions, triangles and edge list give
+    # them (the angle between the two faces' normals); stored they are 4 bytes per edge
+    dihedral_angles: bool = opt(False, "also write BAKER_edges dihedralAngles (each edge's signed angle between its "
+                                       "face normals, derivable from the positions and the triangles)")
     outline_normals: bool = opt(True, "write _OUTLINE_NORMAL: one averaged normal per welded position")
     wireframe: str = opt("quad-diagonals", "edges the wireframe mask hides", choices=("quad-diagonals", "planar",
                                                                                       "none", "off"))

@@ -33,7 +33,8 @@ if TYPE_CHECKING:  # validation and read() must not import the kernel (numba)
     from baker.techniques.tam.kernel import TonalArtMap
 
 NAME = "BAKER_tonal_art_map"
-# the stroke chart's u axis per vertex (unit, mesh space), written with the stroke TEXCOORD set (issue 38)
+# the stroke chart's u axis per vertex (unit, mesh space), written with the stroke TEXCOORD set on request
+# (--tam-direction; issue 38): the u gradient of the stroke set gives it, so by default it is not stored (issue 48)
 DIRECTION_ATTRIBUTE = "_HATCHING_DIRECTION"
 VERTEX_ATTRIBUTES = {DIRECTION_ATTRIBUTE: 3}  # name -> the data's width (baker.registry)
 LEVEL_ORDER = "finestFirst"
@@ -96,7 +97,8 @@ def write_tam(doc: GltfDocument, material: int, tam: TonalArtMap, textures: list
               texcoord: int = 0, strokes: dict | None = None) -> dict:
     """Write ``BAKER_tonal_art_map`` on ``material``, pointing at ``textures`` (from :func:`write_tam_textures`;
     materials sharing one TAM share them). ``strokes``: the stroke parameterization's record when ``texcoord``
-    is its set (``texelsPerUnit``, ``field``, ``patches``, ``fallbackFaces``, ``singularities``). Returns the
+    is its set (``texelsPerUnit``, ``field``, ``patches``, ``fallbackFaces``, ``singularities``, and
+    ``directionAttribute`` when the u axis was written). Returns the
     extension object."""
     ext = tam_parameters(tam)
     levels = []
@@ -109,7 +111,7 @@ def write_tam(doc: GltfDocument, material: int, tam: TonalArtMap, textures: list
     ext["scale"] = float(scale)
     ext["texCoord"] = int(texcoord)
     if strokes is not None:
-        ext["strokes"] = {"directionAttribute": DIRECTION_ATTRIBUTE, **strokes}
+        ext["strokes"] = dict(strokes)
     return doc.set_material_extension(material, NAME, ext)
 
 

@@ -46,6 +46,9 @@ class TamOptions:
                                 "TEXCOORD set of lapped patches whose u axis follows a cross field aligned with the "
                                 "principal curvature directions (Praun et al. 2000/2001); uv: the mesh's own UVs "
                                 "(an unwrap when it has none)", choices=STROKES)
+    direction: bool = opt(False, "with --tam-strokes field: also write the stroke u axis per vertex as "
+                                 "_HATCHING_DIRECTION (VEC3; no runtime reads it: it is the u gradient of the stroke "
+                                 "set, derived at load like a tangent)")
     combing: str = opt("_HATCHING_COMBING", "with --tam-strokes field: vertex attribute (VEC3, mesh space) of an "
                                             "artist's stroke directions, honoured where non-zero over the principal "
                                             "directions")

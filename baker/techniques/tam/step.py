@@ -97,12 +97,14 @@ def run(asset: Asset, options: TamOptions, seed: int = 0, progress: Progress = Q
             for material in unwrapped:
                 unwrap_material(asset, material, groups[material], seed)
             textures = ext.write_tam_textures(doc, tam)
-            made = write_strokes(asset, groups, solved)
+            made = write_strokes(asset, groups, solved, direction=options.direction)
             advance(1)
         for material, strokes in made.items():
             record = {"texelsPerUnit": float(density), "field": strokes.field,
                       "patches": len(strokes.patches), "fallbackFaces": strokes.fallback_faces,
                       "singularities": strokes.singular_faces}
+            if options.direction:
+                record = {"directionAttribute": ext.DIRECTION_ATTRIBUTE, **record}
             # the coordinates count tiles: one finest level of texels per coordinate unit
             ext.write_tam(doc, material, tam, textures, scale=float(options.size), texcoord=strokes.texcoord,
                           strokes=record)

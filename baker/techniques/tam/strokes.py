@@ -148,9 +148,10 @@ def solve_strokes(asset: Asset, groups: dict, texel_density: float, finest: int,
     return out
 
 
-def write_strokes(asset: Asset, groups: dict, solved: list[MeshStrokes]) -> dict:
-    """Write ``solved`` (:func:`solve_strokes` of ``groups``) as the stroke TEXCOORD set and ``_HATCHING_DIRECTION``
-    on every primitive as it is now (after an unwrap, if any). Returns {material: MaterialStrokes}."""
+def write_strokes(asset: Asset, groups: dict, solved: list[MeshStrokes], direction: bool = False) -> dict:
+    """Write ``solved`` (:func:`solve_strokes` of ``groups``) as the stroke TEXCOORD set (and, with ``direction``,
+    ``_HATCHING_DIRECTION``) on every primitive as it is now (after an unwrap, if any). Returns {material:
+    MaterialStrokes}."""
     doc = asset.doc
     material_of = {mp: material for material, members in groups.items() for mp in members}
     # one set index per material (texCoord is the material's): after every set any of its primitives has
@@ -176,6 +177,8 @@ def write_strokes(asset: Asset, groups: dict, solved: list[MeshStrokes]) -> dict
             vmap, stroke_vertex = unique // n_split, unique % n_split
             reindex_primitive(asset, m, p, vmap, inverse.reshape(-1, 3), result.uv[stroke_vertex],
                               strokes.texcoord)
+            if not direction:
+                continue
             attributes = doc.json["meshes"][m]["primitives"][p]["attributes"]
             add_vertex_attribute(doc, m, attributes, DIRECTION_ATTRIBUTE, mesh.vertex_direction[stroke_vertex],
                                  leave_out="--tam-strokes uv")

@@ -38,7 +38,8 @@ class ThicknessOptions:
                                "from it over the (2 x window + 1)^2 texels around them on the surface, shrunk "
                                "toward 0 as far as its noise exceeds the texture's spread of corrections (0: the "
                                "per-vertex value alone)", min=0, max=16)
-    texture_bits: int = opt(16, "bits per channel of the thickness PNG", choices=(8, 16))
+    # 8 by default (issue 48): its error against a 2048-ray reference equals 16 bits' (benchmarks/RESULTS.md, texel)
+    texture_bits: int = opt(8, "bits per channel of the thickness PNG", choices=(8, 16))
     # eq. 14.30 and the GDC variant: written into BAKER_thickness for the runtime, not used by the bake
     distortion: float = opt(0.2, "translucency: normal distortion of the light vector (GDC 2011)")
     power: float = opt(4.0, "translucency: exponent p of (v . -l)^p, a phase-function approximation", min=0.0)

@@ -9,7 +9,7 @@ import { Matrix, Vector2, Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 import { DracoDecoder } from '@babylonjs/core/Meshes/Compression/dracoDecoder.js';
 
 import { STAGES_WGSL_BABYLON } from './stages_wgsl.js';
-import { RUNTIMES, STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
+import { RUNTIMES, STAGES, coverageMipLevels, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: everything @baker/shared exports
 // is re-exported here (index.js names what the package makes public)
@@ -266,6 +266,18 @@ export function uploadMipLevels(texture, levels) {
 const WRAPS = { 10497: Constants.TEXTURE_WRAP_ADDRESSMODE, 33071: Constants.TEXTURE_CLAMP_ADDRESSMODE,
 	33648: Constants.TEXTURE_MIRROR_ADDRESSMODE };
 
+/** The stored bytes of texture `texture`'s image (a buffer view, a data URI or a file beside the glTF). */
+async function imageBytes(loader, texture) {
+	const index = loader.gltf.textures?.[texture]?.source;
+	const image = loader.gltf.images?.[index];
+	if (!image) throw new Error(`texture ${texture} has no image`);
+	if (image.bufferView !== undefined) {
+		const view = loader.gltf.bufferViews[image.bufferView];
+		return loader.loadBufferViewAsync(`/bufferViews/${image.bufferView}`, view);
+	}
+	return loader.loadUriAsync(`/images/${index}`, image, image.uri);
+}
+
 /**
  * The coverage-preserving mip chain of a `coverageMips` entry (Castaño 2010; @baker/shared coverage_mips.js) as a
  * RawTexture holding the chain's levels, sampled trilinear with the glTF texture's wrap modes; raw data like
@@ -284,7 +296,8 @@ export async function coverageMipsTexture(loader, entry) {
 		const buffer = await loader.loadBufferViewAsync(`/bufferViews/${accessor.bufferView}`, view);
 		const offset = accessor.byteOffset || 0;
 		if (offset + accessor.count > buffer.byteLength) throw new Error(`accessor ${entry.accessor} overruns its buffer view`);
-		const { width, height, levels } = parseKtx2Rgba8(buffer.subarray(offset, offset + accessor.count));
+		const { width, height, levels } = await coverageMipLevels(entry, buffer.subarray(offset, offset + accessor.count),
+			() => imageBytes(loader, entry.texture));
 		const scene = loader.babylonScene;
 		const texture = new RawTexture(levels[0].data, width, height, Constants.TEXTUREFORMAT_RGBA, scene, true, false,
 			Constants.TEXTURE_TRILINEAR_SAMPLINGMODE, Constants.TEXTURETYPE_UNSIGNED_BYTE);

@@ -98,4 +98,4 @@ export { thicknessParameters } from './thickness.js';
 export { textFieldType, textShadowOffset, textStyle } from './text.js';
 export { wireframeCorners } from './edges.js';
 export { causticsClock, causticsFrame, causticsParameters } from './caustics.js';
-export { coverageMipsOf, parseKtx2Rgba8 } from './coverage_mips.js';
+export { coverageMipLevels, coverageMipsOf, decodePngRgba8, parseKtx2Rgba8 } from './coverage_mips.js';

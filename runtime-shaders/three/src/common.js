@@ -3,7 +3,7 @@
 // viewport uniform). Not an entry point: import from index.js.
 import * as THREE from 'three';
 
-import { STAGES, parseKtx2Rgba8, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
+import { STAGES, coverageMipLevels, runtime, shaderText, structExpression, uniformValue } from '@baker/shared';
 
 // the extension names, TECHNIQUES and the switch registry are engine-neutral: everything @baker/shared exports
 // is re-exported here (index.js names what the package makes public)
@@ -54,6 +54,15 @@ export function dataTexture(texture, { repeat = false, linear = true } = {}) {
 
 const WRAPS = { 10497: THREE.RepeatWrapping, 33071: THREE.ClampToEdgeWrapping, 33648: THREE.MirroredRepeatWrapping };
 
+/** The stored bytes of texture `texture`'s image (a buffer view, a data URI or a file beside the glTF). */
+async function imageBytes(parser, texture) {
+	const image = parser.json.images?.[parser.json.textures?.[texture]?.source];
+	if (!image) throw new Error(`texture ${texture} has no image`);
+	if (image.bufferView !== undefined) return new Uint8Array(await parser.getDependency('bufferView', image.bufferView));
+	const url = THREE.LoaderUtils.resolveURL(image.uri, parser.options.path);
+	return new Uint8Array(await (await fetch(url)).arrayBuffer());
+}
+
 /**
  * The coverage-preserving mip chain of a `coverageMips` entry (Castaño 2010; @baker/shared coverage_mips.js) as a
  * DataTexture whose mipmaps are the chain's levels, uploaded as given (generateMipmaps off), sampled trilinear with
@@ -65,7 +74,7 @@ export async function coverageMipsTexture(parser, entry) {
 		const accessor = await parser.getDependency('accessor', entry.accessor);
 		const array = accessor.array;
 		const bytes = new Uint8Array(array.buffer, array.byteOffset, array.byteLength);
-		const { width, height, levels } = parseKtx2Rgba8(bytes);
+		const { width, height, levels } = await coverageMipLevels(entry, bytes, () => imageBytes(parser, entry.texture));
 		const texture = new THREE.DataTexture(levels[0].data, width, height, THREE.RGBAFormat, THREE.UnsignedByteType);
 		texture.mipmaps = levels.map(({ data, width: w, height: h }) => ({ data, width: w, height: h }));
 		texture.generateMipmaps = false;
