@@ -230,7 +230,7 @@ def test_thickness_from_the_high_mesh_is_the_high_meshs_own(pair):
     uv = accessor(attributes[f"TEXCOORD_{info.get('texCoord', 0)}"])
     pixels = image(info["index"])
     rows, cols, tri, bary = texel_samples(uv, faces, SIZE)
-    baked = pixels[rows, cols, 0].astype(np.float64) / 65535.0 * ext["thicknessFactor"]
+    baked = pixels[rows, cols, 0].astype(np.float64) / np.iinfo(pixels.dtype).max * ext["thicknessFactor"]
     point = np.einsum("kj,kjd->kd", bary, positions[faces[tri]])
     u = point / np.linalg.norm(point, axis=1, keepdims=True)
     hit_tri, hit_bary = radial_hits(high_positions, high_faces, u)
