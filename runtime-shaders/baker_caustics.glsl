@@ -68,4 +68,16 @@ vec3 baker_caustics_apply(vec3 litColor, vec3 sunLit, vec3 irradiance, float str
     return max(litColor + sunLit * (irradiance - 1.0) * (strength * fade), vec3(0.0));
 }
 
+// The diffuse light to draw once the caustic is applied, for a display without tone mapping: where the caustic adds
+// light, the added light compressed into the headroom left above the pixel, before + h a / (h + a) per channel
+// (a = after - before, h = 1 - before - other, at least 0: Reinhard's x / (1 + x) on the excess, slope 1 where the
+// caustic starts), so a bright caustic line shows as a highlight instead of clipping to flat white; where it takes
+// light away, `after` as computed. `before`, `after`: the diffuse light without and with the caustic; `other`: the
+// rest of the pixel's light (indirect, specular), which the caustic leaves as it is.
+vec3 baker_caustics_headroom(vec3 before, vec3 after, vec3 other) {
+    vec3 room = max(vec3(1.0) - before - other, vec3(0.0));
+    vec3 added = max(after - before, vec3(0.0));
+    return min(after, before) + room * added / max(room + added, vec3(1e-6));
+}
+
 #endif

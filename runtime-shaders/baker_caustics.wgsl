@@ -54,3 +54,15 @@ fn baker_caustics_irradiance(first: texture_2d<f32>, firstSampler: sampler, next
 fn baker_caustics_apply(litColor: vec3f, sunLit: vec3f, irradiance: vec3f, strength: f32, fade: f32) -> vec3f {
     return max(litColor + sunLit * (irradiance - 1.0) * (strength * fade), vec3f(0.0));
 }
+
+// The diffuse light to draw once the caustic is applied, for a display without tone mapping: where the caustic adds
+// light, the added light compressed into the headroom left above the pixel, before + h a / (h + a) per channel
+// (a = after - before, h = 1 - before - other, at least 0: Reinhard's x / (1 + x) on the excess, slope 1 where the
+// caustic starts), so a bright caustic line shows as a highlight instead of clipping to flat white; where it takes
+// light away, `after` as computed. `before`, `after`: the diffuse light without and with the caustic; `other`: the
+// rest of the pixel's light (indirect, specular), which the caustic leaves as it is.
+fn baker_caustics_headroom(before: vec3f, after: vec3f, other: vec3f) -> vec3f {
+    let room = max(vec3f(1.0) - before - other, vec3f(0.0));
+    let added = max(after - before, vec3f(0.0));
+    return min(after, before) + room * added / max(room + added, vec3f(1e-6));
+}

@@ -33,6 +33,7 @@ uniform float u_fadeDistance;
 layout(location = 0) out vec4 o_uv;      // uv, fade, depth
 layout(location = 1) out vec4 o_frame;   // first, blend, next
 layout(location = 2) out vec4 o_color;
+layout(location = 3) out vec4 o_headroom;  // the colour's added light compressed above a pixel of 0.6 other light
 void main() {
     vec4 s = texelFetch(u_inputs, ivec2(gl_FragCoord.xy), 0);
     vec2 uv = baker_caustics_uv(s.xyz, u_projection, u_waterLevel, u_depth, u_tileSize);
@@ -43,6 +44,7 @@ void main() {
     o_frame = vec4(frame, 1.0);
     vec3 e = baker_caustics_irradiance(u_first, u_next, uv, frame.y, u_scale, 0.0);
     o_color = vec4(baker_caustics_apply(vec3(0.3, 0.25, 0.2), vec3(0.2), e, 1.0, fade), 1.0);
+    o_headroom = vec4(baker_caustics_headroom(vec3(0.3, 0.25, 0.2), o_color.rgb, vec3(0.6)), 1.0);
 }
 """
 
@@ -94,13 +96,13 @@ def test_floor_render_matches_twins(gl_context):
         prog[name].value = unit
     for name, value in uniforms.items():
         prog[name].value = value
-    targets = [ctx.texture((n, n), 4, dtype="f4") for _ in range(3)]
+    targets = [ctx.texture((n, n), 4, dtype="f4") for _ in range(4)]
     fbo = ctx.framebuffer(targets)
     fbo.use()
     ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
     ctx.vertex_array(prog, []).render(moderngl.TRIANGLES, vertices=3)
     ctx.finish()
-    uv, frame, color = (np.frombuffer(t.read(), np.float32).reshape(n, n, 4) for t in targets)
+    uv, frame, color, headroom = (np.frombuffer(t.read(), np.float32).reshape(n, n, 4) for t in targets)
 
     world = inputs[..., :3]
     np.testing.assert_allclose(uv[..., :2], twins.baker_caustics_uv(world, projection, 0.0, options.depth,
@@ -121,3 +123,14 @@ def test_floor_render_matches_twins(gl_context):
     # the caustic does show: the lit colour varies across the floor where the fade is on
     lit = same_time & (fade > 0.5)
     assert lit.sum() > 50 and color[..., 0][lit].std() > 0.02
+    # the headroom: the twin's, and the pixel (0.6 other light on the colour) never reaches 1 however bright the
+    # caustic, while darkening is kept as computed and a caustic line stays brighter than the colour without it
+    before = np.array([0.3, 0.25, 0.2], np.float32)
+    np.testing.assert_allclose(headroom[..., :3], twins.baker_caustics_headroom(before, color[..., :3], 0.6),
+                               atol=1e-5)
+    assert (headroom[..., :3] + 0.6 < 1.0).all()
+    darker, brighter = color[..., :3] <= before, color[..., :3] > before + 1e-3
+    np.testing.assert_allclose(headroom[..., :3][darker], color[..., :3][darker], atol=1e-6)
+    above = np.broadcast_to(before, brighter.shape)[brighter]
+    assert brighter.sum() > 20 and (headroom[..., :3][brighter] > above).all()
+    assert (color[..., :3] + 0.6 >= 1.0).any()  # the caustic would clip without the headroom

@@ -54,3 +54,9 @@ def baker_caustics_irradiance(first: np.ndarray, following: np.ndarray, uv, blen
 def baker_caustics_apply(lit_color, sun_lit, irradiance, strength, fade):
     k = (F32(strength) * _f(fade))[..., None]
     return np.maximum(_f(lit_color) + _f(sun_lit) * (_f(irradiance) - 1) * k, 0).astype(F32)
+
+
+def baker_caustics_headroom(before, after, other):
+    room = np.maximum(1 - _f(before) - _f(other), 0)
+    added = np.maximum(_f(after) - _f(before), 0)
+    return (np.minimum(_f(after), _f(before)) + room * added / np.maximum(room + added, F32(1e-6))).astype(F32)

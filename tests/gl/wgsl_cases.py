@@ -536,6 +536,12 @@ def caustics_cases():
                                                           2.5, c),
             call="baker_caustics_irradiance(first, firstSampler, next, nextSampler, uv, blend, scale, rgb)",
             textures=[first, following], stage="fragment", label=f"rgb={rgb:g}"))
+    # the light a caustic adds, compressed into the headroom above the pixel (before + other below 1)
+    cases.append(Case(
+        "caustics", "baker_caustics_headroom", [("before", "vec3f"), ("after", "vec3f"), ("other", "vec3f")], "vec3f",
+        {"before": r.uniform(0, 0.8, 3), "after": r.uniform(0, 3, 3), "other": r.uniform(0, 0.4, 3)},
+        lambda i: tw.baker_caustics_headroom(i["before"], i["after"], i["other"]),
+        call="baker_caustics_headroom(before, after, other)"))
     return cases
 
 

@@ -92,19 +92,10 @@ def rgb_texture(scene: Scene, ctx, texture_index: int):
     return scene.cache[key]
 
 
-# The display of the sheet (8 bits, no tone mapping): light the caustics add above the reference's shade is
-# compressed into the headroom left above it, reference + h e / (h + e) per channel (e the added light, h = 1 -
-# reference; Reinhard's x / (1 + x) on the excess, slope 1 where the caustic starts), so a bright caustic line shows
-# as a highlight instead of clipping to flat white; darkening is drawn as computed (it never goes below the ambient
-# shade: the stage scales only the key light's part).
-HEADROOM = """vec3 headroom(vec3 reference, vec3 lit) {
-    vec3 room = max(vec3(1.0) - reference, vec3(0.0));
-    vec3 added = max(lit - reference, vec3(0.0));
-    return min(lit, reference) + room * added / max(room + added, vec3(1e-6));
-}"""
-
 # the web hosts' stage itself (runtime-shaders/hosts/web/surface_caustics.glsl), on the Lambert reference: its key
-# light is the sunlit part the stage redistributes
+# light is the sunlit part the stage redistributes; the reference is the whole pixel (no other light), so the stage's
+# baker_caustics_headroom compresses the light the caustic adds into the headroom above the reference's shade, as a
+# highlight instead of a flat white (the sheet is 8 bits, no tone mapping)
 STAGE = host_text("web/surface_caustics.glsl")
 
 PANELS = [
@@ -114,13 +105,14 @@ PANELS = [
                   "uniform float u_bakerCausticsWaterLevel;\nuniform float u_bakerCausticsDepth;\n"
                   "uniform float u_bakerCausticsTileSize;\nuniform float u_bakerCausticsScale;\n"
                   "uniform float u_bakerCausticsStrength;\nuniform float u_bakerCausticsFadeDistance;\n"
-                  "uniform float u_bakerCausticsBlend;\n" + HEADROOM,
+                  "uniform float u_bakerCausticsBlend;\n",
                   "float lambert = max(dot(N, u_light), 0.0);\n"
                   "    vec3 bakerWorldPosition = P;\n"
                   f"    vec3 bakerSunLight = albedo * {KEY} * lambert;\n"
                   f"    vec3 reference = albedo * ({AMBIENT} + {KEY} * lambert);\n"
                   "    vec3 bakerDiffuse = reference;\n"
+                  "    vec3 bakerOtherLight = vec3(0.0);\n"
                   f"    {STAGE}\n"
-                  "    color = headroom(reference, bakerDiffuse);",
+                  "    color = bakerDiffuse;",
                   light="front", order=45),
 ]

@@ -285,6 +285,13 @@ var bakerCards = vec3f(0.0);` + (p.cards ? CARDS_FRAME_WGSL : '') + (p.normalBlu
 let bakerWorldPosition = vPositionW;
 let bakerSunLight = bakerSun * albedoOpacityOut.surfaceAlbedo * uniforms.vLightingIntensity.x;
 var bakerDiffuse = finalDiffuse;
+var bakerOtherLight = vec3f(0.0);  // the specular light (the hemispheric light is in finalDiffuse)
+#ifdef SPECULARTERM
+bakerOtherLight += finalSpecularScaled;
+#endif
+#ifdef REFLECTION
+bakerOtherLight += finalIrradiance;
+#endif
 ${afterLights}
 finalDiffuse = bakerDiffuse;
 }`);
@@ -398,6 +405,13 @@ if (u_baker_normalBlur_on > 0.5) {
 vec3 bakerWorldPosition = vPositionW;
 vec3 bakerSunLight = bakerSun * albedoOpacityOut.surfaceAlbedo * vLightingIntensity.x;
 vec3 bakerDiffuse = finalDiffuse;
+vec3 bakerOtherLight = vec3(0.0);  // the specular light (the hemispheric light is in finalDiffuse)
+#ifdef SPECULARTERM
+bakerOtherLight += finalSpecularScaled;
+#endif
+#ifdef REFLECTION
+bakerOtherLight += finalIrradiance;
+#endif
 ${afterLights}
 finalDiffuse = bakerDiffuse;
 }`);

@@ -2,7 +2,8 @@
 // the WGSL twin of surface_caustics.glsl (baker_caustics.wgsl; each sampler2D argument a texture and its sampler).
 // The host defines, around it: bakerWorldPosition (vec3f, world space), bakerSunLight (vec3f: the directional
 // lights' Lambert light on the base colour), bakerDiffuse (var vec3f, read and written: the direct diffuse light),
-// and the part's uniforms under their own names.
+// bakerOtherLight (vec3f: the rest of the pixel's light, indirect and specular, as far as the host knows it), and the
+// part's uniforms under their own names.
 if (u_baker_caustics_on > 0.5) {
 	let bakerCausticsUv = baker_caustics_uv(bakerWorldPosition, u_bakerCausticsProjection, u_bakerCausticsWaterLevel,
 		u_bakerCausticsDepth, u_bakerCausticsTileSize);
@@ -10,6 +11,7 @@ if (u_baker_caustics_on > 0.5) {
 		u_bakerCausticsDepth, u_bakerCausticsFadeDistance);
 	let bakerCausticsE = baker_caustics_irradiance(u_bakerCausticsFirst, u_bakerCausticsFirstSampler,
 		u_bakerCausticsNext, u_bakerCausticsNextSampler, bakerCausticsUv, u_bakerCausticsBlend, u_bakerCausticsScale, 1.0);
-	bakerDiffuse = baker_caustics_apply(bakerDiffuse, bakerSunLight, bakerCausticsE, u_bakerCausticsStrength,
+	let bakerCausticsLit = baker_caustics_apply(bakerDiffuse, bakerSunLight, bakerCausticsE, u_bakerCausticsStrength,
 		bakerCausticsFade);
+	bakerDiffuse = baker_caustics_headroom(bakerDiffuse, bakerCausticsLit, bakerOtherLight);
 }

@@ -101,6 +101,7 @@ vBakerUv = uv;`)
 vec3 bakerWorldPosition = vBakerWorldPosition;
 vec3 bakerSunLight = bakerSun;
 vec3 bakerDiffuse = reflectedLight.directDiffuse;
+vec3 bakerOtherLight = reflectedLight.indirectDiffuse + reflectedLight.directSpecular + reflectedLight.indirectSpecular;
 ${afterLights}
 reflectedLight.directDiffuse = bakerDiffuse;
 }`;

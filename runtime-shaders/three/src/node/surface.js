@@ -193,8 +193,11 @@ export function surfaceNodes(surface, m) {
 		next.uvNode = causticsUv;
 		const irradiance = mix(first.rgb, next.rgb, blend).mul(c('u_bakerCausticsScale'));
 		const sunLight = sun.reduce((a, b) => a.add(b), vec3(0));
-		const applied = m.fn('caustics', 'baker_caustics_apply')(reflectedLight.directDiffuse, sunLight, irradiance,
+		const lit = m.fn('caustics', 'baker_caustics_apply')(reflectedLight.directDiffuse, sunLight, irradiance,
 			c('u_bakerCausticsStrength'), fade);
+		// the added light compressed into the headroom above the pixel (the indirect and specular light included)
+		const other = reflectedLight.indirectDiffuse.add(reflectedLight.directSpecular).add(reflectedLight.indirectSpecular);
+		const applied = m.fn('caustics', 'baker_caustics_headroom')(reflectedLight.directDiffuse, lit, other);
 		reflectedLight.directDiffuse.assign(select(on(surface, 'caustics'), applied, reflectedLight.directDiffuse));
 	}
 
