@@ -81,7 +81,8 @@ def bake(path_or_asset, bakes=("thickness",), options=None, seed: int = 0, progr
 def save(asset: Asset, path, compress: str | None = None) -> list[Path]:
     """Write ``asset`` as glTF/GLB or USD (by the suffix of ``path``); returns every file written. ``compress``:
     ``"meshopt"`` stores the geometry as EXT_meshopt_compression, each bufferView as small as it gets;
-    ``"meshopt-gzip"`` each as small as it gets once gzipped (glTF/GLB only; lossless, the bake intact)."""
+    ``"meshopt-gzip"`` each as small as it gets once gzipped, both with the float vertex attributes through the
+    EXPONENTIAL filter; ``"meshopt-lossless"`` every byte kept (glTF/GLB only; the bake intact)."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in OUTPUT_SUFFIXES:

@@ -1,10 +1,11 @@
 """``baker bake --compress meshopt`` (issue 48, item 4): EXT_meshopt_compression written by baker, the bake intact.
 
-The spot with every surface bake is written twice, plain and compressed. The compressed file must be clean for baker
-validate and Khronos glTF-Validator; every accessor must decode to the plain file's bytes, through baker's reader
-(baker/gltf/compression.py) and independently through three.js's GLTFLoader with meshoptimizer's MeshoptDecoder in
-Node (examples/viewer/test/accessor_digests.mjs); three.js and Babylon.js must draw both files alike in headless
-Chromium. The mode choice is checked on hand-made index data: the triangle codec is kept only where it decodes to
+The spot with every surface bake is written plain and compressed. The compressed files must be clean for baker
+validate and Khronos glTF-Validator; with ``meshopt-lossless`` every accessor must decode to the plain file's bytes,
+with ``meshopt`` and ``meshopt-gzip`` too but for the float vertex attributes of EXPONENTIAL_BITS, which must decode
+within their stated bound of the plain values; through baker's reader (baker/gltf/compression.py) and independently
+through three.js's GLTFLoader with meshoptimizer's MeshoptDecoder in Node (examples/viewer/test/accessor_digests.mjs,
+whose bytes must equal baker's decode); three.js and Babylon.js must draw both files alike in headless Chromium. The mode choice is checked on hand-made index data: the triangle codec is kept only where it decodes to
 the stored corner order.
 """
 from __future__ import annotations
@@ -25,7 +26,7 @@ import baker
 from baker.gltf.compression import decompress
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import read_image
-from baker.gltf.meshopt_encode import EXTENSION, compress_meshopt
+from baker.gltf.meshopt_encode import EXPONENTIAL_BITS, EXTENSION, compress_meshopt
 from baker.pipeline import save
 from baker.validate import validate_file
 from browser import BACKGROUND_RGB, SPOT, SPOT_PAGE_OPTIONS, VIEWER, build_viewer, require_tools, serve, shoot
@@ -42,6 +43,7 @@ def files(tmp_path_factory):
     save(asset, root / "plain.glb")
     save(asset, root / "meshopt.glb", compress="meshopt")
     save(asset, root / "meshopt-gzip.glb", compress="meshopt-gzip")
+    save(asset, root / "meshopt-lossless.glb", compress="meshopt-lossless")
     return root
 
 
@@ -59,7 +61,15 @@ def test_each_target_is_smallest_where_it_aims(files):
     assert _gzip(gzipped) < min(_gzip(plain), _gzip(small))
 
 
-@pytest.mark.parametrize("name", ["meshopt", "meshopt-gzip"])
+def _filtered_accessors(gltf: dict) -> dict[int, str]:
+    """accessor -> attribute name, for the accessors whose bufferView is stored with the EXPONENTIAL filter."""
+    filtered = {i for i, v in enumerate(gltf["bufferViews"])
+                if v.get("extensions", {}).get(EXTENSION, {}).get("filter") == "EXPONENTIAL"}
+    return {a: name for mesh in gltf["meshes"] for prim in mesh["primitives"] for name, a in prim["attributes"].items()
+            if gltf["accessors"][a].get("bufferView") in filtered}
+
+
+@pytest.mark.parametrize("name", ["meshopt", "meshopt-gzip", "meshopt-lossless"])
 def test_compressed_bake_is_clean_and_decodes_to_the_same_bytes(files, name):
     plain, packed = files / "plain.glb", files / f"{name}.glb"
     report = validate_file(packed)
@@ -75,13 +85,31 @@ def test_compressed_bake_is_clean_and_decodes_to_the_same_bytes(files, name):
                                  "extensions": {EXTENSION: {"fallback": True}}}  # a size, no data
     modes = [v["extensions"][EXTENSION]["mode"] for v in raw["bufferViews"] if EXTENSION in v.get("extensions", {})]
     assert modes.count("ATTRIBUTES") >= 5 and "INDICES" in modes, modes
-    assert "filter" not in json.dumps(raw["bufferViews"])  # lossless: no filter
-    # the bake intact: every extension and accessor where it was, with the same bytes
-    for key in ("meshes", "materials", "accessors", "nodes", "extensionsUsed"):
+    filtered = _filtered_accessors(raw)
+    if name == "meshopt-lossless":
+        assert "filter" not in json.dumps(raw["bufferViews"])  # lossless: no filter
+    else:  # every baked float attribute the spot has, and nothing else
+        assert sorted(set(filtered.values())) == sorted(EXPONENTIAL_BITS), filtered
+    # the bake intact: every extension and accessor where it was, with the same bytes but for the filtered ones
+    for key in ("meshes", "materials", "nodes", "extensionsUsed"):
         assert a.json.get(key) == b.json.get(key), key
-    plain_bytes = _accessor_bytes(a)
-    assert plain_bytes == _accessor_bytes(b)
+    plain_bytes, packed_bytes = _accessor_bytes(a), _accessor_bytes(b)
     assert len(plain_bytes) > 30 and any("BAKER_" in name for name in a.json["extensionsUsed"])
+    for i, (before, after) in enumerate(zip(a.json["accessors"], b.json["accessors"])):
+        if i not in filtered:
+            assert before == after and plain_bytes[i] == packed_bytes[i], i
+            continue
+        # float32 still, each value within its stated bound of the plain one, the bounds those of the decoded values
+        assert {k: v for k, v in before.items() if k not in ("min", "max")} == \
+            {k: v for k, v in after.items() if k not in ("min", "max")}
+        original, decoded = np.asarray(a.accessor(i), np.float64), np.asarray(b.accessor(i), np.float64)
+        mode, bits = EXPONENTIAL_BITS[filtered[i]]
+        scale = np.abs(original) if mode == "Separate" else np.abs(original).max(axis=1, keepdims=True)
+        error = np.abs(decoded - original)
+        assert (error <= scale * 2.0 ** (1 - bits) + 1e-30).all(), filtered[i]
+        assert 0 < error.max() and b.accessor(i).dtype == np.float32, filtered[i]  # filtered: changed, still floats
+        if "min" in after:
+            assert np.allclose(after["min"], decoded.min(axis=0)) and np.allclose(after["max"], decoded.max(axis=0))
 
     # independently: three.js's GLTFLoader + MeshoptDecoder reads the compressed file's accessors as those bytes
     require_tools("meshopt", ("three",))
@@ -89,7 +117,7 @@ def test_compressed_bake_is_clean_and_decodes_to_the_same_bytes(files, name):
                             text=True, timeout=120, cwd=VIEWER)
     assert result.returncode == 0, result.stderr
     digests = json.loads(result.stdout.strip().splitlines()[-1])["accessors"]
-    assert digests == [hashlib.sha256(data).hexdigest() for data in plain_bytes]
+    assert digests == [hashlib.sha256(data).hexdigest() for data in packed_bytes]
 
 
 def _luma(image):

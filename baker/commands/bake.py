@@ -25,11 +25,12 @@ def add_parser(sub) -> None:
                    "width of the mesh's own attributes), which Blender 4.5 imports; 'native' writes each at its "
                    "width (SCALAR, VEC2, VEC3) (default: blender)")
     p.add_argument("--compress", choices=COMPRESSIONS, default="none",
-                   help="store the geometry as EXT_meshopt_compression, required by the file and lossless (every "
-                   "baked extension and attribute decodes to the same bytes; three.js with MeshoptDecoder and "
-                   "Babylon.js read it): 'meshopt' makes each bufferView as small as it gets, 'meshopt-gzip' as "
-                   "small as it gets once gzipped, for servers that gzip (a view stays plain where that is smaller) "
-                   "(default: none)")
+                   help="store the geometry as EXT_meshopt_compression, required by the file (three.js with "
+                   "MeshoptDecoder and Babylon.js read it; every baked extension and attribute is kept): 'meshopt' "
+                   "makes each bufferView as small as it gets, the float vertex attributes through the EXPONENTIAL "
+                   "filter (float32 again, 12 to 16 mantissa bits: README, Compressed output), 'meshopt-gzip' as "
+                   "small as it gets once gzipped, for servers that gzip (a view stays plain where that is smaller), "
+                   "'meshopt-lossless' as 'meshopt' without the filter (every byte kept) (default: none)")
     p.add_argument("--from", dest="source", metavar="HIGH", help="bake from this high-poly mesh onto the input's UVs: "
                    "each texel's ray leaves the cage toward the input's surface and samples the first HIGH surface "
                    "it meets (works with: " + ", ".join(n for n, t in bakes.items() if t.transfers) + ")")

@@ -8,7 +8,7 @@ Recipe (``baker.toml``, or ``[tool.baker]`` in ``pyproject.toml``), paths relati
     bakes = ["thickness"]
     seed = 0
     attribute-layout = "blender" # blender | native (custom vertex attributes, as `baker bake --attribute-layout`)
-    compress = "none"           # none | meshopt | meshopt-gzip (glb/gltf, as `baker bake --compress`)
+    compress = "none"           # none | meshopt | meshopt-gzip | meshopt-lossless (glb/gltf, as `baker bake --compress`)
 
     [options.thickness]         # defaults for every asset: the fields of the bake's options dataclass
     rays = 64

@@ -347,7 +347,8 @@ class GltfDocument:
     def save(self, path, compress: str | None = None) -> list[Path]:
         """Write ``.glb`` or ``.gltf`` (+ ``.bin`` + images) atomically, chosen by the file extension.
         ``compress="meshopt"`` (or ``"meshopt-gzip"``): the bufferViews accessors read stored as
-        EXT_meshopt_compression, losslessly, each as small as it gets (or as small as it gets once gzipped)
+        EXT_meshopt_compression, each as small as it gets (or as small as it gets once gzipped), baked float vertex
+        attributes through the EXPONENTIAL filter at a stated precision; ``"meshopt-lossless"`` without the filter
         (:mod:`baker.gltf.meshopt_encode`).
 
         Returns every file written (the main file last)."""
@@ -392,13 +393,14 @@ class GltfDocument:
                     image["uri"] = urllib.parse.quote(rel.as_posix())
                 side_files[rel.as_posix()] = self.image_files[i]
 
-        if compress in ("meshopt", "meshopt-gzip"):
+        if compress in ("meshopt", "meshopt-gzip", "meshopt-lossless"):
             if binary:
                 from baker.gltf.meshopt_encode import compress_meshopt
 
-                gltf, binary, _ = compress_meshopt(gltf, binary, "gzip" if compress == "meshopt-gzip" else "size")
+                gltf, binary, _ = compress_meshopt(gltf, binary, "gzip" if compress == "meshopt-gzip" else "size",
+                                                   filters=compress != "meshopt-lossless")
         elif compress not in (None, "none"):
-            raise BakerError(path, f"unknown compression {compress!r} (use meshopt or meshopt-gzip)")
+            raise BakerError(path, f"unknown compression {compress!r} (use meshopt, meshopt-gzip or meshopt-lossless)")
         if binary:
             if not gltf.get("buffers"):
                 gltf["buffers"] = [{}]

@@ -1,6 +1,8 @@
-"""EXT_meshopt_compression written by baker (``baker bake --compress meshopt`` or ``meshopt-gzip``): every bufferView
-that only accessors read is stored with meshoptimizer's codecs, losslessly, so the bake is intact (every extension,
-custom attribute, accessor and bufferView stays where it was, and decodes to the same bytes).
+"""EXT_meshopt_compression written by baker (``baker bake --compress meshopt``, ``meshopt-gzip`` or
+``meshopt-lossless``): every bufferView that only accessors read is stored with meshoptimizer's codecs, so the bake is
+intact (every extension, custom attribute, accessor and bufferView stays where it was, and decodes to the same bytes)
+but for the float vertex attributes of :data:`EXPONENTIAL_BITS`, which ``meshopt`` and ``meshopt-gzip`` store with the
+EXPONENTIAL filter (``meshopt-lossless`` does not).
 
 The method follows the extension's specification (Khronos glTF, extensions/2.0/Vendor/EXT_meshopt_compression):
 
@@ -15,8 +17,16 @@ The method follows the extension's specification (Khronos glTF, extensions/2.0/V
     is kept only where the decoded indices equal the stored ones;
   - ``INDICES`` (index-sequence codec) for other 16/32-bit unsigned data: line and edge lists, vertex id lists, and
     triangle indices the triangle codec would rotate.
-- No filter: OCTAHEDRAL, QUATERNION and EXPONENTIAL quantize, which changes the data. No vertex or index reordering
-  either (it would renumber what the bake indexes).
+- EXPONENTIAL filter for the float vertex attributes baker bakes (:data:`EXPONENTIAL_BITS`): each float keeps a
+  mantissa of the stated bits and decodes to float32 again, so the accessors keep their type and every reader, shader
+  and validator reads them as before. The exponent is the vector's (``SharedVector``: the error of each component
+  is at most 2^(1 - bits) of the vector's largest component) or each value's (``Separate``: at most 2^(1 - bits) of
+  the value itself, for scalars padded to VEC3, whose zero padding then costs nothing). Every filtered view is
+  decoded and checked against that bound before it is kept, and the accessor's ``min``/``max`` follow the decoded
+  values. Unit vectors keep 12 bits (length within 4e-4 of 1, under ``baker validate``'s 1e-3), positions and the
+  unwrap 16 bits, the principal curvatures share their exponent so k1 >= k2 holds exactly.
+  OCTAHEDRAL and QUATERNION are not used (they decode to normalized integers). No vertex or index reordering either
+  (it would renumber what the bake indexes).
 - The extension is *required* and the uncompressed bufferViews point into a fallback buffer that has a size and no
   data (``"fallback": true``), the smallest file: three.js's GLTFLoader (with ``setMeshoptDecoder``) and
   Babylon.js's loader (built in) both decode it; a consumer without a meshopt decoder takes the uncompressed bake.
@@ -38,7 +48,19 @@ TYPE_SIZES = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9
 MAX_ATTRIBUTE_STRIDE = 256
 TARGETS = ("size", "gzip")
 # ``--compress`` choices: none, or meshopt aiming at each target
-COMPRESSIONS = ("none", "meshopt", "meshopt-gzip")
+COMPRESSIONS = ("none", "meshopt", "meshopt-gzip", "meshopt-lossless")
+# vertex attribute -> (EXPONENTIAL filter mode, mantissa bits): the precision each baked quantity keeps (module doc)
+EXPONENTIAL_BITS = {
+    "POSITION": ("SharedVector", 16),  # 3.1e-5 of the vertex's largest coordinate
+    "NORMAL": ("SharedVector", 12),  # unit vectors: 2.4e-4 per component
+    "_OUTLINE_NORMAL": ("SharedVector", 12),
+    "_PRINCIPAL_DIRECTION": ("SharedVector", 12),
+    "TEXCOORD_0": ("SharedVector", 16),  # the unwrap in [0, 1]: 1.5e-5, 1/32 texel of a 2048 texture
+    "TEXCOORD_1": ("SharedVector", 14),  # the stroke set's coordinates (tam): 1.2e-4 of the larger one
+    "_PRINCIPAL_CURVATURES": ("SharedVector", 16),  # one exponent for k1 and k2: their order kept
+    "_CURVATURE": ("Separate", 16),  # H: 3.1e-5 of itself, so H = (k1 + k2) / 2 within 1e-4 of the largest k
+    "_THICKNESS": ("Separate", 12),  # 2.4e-4 of itself (the thickness texture is 8-bit)
+}
 GZIP_LEVEL = 6  # deflate's default, what web servers use
 
 
@@ -49,14 +71,16 @@ def _cost(data: bytes, target: str) -> tuple[int, int]:
     return (len(data),)
 
 
-def compress_meshopt(gltf: dict, binary: bytes, target: str = "size") -> tuple[dict, bytearray, dict]:
+def compress_meshopt(gltf: dict, binary: bytes, target: str = "size",
+                     filters: bool = True) -> tuple[dict, bytearray, dict]:
     """``gltf`` (a JSON dict changed in place) and its single binary buffer, with every bufferView that only
     accessors read stored as EXT_meshopt_compression (see the module docstring).
 
     ``target``: what each view's encoding minimizes. ``"size"``: its bytes (the file as stored, and as sent by a
     server that does not compress). ``"gzip"``: its bytes after deflate (what a server that gzips sends), with the
     plain bytes as one more candidate: the codecs' byte deltas undo the long repeats deflate finds in data that is
-    neither quantized nor reordered (duplicated fin vertices, padded scalars, texel levels).
+    neither quantized nor reordered (duplicated fin vertices, padded scalars, texel levels). ``filters``: the
+    attributes of :data:`EXPONENTIAL_BITS` through the EXPONENTIAL filter (else every view decodes to its bytes).
 
     Returns the JSON, the new binary buffer (the compressed data and the views left uncompressed) and a summary:
     view count per mode and the bytes before and after."""
@@ -69,8 +93,10 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size") -> tuple[d
     accessors = gltf.get("accessors") or []
     uses = _view_uses(gltf)
     triangles = _triangle_index_accessors(gltf)
-    summary = {"ATTRIBUTES": 0, "TRIANGLES": 0, "INDICES": 0, "uncompressed": 0, "bytes": len(binary)}
-    encoded = {}  # view index -> (mode, stride, count, compressed bytes, raw length)
+    filtered_views = _filtered_views(gltf, uses) if filters else {}
+    summary = {"ATTRIBUTES": 0, "TRIANGLES": 0, "INDICES": 0, "EXPONENTIAL": 0, "uncompressed": 0,
+               "bytes": len(binary)}
+    encoded = {}  # view index -> (mode, stride, count, compressed bytes, raw length, filter)
     for index, view in enumerate(views):
         use = uses.get(index)
         if use is None or use.other or view.get("buffer", 0) != 0:
@@ -78,6 +104,13 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size") -> tuple[d
         start = int(view.get("byteOffset", 0))
         raw = bytes(binary[start: start + int(view["byteLength"])])
         best, best_cost = None, _cost(raw, target)
+        if index in filtered_views:
+            accessor, (filter_mode, bits) = filtered_views[index]
+            candidate = _exponential(raw, accessors[accessor], filter_mode, bits)
+            if candidate is not None:
+                packed, stride, count, decoded = candidate
+                best, best_cost = ("ATTRIBUTES", stride, count, packed, len(raw), "EXPONENTIAL", accessor, decoded), \
+                    _cost(packed, target)
         for mode, stride, data in _candidates(view, raw, use, accessors, triangles):
             count = len(data) // stride
             try:
@@ -89,7 +122,7 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size") -> tuple[d
                 continue  # the triangle codec rotated a triangle: not this mode
             cost = _cost(packed, target)
             if cost < best_cost:
-                best, best_cost = (mode, stride, count, packed, len(data)), cost
+                best, best_cost = (mode, stride, count, packed, len(data), None, None, None), cost
         if best is not None:
             encoded[index] = best
     if not encoded:
@@ -102,10 +135,17 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size") -> tuple[d
     for index, view in enumerate(views):
         start = int(view.get("byteOffset", 0))
         if index in encoded:
-            mode, stride, count, packed, length = encoded[index]
+            mode, stride, count, packed, length, filter_name, accessor, decoded = encoded[index]
             out.extend(b"\0" * (-len(out) % 4))
             ext = {"buffer": 0, "byteOffset": len(out), "byteLength": len(packed), "byteStride": stride,
                    "mode": mode, "count": count}
+            if filter_name:
+                ext["filter"] = filter_name
+                summary[filter_name] += 1
+                acc = accessors[accessor]
+                if "min" in acc and "max" in acc:  # the bounds of what readers decode
+                    acc["min"] = [float(x) for x in decoded.min(axis=0)]
+                    acc["max"] = [float(x) for x in decoded.max(axis=0)]
             out.extend(packed)
             fallback_offset = fallback_length + (start % 16 - fallback_length % 16) % 16
             view["buffer"] = 1
@@ -154,6 +194,58 @@ class ViewUse:
         sizes = {COMPONENT_SIZES.get(accessors[a].get("componentType"), 0) * TYPE_SIZES.get(accessors[a].get("type"), 0)
                  for a in self.accessors}
         return sizes.pop() if len(sizes) == 1 else None
+
+
+def _filtered_views(gltf: dict, uses: dict) -> dict[int, tuple[int, tuple[str, int]]]:
+    """bufferView -> (its accessor, EXPONENTIAL mode and bits) for the vertex attributes of :data:`EXPONENTIAL_BITS`
+    that are float32, not normalized, not sparse and alone in a tightly packed view."""
+    accessors = gltf.get("accessors") or []
+    views = gltf.get("bufferViews") or []
+    found = {}
+    for mesh in gltf.get("meshes") or []:
+        for prim in mesh.get("primitives") or []:
+            for name, a in (prim.get("attributes") or {}).items():
+                if name not in EXPONENTIAL_BITS or not isinstance(a, int) or not 0 <= a < len(accessors):
+                    continue
+                acc = accessors[a]
+                view = acc.get("bufferView")
+                if (not isinstance(view, int) or acc.get("componentType") != 5126 or acc.get("normalized")
+                        or acc.get("sparse") or acc.get("byteOffset", 0) or acc.get("type") not in TYPE_SIZES):
+                    continue
+                use = uses.get(view)
+                element = 4 * TYPE_SIZES[acc["type"]]
+                if (use is None or use.other or use.accessors != [a] or views[view].get("byteStride", element) != element
+                        or int(views[view]["byteLength"]) != element * int(acc.get("count", 0)) or element % 4):
+                    continue
+                choice = EXPONENTIAL_BITS[name]
+                if found.get(view, (a, choice))[1] != choice:  # one view under two names that disagree: lossless
+                    found[view] = (a, None)
+                else:
+                    found[view] = (a, choice)
+    return {view: entry for view, entry in found.items() if entry[1] is not None}
+
+
+def _exponential(raw: bytes, accessor: dict, filter_mode: str, bits: int):
+    """A view of float32 vectors through the EXPONENTIAL filter and the vertex codec: (compressed bytes, byteStride,
+    count, decoded values), or None when a value is not finite or the decoded values miss the bound."""
+    import meshopt
+    import numpy as np
+
+    width = TYPE_SIZES[accessor["type"]]
+    values = np.frombuffer(raw, np.float32).reshape(-1, width)
+    if not len(values) or not np.isfinite(values).all():
+        return None
+    rows = meshopt.encode_filter_exp(np.ascontiguousarray(values), bits, filter_mode)
+    stride = 4 * width
+    packed = meshopt.encode_gltf_buffer(np.ascontiguousarray(rows).view(np.uint8).reshape(len(values), stride),
+                                        "ATTRIBUTES", 0)
+    decoded = np.ascontiguousarray(meshopt.decode_gltf_buffer(packed, len(values), stride, "ATTRIBUTES",
+                                                              "EXPONENTIAL")).view(np.float32).reshape(values.shape)
+    scale = np.abs(values) if filter_mode == "Separate" else np.abs(values).max(axis=1, keepdims=True)
+    bound = scale * 2.0 ** (1 - bits) + 1e-30  # the module doc's precision, checked on every value
+    if not (np.isfinite(decoded).all() and (np.abs(decoded.astype(np.float64) - values) <= bound).all()):
+        return None
+    return packed, stride, len(values), decoded
 
 
 def _view_uses(gltf: dict) -> dict[int, ViewUse]:
