@@ -11,7 +11,8 @@ The method follows the extension's specification (Khronos glTF, extensions/2.0/V
   smallest once deflated (``meshopt-gzip``, for servers that gzip); when no encoding beats the plain bytes the view
   stays as it is:
   - ``ATTRIBUTES`` (vertex codec, version 0 as the extension requires) with the view's ``byteStride``, or the
-    accessors' element size when it is a multiple of 4, or the bytes as 4-byte rows (any data, e.g. 16-bit scalars);
+    accessors' element size when it is a multiple of 4, or the bytes as 4-byte rows (any data, e.g. 16-bit scalars
+    and indices, zero-padded to a whole last row, which the view's ``byteLength`` then covers);
   - ``TRIANGLES`` (index codec) for a primitive's triangle-list indices. The codec may rotate a triangle's corners
     (same winding), which would move per-corner data (edge-visibility bits, wireframe masks) off their edges, so it
     is kept only where the decoded indices equal the stored ones;
@@ -281,7 +282,8 @@ def _triangle_index_accessors(gltf: dict) -> set:
 
 def _candidates(view: dict, raw: bytes, use: ViewUse, accessors: list, triangles: set):
     """(mode, byteStride, data) to try for one view: the data is ``raw``, zero-padded to whole rows of a declared
-    byteStride (glTF lets the last element of a strided view end short; the extension needs whole rows)."""
+    byteStride (glTF lets the last element of a strided view end short; the extension needs whole rows) or of 4
+    bytes (the vertex codec's smallest row); the view's ``byteLength`` then covers the padding."""
     stride = view.get("byteStride")
     if stride:
         if stride % 4 == 0 and stride <= MAX_ATTRIBUTE_STRIDE:
@@ -298,6 +300,8 @@ def _candidates(view: dict, raw: bytes, use: ViewUse, accessors: list, triangles
     for rows in dict.fromkeys((element, 4)):
         if rows and rows % 4 == 0 and rows <= MAX_ATTRIBUTE_STRIDE and len(raw) % rows == 0:
             yield "ATTRIBUTES", rows, raw
+    if len(raw) % 4:  # 8 and 16-bit data of any length (indices, edge masks): 4-byte rows, the last one zero-padded
+        yield "ATTRIBUTES", 4, raw + b"\0" * (-len(raw) % 4)
 
 
 def _rows(data: bytes, mode: str, stride: int):
