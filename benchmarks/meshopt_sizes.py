@@ -1,5 +1,5 @@
-"""File sizes of a full bake: plain GLB vs ``--compress meshopt`` and ``meshopt-gzip`` (baker's lossless
-EXT_meshopt_compression), each also gzipped (what an HTTP server sends), and optionally gltfpack's output of the plain file (what it keeps).
+"""File sizes of a full bake: plain GLB vs ``--compress meshopt``, ``meshopt-gzip`` (baker's EXT_meshopt_compression,
+float vertex attributes through the EXPONENTIAL filter, so not exact) and ``meshopt-lossless``, each also gzipped (what an HTTP server sends), and optionally gltfpack's output of the plain file (what it keeps).
 
     python benchmarks/meshopt_sizes.py [--mesh PATH ...] [--gltfpack PATH]
 
@@ -84,7 +84,7 @@ def main(argv=None) -> int:
             base = {"mesh": mesh.name, "input": mesh.stat().st_size}
             rows.append({**base, "output": "plain", "bytes": plain.stat().st_size, "gzip": gz(plain),
                          "accessor_share": round(accessor_share(glb_json(plain)), 3), "kept": kept_bake(glb_json(plain))})
-            for compress in ("meshopt", "meshopt-gzip"):
+            for compress in ("meshopt", "meshopt-gzip", "meshopt-lossless"):
                 start = time.perf_counter()
                 save(asset, packed, compress=compress)
                 seconds = time.perf_counter() - start
