@@ -26,7 +26,7 @@ import baker
 from baker.gltf.compression import decompress
 from baker.gltf.document import GltfDocument
 from baker.gltf.images import read_image
-from baker.gltf.meshopt_encode import EXPONENTIAL_BITS, EXTENSION, compress_meshopt
+from baker.gltf.meshopt_encode import EXPONENTIAL_BITS, EXTENSION, OCTAHEDRAL_BITS, compress_meshopt
 from baker.pipeline import save
 from baker.validate import validate_file
 from browser import BACKGROUND_RGB, SPOT, SPOT_PAGE_OPTIONS, VIEWER, build_viewer, require_tools, serve, shoot
@@ -61,11 +61,12 @@ def test_each_target_is_smallest_where_it_aims(files):
     assert _gzip(gzipped) < min(_gzip(plain), _gzip(small))
 
 
-def _filtered_accessors(gltf: dict) -> dict[int, str]:
-    """accessor -> attribute name, for the accessors whose bufferView is stored with the EXPONENTIAL filter."""
-    filtered = {i for i, v in enumerate(gltf["bufferViews"])
-                if v.get("extensions", {}).get(EXTENSION, {}).get("filter") == "EXPONENTIAL"}
-    return {a: name for mesh in gltf["meshes"] for prim in mesh["primitives"] for name, a in prim["attributes"].items()
+def _filtered_accessors(gltf: dict) -> dict[int, tuple[str, str]]:
+    """accessor -> (attribute name, filter), for the accessors whose bufferView is stored with a filter."""
+    filtered = {i: v["extensions"][EXTENSION]["filter"] for i, v in enumerate(gltf["bufferViews"])
+                if "filter" in v.get("extensions", {}).get(EXTENSION, {})}
+    return {a: (name, filtered[gltf["accessors"][a]["bufferView"]]) for mesh in gltf["meshes"]
+            for prim in mesh["primitives"] for name, a in prim["attributes"].items()
             if gltf["accessors"][a].get("bufferView") in filtered}
 
 
@@ -88,26 +89,36 @@ def test_compressed_bake_is_clean_and_decodes_to_the_same_bytes(files, name):
     filtered = _filtered_accessors(raw)
     if name == "meshopt-lossless":
         assert "filter" not in json.dumps(raw["bufferViews"])  # lossless: no filter
-    else:  # every baked float attribute the spot has, and nothing else
-        assert sorted(set(filtered.values())) == sorted(EXPONENTIAL_BITS), filtered
+    else:  # every baked float attribute the spot has, and nothing else; unit vectors octahedral
+        assert sorted({n for n, _ in filtered.values()}) == sorted(EXPONENTIAL_BITS), filtered
+        assert {n for n, f in filtered.values() if f == "OCTAHEDRAL"} == set(OCTAHEDRAL_BITS), filtered
+        assert "KHR_mesh_quantization" in raw["extensionsRequired"]  # NORMAL as normalized SHORT
     # the bake intact: every extension and accessor where it was, with the same bytes but for the filtered ones
-    for key in ("meshes", "materials", "nodes", "extensionsUsed"):
+    for key in ("meshes", "materials", "nodes"):
         assert a.json.get(key) == b.json.get(key), key
+    assert [e for e in b.json["extensionsUsed"] if e != "KHR_mesh_quantization"] == a.json["extensionsUsed"]
     plain_bytes, packed_bytes = _accessor_bytes(a), _accessor_bytes(b)
     assert len(plain_bytes) > 30 and any("BAKER_" in name for name in a.json["extensionsUsed"])
     for i, (before, after) in enumerate(zip(a.json["accessors"], b.json["accessors"])):
         if i not in filtered:
             assert before == after and plain_bytes[i] == packed_bytes[i], i
             continue
-        # float32 still, each value within its stated bound of the plain one, the bounds those of the decoded values
-        assert {k: v for k, v in before.items() if k not in ("min", "max")} == \
-            {k: v for k, v in after.items() if k not in ("min", "max")}
+        # each value within its stated bound of the plain one, the bounds those of the decoded values
+        attribute, filter_name = filtered[i]
+        kept = ("min", "max", "componentType", "normalized") if filter_name == "OCTAHEDRAL" else ("min", "max")
+        assert {k: v for k, v in before.items() if k not in kept} == {k: v for k, v in after.items() if k not in kept}
         original, decoded = np.asarray(a.accessor(i), np.float64), np.asarray(b.accessor(i), np.float64)
-        mode, bits = EXPONENTIAL_BITS[filtered[i]]
+        if filter_name == "OCTAHEDRAL":  # normalized SHORT, unit length
+            assert after["componentType"] == 5122 and after["normalized"] and b.accessor(i).dtype == np.int16
+            unit = decoded / 32767.0
+            assert np.abs(unit - original).max() <= 2.0 ** (2 - OCTAHEDRAL_BITS[attribute]), attribute
+            assert np.abs(np.linalg.norm(unit, axis=1) - 1.0).max() <= 1e-4, attribute
+            continue
+        mode, bits = EXPONENTIAL_BITS[attribute]
         scale = np.abs(original) if mode == "Separate" else np.abs(original).max(axis=1, keepdims=True)
         error = np.abs(decoded - original)
-        assert (error <= scale * 2.0 ** (1 - bits) + 1e-30).all(), filtered[i]
-        assert 0 < error.max() and b.accessor(i).dtype == np.float32, filtered[i]  # filtered: changed, still floats
+        assert (error <= scale * 2.0 ** (1 - bits) + 1e-30).all(), attribute
+        assert 0 < error.max() and b.accessor(i).dtype == np.float32, attribute  # filtered: changed, still floats
         if "min" in after:
             assert np.allclose(after["min"], decoded.min(axis=0)) and np.allclose(after["max"], decoded.max(axis=0))
 
@@ -210,7 +221,8 @@ def test_recipe_compress_key(tmp_path):
     assert report["baked"] == ["out/models/ball.glb"] and not report["failed"], report
     out = tmp_path / "out" / "models" / "ball.glb"
     gltf = json.loads(out.read_bytes()[20: 20 + int.from_bytes(out.read_bytes()[12:16], "little")])
-    assert gltf["extensionsRequired"] == [EXTENSION] and "BAKER_edges" in gltf["extensionsUsed"]
+    assert gltf["extensionsRequired"] == [EXTENSION, "KHR_mesh_quantization"]  # octahedral normals
+    assert "BAKER_edges" in gltf["extensionsUsed"]
     assert validate_file(out, khronos=False)["issues"]["numErrors"] == 0
     (tmp_path / "baker.toml").write_text(recipe.replace('compress = "meshopt"', 'compress = "meshopt"\nformat = "usda"'))
     with pytest.raises(BakerError, match="compress"):

@@ -26,7 +26,11 @@ The method follows the extension's specification (Khronos glTF, extensions/2.0/V
   decoded and checked against that bound before it is kept, and the accessor's ``min``/``max`` follow the decoded
   values. Unit vectors keep 12 bits (length within 4e-4 of 1, under ``baker validate``'s 1e-3), positions and the
   unwrap 16 bits, the principal curvatures share their exponent so k1 >= k2 holds exactly.
-  OCTAHEDRAL and QUATERNION are not used (they decode to normalized integers). No vertex or index reordering either
+- OCTAHEDRAL filter for ``NORMAL`` and ``_PRINCIPAL_DIRECTION`` (:data:`OCTAHEDRAL_BITS`) where every vector is unit
+  length: they decode to normalized SHORT VEC3 in 8-byte rows, which ``KHR_mesh_quantization`` allows for NORMAL
+  (the file then requires it) and every baker reader takes for its attributes (c / 32767); each component within
+  2^(2 - bits) of the float, the length within 1e-4 of 1. ``_OUTLINE_NORMAL`` is zero at open boundaries, so it
+  keeps the exponential filter. QUATERNION is not used. No vertex or index reordering either
   (it would renumber what the bake indexes).
 - The extension is *required* and the uncompressed bufferViews point into a fallback buffer that has a size and no
   data (``"fallback": true``), the smallest file: three.js's GLTFLoader (with ``setMeshoptDecoder``) and
@@ -53,8 +57,8 @@ COMPRESSIONS = ("none", "meshopt", "meshopt-gzip", "meshopt-lossless")
 # vertex attribute -> (EXPONENTIAL filter mode, mantissa bits): the precision each baked quantity keeps (module doc)
 EXPONENTIAL_BITS = {
     "POSITION": ("SharedVector", 16),  # 3.1e-5 of the vertex's largest coordinate
-    "NORMAL": ("SharedVector", 12),  # unit vectors: 2.4e-4 per component
-    "_OUTLINE_NORMAL": ("SharedVector", 12),
+    "NORMAL": ("SharedVector", 12),  # unit vectors: 2.4e-4 per component (where OCTAHEDRAL does not apply)
+    "_OUTLINE_NORMAL": ("SharedVector", 12),  # zero on open boundaries: no octahedral form
     "_PRINCIPAL_DIRECTION": ("SharedVector", 12),
     "TEXCOORD_0": ("SharedVector", 16),  # the unwrap in [0, 1]: 1.5e-5, 1/32 texel of a 2048 texture
     "TEXCOORD_1": ("SharedVector", 14),  # the stroke set's coordinates (tam): 1.2e-4 of the larger one
@@ -62,6 +66,12 @@ EXPONENTIAL_BITS = {
     "_CURVATURE": ("Separate", 16),  # H: 3.1e-5 of itself, so H = (k1 + k2) / 2 within 1e-4 of the largest k
     "_THICKNESS": ("Separate", 12),  # 2.4e-4 of itself (the thickness texture is 8-bit)
 }
+# vertex attribute -> bits of the OCTAHEDRAL filter, for views whose every vector is unit length (within 1e-3): it
+# decodes to normalized SHORT VEC3 in 8-byte rows (KHR_mesh_quantization), each component within 2^(2 - bits) of
+# the float (1e-3 at 12 bits, 0.06 degrees), the length within 1e-4 of 1
+OCTAHEDRAL_BITS = {"NORMAL": 12, "_PRINCIPAL_DIRECTION": 12}
+QUANTIZATION = "KHR_mesh_quantization"
+SHORT = 5122
 GZIP_LEVEL = 6  # deflate's default, what web servers use
 
 
@@ -95,7 +105,7 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size",
     uses = _view_uses(gltf)
     triangles = _triangle_index_accessors(gltf)
     filtered_views = _filtered_views(gltf, uses) if filters else {}
-    summary = {"ATTRIBUTES": 0, "TRIANGLES": 0, "INDICES": 0, "EXPONENTIAL": 0, "uncompressed": 0,
+    summary = {"ATTRIBUTES": 0, "TRIANGLES": 0, "INDICES": 0, "EXPONENTIAL": 0, "OCTAHEDRAL": 0, "uncompressed": 0,
                "bytes": len(binary)}
     encoded = {}  # view index -> (mode, stride, count, compressed bytes, raw length, filter)
     for index, view in enumerate(views):
@@ -106,12 +116,19 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size",
         raw = bytes(binary[start: start + int(view["byteLength"])])
         best, best_cost = None, _cost(raw, target)
         if index in filtered_views:
-            accessor, (filter_mode, bits) = filtered_views[index]
-            candidate = _exponential(raw, accessors[accessor], filter_mode, bits)
+            accessor, name = filtered_views[index]
+            candidate = _octahedral(raw, accessors[accessor], OCTAHEDRAL_BITS[name]) if name in OCTAHEDRAL_BITS \
+                else None
             if candidate is not None:
                 packed, stride, count, decoded = candidate
-                best, best_cost = ("ATTRIBUTES", stride, count, packed, len(raw), "EXPONENTIAL", accessor, decoded), \
-                    _cost(packed, target)
+                best, best_cost = ("ATTRIBUTES", stride, count, packed, count * stride, "OCTAHEDRAL", accessor,
+                                   decoded), _cost(packed, target)
+            else:
+                candidate = _exponential(raw, accessors[accessor], *EXPONENTIAL_BITS[name])
+                if candidate is not None:
+                    packed, stride, count, decoded = candidate
+                    best, best_cost = ("ATTRIBUTES", stride, count, packed, len(raw), "EXPONENTIAL", accessor,
+                                       decoded), _cost(packed, target)
         for mode, stride, data in _candidates(view, raw, use, accessors, triangles):
             count = len(data) // stride
             try:
@@ -133,6 +150,7 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size",
 
     out = bytearray()
     fallback_length = 0
+    quantized = False
     for index, view in enumerate(views):
         start = int(view.get("byteOffset", 0))
         if index in encoded:
@@ -144,9 +162,13 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size",
                 ext["filter"] = filter_name
                 summary[filter_name] += 1
                 acc = accessors[accessor]
-                if "min" in acc and "max" in acc:  # the bounds of what readers decode
-                    acc["min"] = [float(x) for x in decoded.min(axis=0)]
-                    acc["max"] = [float(x) for x in decoded.max(axis=0)]
+                if filter_name == "OCTAHEDRAL":  # decodes to normalized 16-bit integers in 8-byte rows
+                    acc["componentType"], acc["normalized"] = SHORT, True
+                    view["byteStride"] = stride
+                    quantized = True
+                if "min" in acc and "max" in acc:  # the bounds of what readers decode (stored values: the spec)
+                    acc["min"] = [x.item() for x in decoded.min(axis=0)]
+                    acc["max"] = [x.item() for x in decoded.max(axis=0)]
             out.extend(packed)
             fallback_offset = fallback_length + (start % 16 - fallback_length % 16) % 16
             view["buffer"] = 1
@@ -169,8 +191,9 @@ def compress_meshopt(gltf: dict, binary: bytes, target: str = "size",
     buffers.append({"byteLength": fallback_length, "extensions": {EXTENSION: {"fallback": True}}})
     for key in ("extensionsUsed", "extensionsRequired"):
         names = gltf.setdefault(key, [])
-        if EXTENSION not in names:
-            names.append(EXTENSION)
+        for name in (EXTENSION, QUANTIZATION) if quantized else (EXTENSION,):
+            if name not in names:
+                names.append(name)
     summary["compressed"] = len(out)
     return gltf, out, summary
 
@@ -197,8 +220,8 @@ class ViewUse:
         return sizes.pop() if len(sizes) == 1 else None
 
 
-def _filtered_views(gltf: dict, uses: dict) -> dict[int, tuple[int, tuple[str, int]]]:
-    """bufferView -> (its accessor, EXPONENTIAL mode and bits) for the vertex attributes of :data:`EXPONENTIAL_BITS`
+def _filtered_views(gltf: dict, uses: dict) -> dict[int, tuple[int, str]]:
+    """bufferView -> (its accessor, its attribute name) for the vertex attributes of :data:`EXPONENTIAL_BITS`
     that are float32, not normalized, not sparse and alone in a tightly packed view."""
     accessors = gltf.get("accessors") or []
     views = gltf.get("bufferViews") or []
@@ -218,11 +241,10 @@ def _filtered_views(gltf: dict, uses: dict) -> dict[int, tuple[int, tuple[str, i
                 if (use is None or use.other or use.accessors != [a] or views[view].get("byteStride", element) != element
                         or int(views[view]["byteLength"]) != element * int(acc.get("count", 0)) or element % 4):
                     continue
-                choice = EXPONENTIAL_BITS[name]
-                if found.get(view, (a, choice))[1] != choice:  # one view under two names that disagree: lossless
+                if found.get(view, (a, name))[1] != name:  # one view under two names: lossless
                     found[view] = (a, None)
                 else:
-                    found[view] = (a, choice)
+                    found[view] = (a, name)
     return {view: entry for view, entry in found.items() if entry[1] is not None}
 
 
@@ -247,6 +269,32 @@ def _exponential(raw: bytes, accessor: dict, filter_mode: str, bits: int):
     if not (np.isfinite(decoded).all() and (np.abs(decoded.astype(np.float64) - values) <= bound).all()):
         return None
     return packed, stride, len(values), decoded
+
+
+def _octahedral(raw: bytes, accessor: dict, bits: int):
+    """A view of float32 unit VEC3 through the OCTAHEDRAL filter (normalized SHORT in 8-byte rows) and the vertex
+    codec: (compressed bytes, byteStride, count, decoded int16 VEC3), or None when a vector is not unit length (a
+    zero outline normal at a boundary) or the decoded values miss :data:`OCTAHEDRAL_BITS`' bound."""
+    import meshopt
+    import numpy as np
+
+    if accessor.get("type") != "VEC3":
+        return None
+    values = np.frombuffer(raw, np.float32).reshape(-1, 3)
+    if not len(values) or not np.isfinite(values).all() or \
+            (np.abs(np.linalg.norm(values.astype(np.float64), axis=1) - 1.0) > 1e-3).any():
+        return None
+    padded = np.zeros((len(values), 4), np.float32)
+    padded[:, :3] = values
+    rows = np.ascontiguousarray(meshopt.encode_filter_oct(padded, 8, bits)).view(np.uint8).reshape(len(values), 8)
+    packed = meshopt.encode_gltf_buffer(rows, "ATTRIBUTES", 0)
+    decoded = np.ascontiguousarray(meshopt.decode_gltf_buffer(packed, len(values), 8, "ATTRIBUTES", "OCTAHEDRAL"))
+    decoded = decoded.view(np.int16).reshape(len(values), 4)[:, :3]
+    unit = decoded.astype(np.float64) / 32767.0
+    if (np.abs(unit - values).max() > 2.0 ** (2 - bits)
+            or np.abs(np.linalg.norm(unit, axis=1) - 1.0).max() > 1e-4):
+        return None
+    return packed, 8, len(values), decoded
 
 
 def _view_uses(gltf: dict) -> dict[int, ViewUse]:

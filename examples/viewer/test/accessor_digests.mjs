@@ -22,11 +22,13 @@ for (const file of process.argv.slice(2)) {
 	console.log(JSON.stringify({ file, accessors }));
 }
 
-// an interleaved accessor (a strided bufferView) as its own tightly packed elements
+// an interleaved accessor (a strided bufferView) as its own tightly packed elements, as stored (getComponent would
+// denormalize a normalized one)
 function deinterleave(attribute) {
 	const out = new attribute.array.constructor(attribute.count * attribute.itemSize);
+	const { array, stride } = attribute.data;
 	for (let i = 0; i < attribute.count; i++) {
-		for (let c = 0; c < attribute.itemSize; c++) out[i * attribute.itemSize + c] = attribute.getComponent(i, c);
+		for (let c = 0; c < attribute.itemSize; c++) out[i * attribute.itemSize + c] = array[i * stride + attribute.offset + c];
 	}
 	return out;
 }
