@@ -156,18 +156,24 @@ def add_tables(doc, tables, dual, alpha: float) -> int:
     for i, entry in enumerate(sets):
         if all(entry.get(k) == v for k, v in key.items()):
             return i
-    m, n, d = tables.longitudinal, tables.azimuthal, dual.table
+    entry = table_entry(doc, key, tables.longitudinal, tables.azimuthal, dual.table, tables.slices, tables.n_theta,
+                        dual.alpha_f, dual.beta_f)
+    sets.append(entry)
+    doc.use_extension(NAME)
+    return len(sets) - 1
+
+
+def table_entry(doc, key: dict, m, n, d, slices: int, theta_size: int, alpha_f: float, beta_f: float) -> dict:
+    """A root table set: ``key`` (betaM, betaN, eta, alpha) and the three tables as bufferViews of ``doc``."""
+    d = np.asarray(d).reshape(np.shape(d)[0], np.shape(d)[1], -1)
     entry = dict(key)
     entry["longitudinal"] = {"bufferView": doc.add_buffer_view(table_texels(m)), "width": int(m.shape[1]),
                              "height": int(m.shape[0])}
     entry["azimuthal"] = {"bufferView": doc.add_buffer_view(table_texels(n)), "width": int(n.shape[1]),
-                          "height": int(n.shape[0]), "slices": int(tables.slices), "thetaSize": int(tables.n_theta)}
-    entry["dualScattering"] = {"bufferView": doc.add_buffer_view(table_texels(d.reshape(d.shape[0], d.shape[1], 4))),
-                               "width": int(d.shape[1]), "height": int(d.shape[0]),
-                               "alphaF": float(dual.alpha_f), "betaF": float(dual.beta_f)}
-    sets.append(entry)
-    doc.use_extension(NAME)
-    return len(sets) - 1
+                          "height": int(n.shape[0]), "slices": int(slices), "thetaSize": int(theta_size)}
+    entry["dualScattering"] = {"bufferView": doc.add_buffer_view(table_texels(d)), "width": int(d.shape[1]),
+                               "height": int(d.shape[0]), "alphaF": float(alpha_f), "betaF": float(beta_f)}
+    return entry
 
 
 _TABLE_CACHE: dict = {}  # (beta_m, beta_n, eta, alpha) -> (HairTables, DualScatteringTable): one bake per setting
@@ -376,3 +382,58 @@ def check_material_attributes(doc, material: int, attributes: dict, issues) -> N
                     issues.error("BAKER_HAIR_SHADING_RANGE", f"'{name}' must be in [{lo}, {hi if hi is not None else 'inf'}"
                                  f"{']' if hi is not None else ')'}", pointer("meshes", m, "primitives", p,
                                                                               "attributes", name))
+
+
+# --------------------------------------------------------------------------------------------------------------- USD
+def usd_table_data(doc, index: int) -> dict:
+    """What a stage carries of root table set ``index`` (``baker:hair_shading:tableData:*``): the set's numbers and
+    each table's texels (RGBA, row 0 first) with its size."""
+    entry = doc.json["extensions"][NAME]["tables"][index]
+    out = {k: entry[k] for k in ("betaM", "betaN", "eta", "alpha")}
+    for key in TABLE_KEYS:
+        spec = {k: v for k, v in entry[key].items() if k != "bufferView"}
+        spec["texels"] = read_table(doc, entry, key)
+        out[key] = spec
+    return out
+
+
+def write_usd_table_data(prim, data: dict) -> None:
+    """``data`` (:func:`usd_table_data`) as custom attributes of a material prim: ``half[]`` texels, the rest
+    typed as every other extension field."""
+    from pxr import Sdf, Vt
+
+    from baker.gltf.usd import custom_attributes
+
+    ns = "baker:hair_shading:tableData"
+    custom_attributes(prim, ns, {k: v for k, v in data.items() if k not in TABLE_KEYS})
+    for key in TABLE_KEYS:
+        spec = dict(data[key])
+        texels = np.asarray(spec.pop("texels"), np.float16).reshape(-1)
+        prim.CreateAttribute(f"{ns}:{key}:texels", Sdf.ValueTypeNames.HalfArray, custom=True).Set(
+            Vt.HalfArray.FromNumpy(texels))
+        custom_attributes(prim, f"{ns}:{key}", spec)
+
+
+def from_usd(doc, material: int, params: dict) -> None:
+    """A stage read back (:mod:`baker.readers.usd_baked`): the material's ``tableData`` becomes a root table set
+    (bufferViews, once per file) and ``tables`` its index."""
+    data = params.pop("tableData", None)
+    if not isinstance(data, dict):
+        return
+    key = {k: float(data[k]) for k in ("betaM", "betaN", "eta", "alpha")}
+    root = doc.json.setdefault("extensions", {}).setdefault(NAME, {"tables": []})
+    for i, entry in enumerate(root["tables"]):
+        if all(entry.get(k) == v for k, v in key.items()):
+            params["tables"] = i
+            return
+    arrays = {}
+    for name in TABLE_KEYS:
+        spec = data[name]
+        arrays[name] = np.asarray(spec["texels"], np.float32).reshape(int(spec["height"]), int(spec["width"]),
+                                                                      TABLE_CHANNELS)
+    azimuthal, dual = data["azimuthal"], data["dualScattering"]
+    root["tables"].append(table_entry(doc, key, arrays["longitudinal"], arrays["azimuthal"],
+                                      arrays["dualScattering"], int(azimuthal["slices"]),
+                                      int(azimuthal["thetaSize"]), float(dual["alphaF"]), float(dual["betaF"])))
+    doc.use_extension(NAME)
+    params["tables"] = len(root["tables"]) - 1
