@@ -235,7 +235,10 @@ def strand_occlusion(positions: np.ndarray, widths: np.ndarray, *, rays: int = 3
     seg = float(np.median(np.linalg.norm(e, axis=1))) if len(e) else 1.0
     lo = points.min(0) - radius.max(initial=0.0) - 1e-6
     hi = points.max(0) + radius.max(initial=0.0) + 1e-6
-    cell = max(CELL_SEGMENTS * seg, float((hi - lo).max()) / 256.0, 1e-9)
+    # and at least a tube's diameter: a groom of wide strands (TressFX: widths from thickness scales) must not bin
+    # each capsule into thousands of cells
+    cell = max(CELL_SEGMENTS * seg, 2.0 * float(np.percentile(radius, 99)) if len(radius) else 0.0,
+               float((hi - lo).max()) / 256.0, 1e-9)
     dims = np.maximum(1, np.ceil((hi - lo) / cell).astype(np.int64))
     starts, items = bin_segments(a, a + e, radius, lo, cell, dims)
     directions = ray_directions(len(points), int(rays), seed)

@@ -33,25 +33,38 @@ def strand_attributes(options, strand_sets, root_width: float, tip_width: float,
             melanin = np.stack([options.eumelanin * factor, options.pheomelanin * factor], -1)
             attrs[MELANIN] = np.repeat(melanin, s.positions.shape[1], axis=0).astype(np.float32)
     if options.occlusion_rays > 0 and sum(counts):
-        from baker.techniques.hair_shading.occlusion import strand_occlusion
-
         positions = np.concatenate([np.asarray(s.positions, np.float64) for s in strand_sets])
         widths = np.concatenate([strand_widths(s.positions, s.width_scale, root_width, tip_width)
                                  for s in strand_sets])
-        visibility, positive, negative, info = strand_occlusion(positions, widths, rays=options.occlusion_rays,
-                                                                scalp=scalp, seed=seed)
-        v = positions.shape[1]
-        bounds = np.cumsum([0] + counts) * v
-        for i, attrs in enumerate(out):
-            part = slice(bounds[i], bounds[i + 1])
-            attrs[OCCLUSION] = visibility[part]
-            attrs[FIBRES_POSITIVE] = positive[part]
-            attrs[FIBRES_NEGATIVE] = negative[part]
-        kwargs["occlusion"] = {"attribute": OCCLUSION, "rays": info["rays"], "distance": info["distance"],
-                               "scalp": info["scalp"]}
-        kwargs["fibreCount"] = {"basis": "ambientCube", "positive": FIBRES_POSITIVE, "negative": FIBRES_NEGATIVE,
-                                "rays": info["rays"], "distance": info["countDistance"]}
+        if plausible_widths(positions, widths):
+            attach_occlusion(out, kwargs, options, positions, widths, counts, scalp, seed)
     return out, kwargs
+
+
+def plausible_widths(positions: np.ndarray, widths: np.ndarray) -> bool:
+    """Whether the widths are fibre widths: a median width above the median segment length is a scale (TressFX's
+    thickness read as width), and tubes that wide would occlude everything (and cost a ray per capsule)."""
+    segments = np.linalg.norm(np.diff(positions, axis=1), axis=2)
+    return bool(np.median(widths) <= np.median(segments))
+
+
+def attach_occlusion(out, kwargs, options, positions, widths, counts, scalp, seed) -> None:
+    """The occlusion and fibre counts into each set's attributes ``out``, what they record into ``kwargs``."""
+    from baker.techniques.hair_shading.occlusion import strand_occlusion
+
+    visibility, positive, negative, info = strand_occlusion(positions, widths, rays=options.occlusion_rays,
+                                                            scalp=scalp, seed=seed)
+    v = positions.shape[1]
+    bounds = np.cumsum([0] + counts) * v
+    for i, attrs in enumerate(out):
+        part = slice(bounds[i], bounds[i + 1])
+        attrs[OCCLUSION] = visibility[part]
+        attrs[FIBRES_POSITIVE] = positive[part]
+        attrs[FIBRES_NEGATIVE] = negative[part]
+    kwargs["occlusion"] = {"attribute": OCCLUSION, "rays": info["rays"], "distance": info["distance"],
+                           "scalp": info["scalp"]}
+    kwargs["fibreCount"] = {"basis": "ambientCube", "positive": FIBRES_POSITIVE, "negative": FIBRES_NEGATIVE,
+                            "rays": info["rays"], "distance": info["countDistance"]}
 
 
 def hair_material(doc, options, strand_sets, root_width: float, tip_width: float, scalp=None, seed: int = 0):
