@@ -47,8 +47,10 @@ def add_hair_node(doc: GltfDocument, mesh: int, emitter_mesh: int | None, name: 
 
 
 def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set: str, result: HairResult,
-                           material: int, guide_primitive: int | None = None) -> dict:
-    """The primitive dict (not yet attached to a mesh) for one strand set."""
+                           material: int, guide_primitive: int | None = None, extra_attributes: dict | None = None
+                           ) -> dict:
+    """The primitive dict (not yet attached to a mesh) for one strand set; ``extra_attributes``: more per-vertex
+    custom attributes ({name: values}, the hair material's, :mod:`baker.techniques.hair_shading.strands`)."""
     from baker.techniques.hair.kernel import ribbon_indices, strand_tangents
 
     s, v = strands.count, strands.vertices
@@ -60,6 +62,8 @@ def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set:
     attributes = {"POSITION": doc.add_accessor(positions, min_max=True)}
     add_vertex_attribute(doc, None, attributes, TANGENT, tangents)  # a mesh of its own: the strands' widths only
     add_vertex_attribute(doc, None, attributes, PARAM, param)
+    for name, values in (extra_attributes or {}).items():
+        add_vertex_attribute(doc, None, attributes, name, values)
     prim = {
         "attributes": attributes,
         "indices": doc.add_accessor(lines, target=TARGET_ELEMENT_ARRAY_BUFFER),
@@ -89,22 +93,46 @@ def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set:
     return prim
 
 
-def write_hair(doc: GltfDocument, result: HairResult, emitter_mesh: int, color=(0.18, 0.11, 0.06)) -> int:
-    """Add the hair mesh (guides, then children when there are any) and its node; returns the mesh index."""
-    materials = doc.json.setdefault("materials", [])
-    materials.append({"name": "baker_hair", "pbrMetallicRoughness": {
-        "baseColorFactor": [float(c) for c in color] + [1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
-    material = len(materials) - 1
-    prims = [write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material)]
+def write_hair(doc: GltfDocument, result: HairResult, emitter_mesh: int, shading=None, seed: int = 0) -> int:
+    """Add the hair mesh (guides, then children when there are any), its hair material (``BAKER_hair_shading``
+    from ``shading``, a :class:`~baker.techniques.hair_shading.options.HairMaterialOptions`, default when None;
+    the emitter mesh occludes the strands) and its node; returns the mesh index."""
+    from baker.techniques.hair_shading.options import HairMaterialOptions
+    from baker.techniques.hair_shading.strands import hair_material
+
+    sets = [result.guides] + ([result.children] if result.children.count else [])
+    material, extra = hair_material(doc, shading or HairMaterialOptions(), sets, result.root_width,
+                                    result.tip_width, scalp=mesh_triangles(doc, emitter_mesh), seed=seed)
+    prims = [write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material,
+                                    extra_attributes=extra[0])]
     if result.children.count:
         prims.append(write_strand_primitive(doc, result.children, strand_set="children", result=result,
-                                            material=material, guide_primitive=0))
+                                            material=material, guide_primitive=0, extra_attributes=extra[1]))
     meshes = doc.json.setdefault("meshes", [])
     meshes.append({"name": "hair", "primitives": prims})
     mesh = len(meshes) - 1
     add_hair_node(doc, mesh, emitter_mesh, "hair")
     doc.use_extension(NAME)
     return mesh
+
+
+def mesh_triangles(doc: GltfDocument, mesh: int | None):
+    """(vertices, faces) of every triangle primitive of ``mesh`` in its own space (the hair node's, which hangs
+    under the emitter's node), or None: what occludes the strands besides the strands."""
+    meshes = doc.json.get("meshes") or []
+    if mesh is None or not 0 <= mesh < len(meshes):
+        return None
+    vertices, faces, offset = [], [], 0
+    for prim in meshes[mesh].get("primitives") or []:
+        if prim.get("mode", 4) != 4 or "POSITION" not in prim.get("attributes", {}):
+            continue
+        p = np.asarray(doc.accessor(prim["attributes"]["POSITION"]), np.float64).reshape(-1, 3)
+        f = (np.asarray(doc.accessor(prim["indices"]), np.int64).reshape(-1, 3) if "indices" in prim
+             else np.arange(len(p) - len(p) % 3).reshape(-1, 3))
+        vertices.append(p)
+        faces.append(f + offset)
+        offset += len(p)
+    return (np.concatenate(vertices), np.concatenate(faces)) if vertices else None
 
 
 def read_strands(doc: GltfDocument, mesh: int, primitive: int) -> dict:
@@ -344,3 +372,75 @@ def summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
     if hair.root_binding is not None:
         out["rootBindingMesh"] = hair.root_binding["mesh"]
     return out
+
+
+def from_usd_curves(doc: GltfDocument, prim, matrix: np.ndarray) -> dict | None:
+    """A ``BasisCurves`` prim :mod:`baker.techniques.hair.usd` wrote, as the ``BAKER_hair`` LINES primitive it was
+    written from (world transform baked into the points; ``primvars:baker:<name>`` of vertex interpolation as
+    ``_<NAME>`` attributes); None for other curves. Children name primitive 0 (the guides, written first) as their
+    guides. What :mod:`baker.readers.usd_baked` asks through the registry's ``curve_readers``."""
+    from pxr import UsdGeom
+
+    from baker.errors import BakerError
+    from baker.techniques.hair.kernel import ribbon_indices, strand_tangents
+
+    curves = UsdGeom.BasisCurves(prim)
+    api = UsdGeom.PrimvarsAPI(prim)
+    if not api.HasPrimvar("baker:strandParam"):
+        return None
+    counts = np.asarray(curves.GetCurveVertexCountsAttr().Get() or [], np.int64)
+    points = np.asarray(curves.GetPointsAttr().Get() or [], np.float64).reshape(-1, 3)
+    if not len(counts) or (counts != counts[0]).any() or counts[0] < 2 or counts.sum() != len(points):
+        raise BakerError(None, f"{prim.GetPath()}: hair curves must all have the same vertex count >= 2")
+    s, v = len(counts), int(counts[0])
+    points = points @ matrix[:3, :3] + matrix[3, :3]  # USD's row vectors
+    if not np.isfinite(points).all():
+        raise BakerError(None, f"{prim.GetPath()}.points: NaN or infinite values")
+    hair = prim.GetParent()
+
+    def hair_attribute(name, default):
+        attr = hair.GetAttribute(f"baker:hair:{name}")
+        return attr.Get() if attr and attr.HasAuthoredValue() else default
+
+    positions = points.astype(np.float32)
+    attributes = {"POSITION": doc.add_accessor(positions, min_max=True)}
+    tangents = strand_tangents(points.reshape(s, v, 3)).reshape(-1, 3).astype(np.float32)
+    attributes[TANGENT] = doc.add_accessor(tangents)
+    for primvar in api.GetPrimvars():
+        name = primvar.GetPrimvarName()
+        if not name.startswith("baker:") or primvar.GetInterpolation() != UsdGeom.Tokens.vertex:
+            continue
+        values = np.asarray(primvar.Get(), np.float32)
+        if len(values) != s * v or not np.isfinite(values).all():
+            raise BakerError(None, f"{prim.GetPath()}.primvars:{name}: {len(values)} values (expected {s * v}), "
+                             "finite")
+        attribute = PARAM if name == "baker:strandParam" else "_" + name[len("baker:"):].upper()
+        attributes[attribute] = doc.add_accessor(values)
+    lines = (np.arange(s)[:, None] * v + np.arange(v - 1)[None, :]).reshape(-1)
+    width_scale = api.GetPrimvar("baker:widthScale")
+    scale = np.asarray(width_scale.Get(), np.float32) if width_scale else np.ones(s, np.float32)
+    ext = {"strandSet": prim.GetName(), "strandCount": s, "verticesPerStrand": v,
+           "length": float(hair_attribute("length", 0.0)), "rootWidth": float(hair_attribute("rootWidth", 0.0)),
+           "tipWidth": float(hair_attribute("tipWidth", 0.0)),
+           "widthScale": doc.add_accessor(scale, target=None),
+           "ribbonIndices": doc.add_accessor(ribbon_indices(s, v).astype(np.uint32), target=None),
+           "order": "nearestFirst", "tangentAttribute": TANGENT, "paramAttribute": PARAM}
+    ids, weights = api.GetPrimvar("baker:guideIds"), api.GetPrimvar("baker:guideWeights")
+    if ids and weights:
+        ext["guides"] = {"primitive": 0, "ids": doc.add_accessor(np.asarray(ids.Get(), np.uint32), target=None),
+                         "weights": doc.add_accessor(np.asarray(weights.Get(), np.float32), target=None)}
+        interpolation = hair_attribute("interpolation", None)
+        if interpolation:
+            ext["guides"]["interpolation"] = str(interpolation)
+            ext["order"] = "lodPrefix"
+        lods = hair_attribute("lod:strandCounts", None)
+        scales = hair_attribute("lod:widthScales", None)
+        if lods is not None and scales is not None:
+            ext["lods"] = [{"strandCount": int(n), "widthScale": float(w)} for n, w in zip(lods, scales)]
+    elif hair_attribute("interpolation", None):
+        ext["order"] = "none"
+    doc.use_extension(NAME)
+    return {"attributes": attributes, "mode": MODE_LINES,
+            "indices": doc.add_accessor(np.stack([lines, lines + 1], 1).reshape(-1).astype(np.uint32),
+                                        target=TARGET_ELEMENT_ARRAY_BUFFER),
+            "extensions": {NAME: ext}}
