@@ -268,3 +268,21 @@ class Slab:
         light = np.asarray(light, float) / np.linalg.norm(light)
         return trace_slab(view, light, self.offsets, self.spacing, self.layer_gap, model.sigma_a, model.eta, model.v,
                           model.s, model.sin2k, model.cos2k, int(paths), int(max_bounces), int(seed))
+
+
+@njit(cache=True)
+def sampled_albedo(wo, sigma_a, eta, v, s, sin2k, cos2k, count, seed):
+    """The mean of S / pdf over ``count`` draws of :func:`sample_lobes` (h uniform): an unbiased estimate of the
+    fibre's albedo toward ``wo`` if the sampler's density is the one :func:`lobe_pdf` states."""
+    np.random.seed(seed)
+    total = np.zeros(3)
+    tmp = np.empty(3)
+    for _ in range(count):
+        h = 2.0 * np.random.random() - 1.0
+        wi = sample_lobes(wo, h, sigma_a, eta, v, s, sin2k, cos2k, np.random.random(), np.random.random(),
+                          np.random.random(), np.random.random())
+        pdf = lobe_pdf(wo, wi, h, sigma_a, eta, v, s, sin2k, cos2k)
+        scattering_at_offset(wo, wi, h, sigma_a, eta, v, s, sin2k, cos2k, tmp)
+        for c in range(3):
+            total[c] += tmp[c] / pdf
+    return total / count
