@@ -93,9 +93,11 @@ def forward_azimuthal(tables: HairTables, phi, theta_o, x):
 
 
 def shade(tables: HairTables, dual: DualScatteringTable, tangent, light, view, fibres_crossed, sigma_a,
-          alpha: float = 2.0, density_forward: float = DENSITY_FORWARD, density_back: float = DENSITY_BACK):
+          alpha: float = 2.0, density_forward: float = DENSITY_FORWARD, density_back: float = DENSITY_BACK,
+          variances=None):
     """Zinke's F per channel, (n, 3): the radiance toward ``view`` per unit irradiance from ``light`` at a fibre
-    behind ``fibres_crossed`` fibres (scalar or (n,)) parallel to ``tangent``."""
+    behind ``fibres_crossed`` fibres (scalar or (n,)) parallel to ``tangent``; ``variances``: d'Eon's v per lobe
+    (default: Chiang's map of the tables' beta_m)."""
     t = np.atleast_2d(np.asarray(tangent, float))
     wi = np.atleast_2d(np.asarray(light, float))
     wo = np.atleast_2d(np.asarray(view, float))
@@ -119,7 +121,7 @@ def shade(tables: HairTables, dual: DualScatteringTable, tangent, light, view, f
     sigma = np.broadcast_to(np.asarray(sigma_a, float), (count, 3)) if np.ndim(sigma_a) < 2 \
         else np.asarray(sigma_a, float)
     x = absorption_coordinate(sigma)
-    v = np.asarray(tables_variances(tables))
+    v = np.asarray(tables_variances(tables) if variances is None else variances, float)
     spread = crossed * dual.beta_f ** 2
     theta_g = clamp_angle(theta_i + crossed * dual.alpha_f)  # where forward-scattered light comes from, on average
     tilt = np.radians([-2.0 * alpha, alpha, 4.0 * alpha, 0.0])
