@@ -57,11 +57,12 @@ vec4 baker_hair_shading_longitudinal(sampler2D mTable, float thetaI, float theta
     vec2 size = vec2(textureSize(mTable, 0));
     float u = (clamp(thetaI / BAKER_HAIR_SHADING_PI + 0.5, 0.0, 1.0) * (size.x - 1.0) + 0.5) / size.x;
     vec4 shift = vec4(-2.0 * tilt, tilt, 4.0 * tilt, 0.0);
-    float sinO = sin(thetaO);
-    float cosO = cos(thetaO);
     vec4 m;
     for (int p = 0; p < 4; ++p) {
-        float thetaP = asin(clamp(sinO * cos(shift[p]) + cosO * sin(shift[p]), -1.0, 1.0));
+        // asin(sin(theta_o + shift)): the tilted angle, reflected about +-pi/2 (exact, where asin(sin) is not)
+        float thetaP = thetaO + shift[p];
+        thetaP = thetaP > 0.5 * BAKER_HAIR_SHADING_PI ? BAKER_HAIR_SHADING_PI - thetaP
+               : (thetaP < -0.5 * BAKER_HAIR_SHADING_PI ? -BAKER_HAIR_SHADING_PI - thetaP : thetaP);
         float v = (clamp(thetaP / BAKER_HAIR_SHADING_PI + 0.5, 0.0, 1.0) * (size.y - 1.0) + 0.5) / size.y;
         m[p] = textureLod(mTable, vec2(u, v), 0.0)[min(p, 2)];
     }

@@ -112,9 +112,9 @@ def test_render_matches_hair_shade(gl_context):
         relative = (error / np.maximum(np.abs(want), 1e-30))[np.abs(want) > 0.01 * scale]
         print(f"{name}: max |GLSL - twin| {error.max():.3g} (max value {scale:.3g}); relative where above 1% of the "
               f"max: 99th percentile {np.percentile(relative, 99):.3g}, max {relative.max():.3g}")
-        # float32: acos / asin near +-1 keep half the digits (a few 1e-4 rad), and the narrow lobes (TT's width is
-        # 0.15 rad) turn that into a few 0.1%; the bilinear filter of half-float texels adds little (checked: 8-bit
-        # filter weights in the twin change the error by 10%)
+        # float32 on llvmpipe: acos / asin of the angles near +-1 keep half the digits (a few 1e-4 rad), and the
+        # narrow lobes (TT's width is 0.15 rad) turn that into a few 0.1%; the bilinear filter of half-float texels
+        # adds little (8-bit filter weights in the twin change the error by 10%)
         assert np.all(error <= 1e-2 * np.abs(want) + 3e-4 * scale), name
     # the samples cover what matters: lit and shadowed, blond and black, the highlights and the backlit glow
     assert (want_shade > 5 * np.median(want_shade)).any() and (crossed > 1).sum() > 1000
