@@ -259,10 +259,10 @@ def test_tracer_samples_the_fibre_model_without_bias():
     fibres the light reaches unblocked (h drawn per event averages to the far field)."""
     from baker.techniques.hair_shading.slab_tracer import Slab, sampled_albedo
 
-    model = blond_model()
+    model = K.FibreModel(K.sigma_a_from_melanin(0.3), 0.3, 0.3, 2.0, 1.55, offsets=24)
     for theta in (10.0, 55.0):
         wo = direction(theta, 30.0)
-        sampled = sampled_albedo(wo, model.sigma_a, model.eta, model.v, model.s, model.sin2k, model.cos2k, 200000, 3)
+        sampled = sampled_albedo(wo, model.sigma_a, model.eta, model.v, model.s, model.sin2k, model.cos2k, 100000, 3)
         grid = K.albedo_grid(wo, model.sigma_a, model.eta, model.v, model.s, model.sin2k, model.cos2k,
                              model.offsets, model.weights, 120, 180)
         print(f"theta_o {theta}: sampled albedo {np.round(sampled, 4)}, quadrature {np.round(grid, 4)}")
