@@ -291,6 +291,12 @@ def test_hair_shade_without_fibres_in_front_is_the_bsdf_plus_backscatter():
     np.testing.assert_allclose(near_one, one, rtol=0.01, atol=1e-4)
     totals = [baker.api.hair_shade([1, 0, 0], lights, view, n, **BLOND).sum(0) for n in (1, 2, 4, 8)]
     assert all(np.all(a > b) for a, b in zip(totals, totals[1:]))
+    # never NaN: opaque and clear fibres, grazing light and view, light along the fibre, huge counts
+    grazing = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.999999, 0.001, 0.0], [-1.0, 0.0, 0.0]])
+    for eumelanin in (0.0, 50.0):
+        for n in (0, 0.5, 1, 1000):
+            extreme = baker.api.hair_shade([1, 0, 0], grazing, grazing[::-1], n, **{**BLOND, "eumelanin": eumelanin})
+            assert np.isfinite(extreme).all() and (extreme >= 0).all(), (eumelanin, n, extreme)
     with pytest.raises(ValueError, match="fibres_crossed"):
         baker.api.hair_shade([1, 0, 0], lights, view, -1, **BLOND)
 
