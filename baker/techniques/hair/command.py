@@ -6,6 +6,7 @@ from baker import memory
 from baker.options import add_arguments
 from baker.technique import lazy
 from baker.techniques.hair.options import GuidesOptions, HairOptions
+from baker.techniques.hair_shading.options import HairMaterialOptions
 
 OUTPUT_SUFFIXES = (".glb", ".gltf", ".usda", ".usdc", ".usd", ".tfx")
 GUIDES_OUTPUT_SUFFIXES = (".glb", ".gltf", ".usda", ".usdc", ".usd", ".tfx")
@@ -24,6 +25,7 @@ def add_hair_parser(subparsers) -> None:
     p.add_argument("-q", "--quiet", action="store_true", help="no summary")
     memory.add_argument(p)
     add_arguments(p, HairOptions, "hair", prefixed_flags=False)
+    add_arguments(p, HairMaterialOptions, "hair")  # --hair-*: the hair material (BAKER_hair_shading)
     p.set_defaults(func=lazy("baker.techniques.hair.step:run_hair"))
 
 
@@ -37,4 +39,5 @@ def add_guides_parser(subparsers) -> None:
     memory.add_argument(p, help="refuse a --scalp mesh whose estimated working memory is larger: bytes (512M, 2G), "
                         "a share of RAM (50%%) or 'none' (default: 75%% of RAM)")
     add_arguments(p, GuidesOptions, "guides", prefixed_flags=False)
+    add_arguments(p, HairMaterialOptions, "hair")  # --hair-*: the hair material (BAKER_hair_shading)
     p.set_defaults(func=lazy("baker.techniques.hair.step:run_guides"))

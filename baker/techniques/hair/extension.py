@@ -47,8 +47,10 @@ def add_hair_node(doc: GltfDocument, mesh: int, emitter_mesh: int | None, name: 
 
 
 def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set: str, result: HairResult,
-                           material: int, guide_primitive: int | None = None) -> dict:
-    """The primitive dict (not yet attached to a mesh) for one strand set."""
+                           material: int, guide_primitive: int | None = None, extra_attributes: dict | None = None
+                           ) -> dict:
+    """The primitive dict (not yet attached to a mesh) for one strand set; ``extra_attributes``: more per-vertex
+    custom attributes ({name: values}, the hair material's, :mod:`baker.techniques.hair_shading.strands`)."""
     from baker.techniques.hair.kernel import ribbon_indices, strand_tangents
 
     s, v = strands.count, strands.vertices
@@ -60,6 +62,8 @@ def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set:
     attributes = {"POSITION": doc.add_accessor(positions, min_max=True)}
     add_vertex_attribute(doc, None, attributes, TANGENT, tangents)  # a mesh of its own: the strands' widths only
     add_vertex_attribute(doc, None, attributes, PARAM, param)
+    for name, values in (extra_attributes or {}).items():
+        add_vertex_attribute(doc, None, attributes, name, values)
     prim = {
         "attributes": attributes,
         "indices": doc.add_accessor(lines, target=TARGET_ELEMENT_ARRAY_BUFFER),
@@ -89,22 +93,46 @@ def write_strand_primitive(doc: GltfDocument, strands: StrandSet, *, strand_set:
     return prim
 
 
-def write_hair(doc: GltfDocument, result: HairResult, emitter_mesh: int, color=(0.18, 0.11, 0.06)) -> int:
-    """Add the hair mesh (guides, then children when there are any) and its node; returns the mesh index."""
-    materials = doc.json.setdefault("materials", [])
-    materials.append({"name": "baker_hair", "pbrMetallicRoughness": {
-        "baseColorFactor": [float(c) for c in color] + [1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
-    material = len(materials) - 1
-    prims = [write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material)]
+def write_hair(doc: GltfDocument, result: HairResult, emitter_mesh: int, shading=None, seed: int = 0) -> int:
+    """Add the hair mesh (guides, then children when there are any), its hair material (``BAKER_hair_shading``
+    from ``shading``, a :class:`~baker.techniques.hair_shading.options.HairMaterialOptions`, default when None;
+    the emitter mesh occludes the strands) and its node; returns the mesh index."""
+    from baker.techniques.hair_shading.options import HairMaterialOptions
+    from baker.techniques.hair_shading.strands import hair_material
+
+    sets = [result.guides] + ([result.children] if result.children.count else [])
+    material, extra = hair_material(doc, shading or HairMaterialOptions(), sets, result.root_width,
+                                    result.tip_width, scalp=mesh_triangles(doc, emitter_mesh), seed=seed)
+    prims = [write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material,
+                                    extra_attributes=extra[0])]
     if result.children.count:
         prims.append(write_strand_primitive(doc, result.children, strand_set="children", result=result,
-                                            material=material, guide_primitive=0))
+                                            material=material, guide_primitive=0, extra_attributes=extra[1]))
     meshes = doc.json.setdefault("meshes", [])
     meshes.append({"name": "hair", "primitives": prims})
     mesh = len(meshes) - 1
     add_hair_node(doc, mesh, emitter_mesh, "hair")
     doc.use_extension(NAME)
     return mesh
+
+
+def mesh_triangles(doc: GltfDocument, mesh: int | None):
+    """(vertices, faces) of every triangle primitive of ``mesh`` in its own space (the hair node's, which hangs
+    under the emitter's node), or None: what occludes the strands besides the strands."""
+    meshes = doc.json.get("meshes") or []
+    if mesh is None or not 0 <= mesh < len(meshes):
+        return None
+    vertices, faces, offset = [], [], 0
+    for prim in meshes[mesh].get("primitives") or []:
+        if prim.get("mode", 4) != 4 or "POSITION" not in prim.get("attributes", {}):
+            continue
+        p = np.asarray(doc.accessor(prim["attributes"]["POSITION"]), np.float64).reshape(-1, 3)
+        f = (np.asarray(doc.accessor(prim["indices"]), np.int64).reshape(-1, 3) if "indices" in prim
+             else np.arange(len(p) - len(p) % 3).reshape(-1, 3))
+        vertices.append(p)
+        faces.append(f + offset)
+        offset += len(p)
+    return (np.concatenate(vertices), np.concatenate(faces)) if vertices else None
 
 
 def read_strands(doc: GltfDocument, mesh: int, primitive: int) -> dict:

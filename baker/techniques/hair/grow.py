@@ -109,13 +109,15 @@ def make_hair(input_path, options: HairOptions, seed: int = 0, max_memory: int |
     return asset, result
 
 
-def write_output(asset: Asset, result: HairResult, options: HairOptions, output) -> None:
+def write_output(asset: Asset, result: HairResult, options: HairOptions, output, shading=None, seed: int = 0) -> None:
+    """Write the hair as ``output``'s suffix says; ``shading``: the hair material's options
+    (:class:`~baker.techniques.hair_shading.options.HairMaterialOptions`, default when None)."""
     output = Path(output)
     suffix = output.suffix.lower()
     if suffix in (".glb", ".gltf"):
         from baker.techniques.hair.extension import write_hair
 
-        write_hair(asset.doc, result, options.mesh)
+        write_hair(asset.doc, result, options.mesh, shading, seed=seed)
         asset.doc.save(output)
     elif suffix in (".usda", ".usdc", ".usd"):
         from baker.registry import usd_primitive_hooks

@@ -12,6 +12,7 @@ from baker.options import from_args
 from baker.progress import Progress
 from baker.techniques.hair.command import GUIDES_OUTPUT_SUFFIXES, OUTPUT_SUFFIXES
 from baker.techniques.hair.options import GuidesOptions, HairOptions
+from baker.techniques.hair_shading.options import HairMaterialOptions
 
 
 def checked_options(args, options_class, prefix: str, suffixes):
@@ -30,8 +31,9 @@ def run_hair(args) -> int:
     from baker.techniques.hair.grow import make_hair, write_output
 
     options = checked_options(args, HairOptions, "hair", OUTPUT_SUFFIXES)
+    shading = checked_options(args, HairMaterialOptions, "hair", OUTPUT_SUFFIXES)
     asset, result = make_hair(args.input, options, seed=args.seed, max_memory=parse_limit(args.max_memory))
-    write_output(asset, result, options, args.output)
+    write_output(asset, result, options, args.output, shading, seed=args.seed)
     if not args.quiet:
         print(f"hair: {result.guides.count} guides + {result.children.count} children x {result.guides.vertices} "
               f"vertices -> {args.output}", file=sys.stderr)
@@ -43,9 +45,10 @@ def run_guides(args) -> int:
     from baker.techniques.hair.guides import make_guides, summary, write_output
 
     options = checked_options(args, GuidesOptions, "guides", GUIDES_OUTPUT_SUFFIXES)
+    shading = checked_options(args, HairMaterialOptions, "hair", GUIDES_OUTPUT_SUFFIXES)
     progress = Progress(enabled=False) if args.quiet else Progress()
     bake = make_guides(args.input, options, progress, max_memory=parse_limit(args.max_memory))
-    write_output(bake, args.output, options)
+    write_output(bake, args.output, options, shading)
     info = summary(bake, args.input, args.output)
     if args.format == "json":
         print(json.dumps(info, indent=2, sort_keys=True))
