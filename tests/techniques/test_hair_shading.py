@@ -337,3 +337,36 @@ def test_hair_shade_against_a_path_traced_slab_lit_from_behind():
           f"single / traced {np.round(single / traced, 3)}")
     assert np.all(np.abs(shade / traced - 1)[:2] <= 0.3)
     assert two[0] / traced[0] < 0.4 and np.all(single == 0)
+
+
+def test_embedded_tables_are_what_the_runtime_module_samples(tmp_path):
+    """``BAKER_hair_shading``'s tables, written into a GLB and read back by an independent reader (the bufferViews
+    as little-endian float16 RGBA), are texel for texel the half-float tables ``hair_shade`` and the GLSL/WGSL tests
+    upload (M padded with a zero alpha), so a host uploads the bufferViews as they are."""
+    from baker.gltf.document import GltfDocument
+    from baker.techniques.hair_shading.dual import dual_table_for
+    from baker.techniques.hair_shading.extension import NAME, add_tables, baked_tables
+
+    doc = GltfDocument()
+    tables, dual = baked_tables(0.3, 0.3, 1.55, 2.0)
+    index = add_tables(doc, tables, dual, 2.0)
+    path = tmp_path / "tables.glb"
+    doc.save(path)
+    raw = path.read_bytes()
+    length = int.from_bytes(raw[12:16], "little")
+    gltf = json.loads(raw[20:20 + length])
+    binary = raw[20 + length + 8:]
+    entry = gltf["extensions"][NAME]["tables"][index]
+
+    def texels(key):
+        view = gltf["bufferViews"][entry[key]["bufferView"]]
+        data = binary[view.get("byteOffset", 0): view.get("byteOffset", 0) + view["byteLength"]]
+        return np.frombuffer(data, "<f2").astype(np.float32).reshape(entry[key]["height"], entry[key]["width"], 4)
+
+    half = as_half(tables)
+    m = texels("longitudinal")
+    np.testing.assert_array_equal(m[..., :3], half.longitudinal)
+    assert not m[..., 3].any()
+    np.testing.assert_array_equal(texels("azimuthal"), half.azimuthal)
+    np.testing.assert_array_equal(texels("dualScattering"), dual_table_for(0.3, 0.3, 1.55, 2.0).table)
+    assert entry["azimuthal"]["slices"] == half.slices and entry["dualScattering"]["betaF"] == dual.beta_f
