@@ -178,19 +178,38 @@ def _binding_json(doc, binding: RootBinding) -> dict:
             "barycentrics": doc.add_accessor(binding.barycentrics.astype(np.float32), target=None)}
 
 
-def write_gltf(bake: GuidesBake, output) -> None:
+def groom_material(doc, result, shading, has_scalp: bool):
+    """(hair material, (guide attributes, child attributes)): the children are every strand of the groom, so the
+    precomputes are theirs and each guide, one of them, takes its own strand's values (tracing both sets would
+    let a guide occlude its own copy)."""
+    from baker.techniques.hair.extension import mesh_triangles
+    from baker.techniques.hair_shading.options import HairMaterialOptions
+    from baker.techniques.hair_shading.strands import hair_material
+
+    material, (child_extra,) = hair_material(doc, shading or HairMaterialOptions(), [result.children],
+                                             result.root_width, result.tip_width,
+                                             scalp=mesh_triangles(doc, 0) if has_scalp else None)
+    s, v = result.children.positions.shape[:2]
+    rows = {result.children.positions[i].tobytes(): i for i in range(s)}
+    pick = np.array([rows[g.tobytes()] for g in result.guides.positions], np.int64)
+    guide_extra = {}
+    for name, values in child_extra.items():
+        per_strand = values.reshape(s, v, *values.shape[1:])
+        guide_extra[name] = per_strand[pick].reshape(len(pick) * v, *values.shape[1:])
+    return material, (guide_extra, child_extra)
+
+
+def write_gltf(bake: GuidesBake, output, shading=None) -> None:
     from baker.gltf.document import GltfDocument
     from baker.techniques.hair.extension import NAME, add_hair_node, write_strand_primitive
 
     doc = bake.asset.doc if bake.asset is not None else GltfDocument()
     result = bake.result
-    materials = doc.json.setdefault("materials", [])
-    materials.append({"name": "baker_hair", "pbrMetallicRoughness": {
-        "baseColorFactor": [0.18, 0.11, 0.06, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
-    material = len(materials) - 1
-    guides = write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material)
+    material, (guide_extra, child_extra) = groom_material(doc, result, shading, bake.asset is not None)
+    guides = write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material,
+                                    extra_attributes=guide_extra)
     children = write_strand_primitive(doc, result.children, strand_set="children", result=result,
-                                      material=material, guide_primitive=0)
+                                      material=material, guide_primitive=0, extra_attributes=child_extra)
     gext, cext = guides["extensions"][NAME], children["extensions"][NAME]
     gext["order"] = "none"
     cext["order"] = "lodPrefix"
@@ -260,10 +279,12 @@ def write_tfx_files(bake: GuidesBake, output) -> None:
         (Path(output), encode_tfx(g.positions, thickness=g.width_scale))])
 
 
-def write_output(bake: GuidesBake, output, options: GuidesOptions) -> None:
+def write_output(bake: GuidesBake, output, options: GuidesOptions, shading=None) -> None:
+    """Write the guides as ``output``'s suffix says; ``shading``: the hair material's options
+    (:class:`~baker.techniques.hair_shading.options.HairMaterialOptions`, default when None)."""
     suffix = Path(output).suffix.lower()
     if suffix in (".glb", ".gltf"):
-        write_gltf(bake, output)
+        write_gltf(bake, output, shading)
     elif suffix in (".usda", ".usdc", ".usd"):
         write_usd(bake, output, options.curve_type)
     else:
