@@ -33,6 +33,7 @@ class Strands:
     fibres_positive: np.ndarray | None = None  # per vertex ambient-cube fibre counts toward +x, +y, +z
     fibres_negative: np.ndarray | None = None  # ... and -x, -y, -z
     tables: tuple | None = None  # (HairTables, DualScatteringTable, tilt in radians) of the material
+    to_mesh: np.ndarray | None = None  # world -> mesh directions (the fibre counts' ambient cube is in mesh space)
 
 
 def shading_inputs(doc, attributes: dict, material: dict, count: int):
@@ -67,10 +68,6 @@ def world_strands(hair: HairStrands, world: np.ndarray, materials: list, doc=Non
     material = materials[hair.material] if hair.material is not None else {}
     sigma, positive, negative = (None, None, None) if doc is None else \
         shading_inputs(doc, attributes or {}, material, len(positions))
-    if positive is not None:
-        # the ambient cube is in the strands' frame: turn it as the world turns the strands (axis-aligned cubes
-        # rotate exactly only by axis permutations; the preview's nodes are, at most, a uniform scale and a turn)
-        positive, negative = world_cube(positive, negative, world)
     tables = None
     if sigma is not None:
         from baker.techniques.hair_shading.extension import NAME, read_tables
@@ -79,20 +76,7 @@ def world_strands(hair: HairStrands, world: np.ndarray, materials: list, doc=Non
         tables = (*read_tables(doc, int(ext["tables"])), math.radians(float(ext["alpha"])))
     return Strands(transform_points(positions, world), tangents.astype(np.float32), params,
                    np.repeat(scale, per)[: len(positions)], hair.ribbon_indices.astype(np.uint32).reshape(-1),
-                   hair, material, sigma, positive, negative, tables)
-
-
-def world_cube(positive: np.ndarray, negative: np.ndarray, world: np.ndarray):
-    """Ambient-cube counts re-expressed along the world axes: each world axis takes the counts of the local axis it
-    is closest to (with its sign)."""
-    rotation = world[:3, :3] / np.maximum(np.linalg.norm(world[:3, :3], axis=0, keepdims=True), 1e-20)
-    pos, neg = np.empty_like(positive), np.empty_like(negative)
-    for axis in range(3):
-        local = int(np.argmax(np.abs(rotation[axis])))  # world axis `axis` = +- local axis `local`
-        flip = rotation[axis, local] < 0
-        pos[:, axis] = (negative if flip else positive)[:, local]
-        neg[:, axis] = (positive if flip else negative)[:, local]
-    return pos, neg
+                   hair, material, sigma, positive, negative, tables, np.linalg.inv(world[:3, :3]))
 
 
 class HairPanel(Panel):
@@ -144,6 +128,8 @@ class HairPanel(Panel):
             if shading is not None and s.sigma is not None:
                 program = shading
                 uniforms.update(self.bind_tables(ctx, shading, scene, s, textures))
+                to_mesh = s.to_mesh @ light_direction(camera, self.light)
+                uniforms["u_lightMesh"] = tuple(float(c) for c in to_mesh / np.linalg.norm(to_mesh))
                 data += [(np.repeat(s.sigma, 2, axis=0), "3f", "a_sigma"),
                          (np.repeat(s.fibres_positive, 2, axis=0), "3f", "a_fibresPos"),
                          (np.repeat(s.fibres_negative, 2, axis=0), "3f", "a_fibresNeg")]
