@@ -46,13 +46,17 @@ def shading_inputs(doc, attributes: dict, material: dict, count: int):
     ext = (material.get("extensions") or {}).get(NAME)
     if ext is None:
         return None, None, None
+    def columns(name, width):  # the first `width` components (the compact layout may pad or drop trailing ones)
+        values = doc.accessor(attributes[name]).astype(np.float64).reshape(count, -1)[:, :width]
+        return np.concatenate([values, np.zeros((count, width - values.shape[1]))], 1)
+
     if MELANIN in attributes:
-        melanin = doc.accessor(attributes[MELANIN]).astype(np.float64).reshape(-1, 2)
+        melanin = columns(MELANIN, 2)
         sigma = melanin[:, :1] * sigma_a_from_melanin(1.0) + melanin[:, 1:] * sigma_a_from_melanin(0.0, 1.0)
     else:
         sigma = np.tile(np.asarray(ext["sigmaA"], np.float64), (count, 1))
-    counts = [doc.accessor(attributes[name]).astype(np.float32).reshape(-1, 3) if name in attributes
-              else np.zeros((count, 3), np.float32) for name in (FIBRES_POSITIVE, FIBRES_NEGATIVE)]
+    counts = [columns(name, 3).astype(np.float32) if name in attributes else np.zeros((count, 3), np.float32)
+              for name in (FIBRES_POSITIVE, FIBRES_NEGATIVE)]
     return sigma.astype(np.float32), counts[0], counts[1]
 
 
