@@ -296,7 +296,7 @@ def test_hair_cards_panel_is_alpha_tested_and_shaded_along_the_flow(tmp_path):
     cards = tmp_path / "cards.glb"
     assert main(["cards", str(groom), "-o", str(cards), "--cards", "24", "--atlas-size", "512", "-q"]) == 0
     result = preview(cards, size=192, azimuth=20, elevation=10)
-    assert [n for n, _, _ in result.panels] == ["lambert", "cards"]
+    assert [n for n, _, _ in result.panels] == ["lambert", "cards", "cards-kajiya-kay"]
     doc = GltfDocument.load(cards)
     (material,) = doc.json["materials"]
     assert material["alphaMode"] == "MASK"
@@ -313,6 +313,12 @@ def test_hair_cards_panel_is_alpha_tested_and_shaded_along_the_flow(tmp_path):
     print("reference against cards panel: IoU", iou)
     assert reference.sum() < 0.9 * solid.sum() and abs(int(reference.sum()) - int(cut.sum())) < 0.15 * cut.sum()
     assert iou > 0.5  # not the same texels: the cards panel samples the coverage mips, the reference level 0
+    # "cards" shades with the material's BAKER_hair_shading, "cards-kajiya-kay" as before: same cut, other colours
+    kajiya_kay = _panel(result, "cards-kajiya-kay")
+    assert (_covered(kajiya_kay) == cut).mean() > 0.99
+    change = np.abs(_panel(result, "cards") - kajiya_kay)[cut].mean()
+    print("cards: fibre tables against Kajiya-Kay, mean change", change)
+    assert change > 0.02
 
 
 def test_hair_cards_panel_keeps_coverage_when_small(tmp_path):
