@@ -157,8 +157,10 @@ def test_tables_in_the_file_are_the_bake(spot_groom):
     assert np.array_equal(tables.azimuthal, fresh.azimuthal)
     entry = root["tables"][0]
     for key in ("longitudinal", "azimuthal", "dualScattering"):
-        view = doc.json["bufferViews"][entry[key]["bufferView"]]
-        assert view["byteLength"] == entry[key]["width"] * entry[key]["height"] * 8
+        acc = doc.json["accessors"][entry[key]["accessor"]]
+        assert (acc["componentType"], acc["type"], acc["count"]) == (5123, "VEC4", entry[key]["width"] * entry[key]["height"])
+        view = doc.json["bufferViews"][acc["bufferView"]]
+        assert view["byteLength"] == entry[key]["width"] * entry[key]["height"] * 8 and "byteStride" not in view
         assert view["byteOffset"] % 4 == 0  # a Uint16Array / half-float upload can view it in place
     assert dual.table.shape == (entry["azimuthal"]["slices"], entry["dualScattering"]["width"], 4)
     # every strand vertex: occlusion in [0, 1], melanin the same along a strand
@@ -175,7 +177,7 @@ def test_validators_pass_and_catch_broken_tables(spot_groom, tmp_path):
     assert_khronos_clean(spot_groom[".glb"])
     doc = GltfDocument.load(spot_groom[".glb"])
     entry = doc.json["extensions"][NAME]["tables"][0]
-    view = doc.json["bufferViews"][entry["longitudinal"]["bufferView"]]
+    view = doc.json["bufferViews"][doc.json["accessors"][entry["longitudinal"]["accessor"]]["bufferView"]]
     doc.bin[view["byteOffset"]: view["byteOffset"] + 2] = np.array([np.nan], "<f2").tobytes()
     entry["azimuthal"]["slices"] += 1
     material = next(m for m in doc.json["materials"] if NAME in m.get("extensions", {}))

@@ -84,11 +84,31 @@ def write_output(doc, output) -> None:
     suffix = Path(output).suffix.lower()
     if suffix in (".glb", ".gltf"):
         doc.save(output)
-    else:
+    elif suffix == ".usdz":
         from baker.gltf.usd import write_usd
         from baker.registry import usd_primitive_hooks, usd_texture_color_spaces, vertex_attribute_widths
 
         write_usd(doc, output, usd_primitive_hooks(), vertex_attribute_widths(), usd_texture_color_spaces())
+    else:
+        write_usd_with_tables(doc, Path(output))
+
+
+def write_usd_with_tables(doc, output: Path) -> None:
+    """The document as USD (:mod:`baker.gltf.usd`), each hair material's ``BAKER_hair_shading`` tables added as
+    ``baker:hair_shading:tableData:*`` (a stage has no bufferViews; :mod:`baker.readers.usd_baked` rebuilds them)."""
+    from baker.gltf.usd import build_stage, write_stage_and_textures
+    from baker.registry import (usd_primitive_accessors, usd_primitive_hooks, usd_texture_color_spaces,
+                                vertex_attribute_widths)
+    from baker.techniques.hair_shading.extension import usd_table_data, write_usd_table_data
+
+    folder = f"{output.stem}_textures"
+    stage, images = build_stage(doc, folder, usd_primitive_hooks(), vertex_attribute_widths(),
+                                usd_texture_color_spaces(), usd_primitive_accessors())
+    for prim in stage.Traverse():
+        tables = prim.GetAttribute("baker:hair_shading:tables")
+        if tables and tables.HasAuthoredValue():
+            write_usd_table_data(prim, usd_table_data(doc, int(tables.Get())))
+    write_stage_and_textures(stage, output, [(output.parent / folder / name, data) for name, data in images])
 
 
 def run_cards(args) -> int:
