@@ -340,9 +340,9 @@ def test_hair_shade_against_a_path_traced_slab_lit_from_behind():
 
 
 def test_embedded_tables_are_what_the_runtime_module_samples(tmp_path):
-    """``BAKER_hair_shading``'s tables, written into a GLB and read back by an independent reader (the bufferViews
-    as little-endian float16 RGBA), are texel for texel the half-float tables ``hair_shade`` and the GLSL/WGSL tests
-    upload (M padded with a zero alpha), so a host uploads the bufferViews as they are."""
+    """``BAKER_hair_shading``'s tables, written into a GLB and read back by an independent reader (each table's
+    UNSIGNED_SHORT VEC4 accessor as the bits of little-endian float16 RGBA), are texel for texel the half-float tables
+    ``hair_shade`` and the GLSL/WGSL tests upload (M padded with a zero alpha), so a host uploads them as they are."""
     from baker.gltf.document import GltfDocument
     from baker.techniques.hair_shading.dual import dual_table_for
     from baker.techniques.hair_shading.extension import NAME, add_tables, baked_tables
@@ -359,8 +359,11 @@ def test_embedded_tables_are_what_the_runtime_module_samples(tmp_path):
     entry = gltf["extensions"][NAME]["tables"][index]
 
     def texels(key):
-        view = gltf["bufferViews"][entry[key]["bufferView"]]
-        data = binary[view.get("byteOffset", 0): view.get("byteOffset", 0) + view["byteLength"]]
+        accessor = gltf["accessors"][entry[key]["accessor"]]
+        assert accessor["componentType"] == 5123 and accessor["type"] == "VEC4"  # UNSIGNED_SHORT
+        view = gltf["bufferViews"][accessor["bufferView"]]
+        start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+        data = binary[start: start + accessor["count"] * 8]
         return np.frombuffer(data, "<f2").astype(np.float32).reshape(entry[key]["height"], entry[key]["width"], 4)
 
     half = as_half(tables)
