@@ -5,8 +5,8 @@ import re
 
 import pytest
 
-from . import (twins_caustics, twins_edges, twins_fur, twins_hair, twins_hair_cards, twins_hatching,
-               twins_normal_blur, twins_skin, twins_text, twins_toon, twins_translucency)
+from . import (twins_caustics, twins_edges, twins_fur, twins_hair, twins_hair_cards, twins_hair_shading,
+               twins_hatching, twins_normal_blur, twins_skin, twins_text, twins_toon, twins_translucency)
 from .glsl import REPO, read_module
 
 TWINS = {  # one twin module per runtime module: baker_<name>.glsl -> twins_<name>.py
@@ -15,6 +15,7 @@ TWINS = {  # one twin module per runtime module: baker_<name>.glsl -> twins_<nam
     "baker_fur.glsl": twins_fur,
     "baker_hair.glsl": twins_hair,
     "baker_hair_cards.glsl": twins_hair_cards,
+    "baker_hair_shading.glsl": twins_hair_shading,
     "baker_hatching.glsl": twins_hatching,
     "baker_normal_blur.glsl": twins_normal_blur,
     "baker_skin.glsl": twins_skin,

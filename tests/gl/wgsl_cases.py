@@ -8,10 +8,12 @@ more.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from . import (twins_caustics, twins_edges, twins_fur, twins_hair, twins_hair_cards, twins_hatching, twins_normal_blur,
-               twins_skin, twins_text, twins_toon, twins_translucency)
+from . import (twins_caustics, twins_edges, twins_fur, twins_hair, twins_hair_cards, twins_hair_shading, twins_hatching,
+               twins_normal_blur, twins_skin, twins_text, twins_toon, twins_translucency)
 from .wgsl import Case, Texture
 
 N = 1024  # samples per case (a multiple of the fragment harness's row width)
@@ -735,6 +737,84 @@ def text_cases():
     return cases
 
 
+# ------------------------------------------------------------------------------------------------ hair shading
+def hair_shading_cases():
+    """The fibre tables of ``baker hair-lut`` (beta 0.3, half-float texels) and Zinke's dual-scattering table,
+    sampled in a compute pass (textureSampleLevel) at random fibres, lights, views, melanins and fibre counts."""
+    from baker.techniques.hair_shading.dual import dual_table_for
+    from baker.techniques.hair_shading.tables import as_half, bake_tables
+
+    r = Inputs(12)
+    tw = twins_hair_shading
+    tables = as_half(bake_tables(0.3, 0.3, 1.55))
+    dual = dual_table_for(0.3, 0.3, 1.55, 2.0)
+    h = tw.params(tables, dual)
+    m_rgba = np.concatenate([tables.longitudinal, np.zeros(tables.longitudinal.shape[:2] + (1,), F32)], 2)
+    m_tex, n_tex, d_tex = Texture("mTable", [m_rgba]), Texture("nTable", [tables.azimuthal]), Texture("dualTable",
+                                                                                                      [dual.table])
+    struct = ("BakerHairShading(vec4f({:.9g}, {:.9g}, {:.9g}, {:.9g}), {:.9g}, {:.9g}, {:.9g}, {:.9g}, 1.0, 1.0)"
+              .format(*h["variances"], h["tilt"], float(h["slices"]), h["alphaF"], h["betaF"]))
+    T, L, V = r.unit(), r.unit(), r.unit()
+    crossed = r.rng.choice([0.0, 0.0, 0.4, 1.0, 2.0, 3.0, 5.0, 9.0], N).astype(F32)
+    sigma = tw.baker_hair_shading_melanin(r.rng.choice([0.0, 0.3, 1.3, 8.0], N), r.uniform(0, 0.5)).astype(F32)
+    theta_i, theta_o = r.uniform(-1.5, 1.5), r.uniform(-1.5, 1.5)
+    phi, x = r.uniform(0, math.pi), r.uniform(0, 1)
+    sampled = "the GPU's bilinear weights on half-float texels of narrow lobes"
+    lobes = "the dual-scattering lobes: WGSL's sin and cos are exact to 2^-11 absolute only, divided by v"
+    return [
+        Case("hair_shading", "baker_hair_shading_melanin", [("eu", "f32"), ("pheo", "f32")], "vec3f",
+             {"eu": r.uniform(0, 8), "pheo": r.uniform(0, 2)},
+             lambda i: tw.baker_hair_shading_melanin(i["eu"], i["pheo"]), call="baker_hair_shading_melanin(eu, pheo)",
+             tolerance=(1e-6, 1e-6)),
+        Case("hair_shading", "baker_hair_shading_absorption", [("sigma", "vec3f")], "vec3f", {"sigma": sigma},
+             lambda i: tw.baker_hair_shading_absorption(i["sigma"]), call="baker_hair_shading_absorption(sigma)",
+             tolerance=(1e-6, 1e-5), why="exp"),
+        Case("hair_shading", "baker_hair_shading_angles", [("T", "vec3f"), ("L", "vec3f"), ("V", "vec3f")], "vec3f",
+             {"T": T, "L": L, "V": V}, lambda i: tw.baker_hair_shading_angles(i["T"], i["L"], i["V"]),
+             call="baker_hair_shading_angles(T, L, V)", tolerance=(5e-4, 1e-5),
+             why="acos and asin near +-1 keep half of float32's digits"),
+        Case("hair_shading", "baker_hair_shading_longitudinal",
+             [("thetaI", "f32"), ("thetaO", "f32"), ("tilt", "f32")], "vec4f",
+             {"thetaI": theta_i, "thetaO": theta_o, "tilt": constant(h["tilt"])},
+             lambda i: tw.baker_hair_shading_longitudinal(m_rgba, i["thetaI"], i["thetaO"], h["tilt"]),
+             call="baker_hair_shading_longitudinal(mTable, mTableSampler, thetaI, thetaO, tilt)", textures=[m_tex],
+             tolerance=(1e-4, 1e-4), why=sampled),
+        Case("hair_shading", "baker_hair_shading_azimuthal",
+             [("slices", "f32"), ("phi", "f32"), ("thetaO", "f32"), ("x", "f32")], "vec4f",
+             {"slices": constant(tables.slices), "phi": phi, "thetaO": theta_o, "x": x},
+             lambda i: tw.baker_hair_shading_azimuthal(tables.azimuthal, tables.slices, i["phi"], i["thetaO"], i["x"]),
+             call="baker_hair_shading_azimuthal(nTable, nTableSampler, slices, phi, thetaO, x)", textures=[n_tex],
+             tolerance=(1e-6, 1e-4), why=sampled),
+        Case("hair_shading", "baker_hair_shading_single",
+             [("T", "vec3f"), ("L", "vec3f"), ("V", "vec3f"), ("sigma", "vec3f")], "vec3f",
+             {"T": T, "L": L, "V": V, "sigma": sigma},
+             lambda i: tw.baker_hair_shading_single(m_rgba, tables.azimuthal, h, i["T"], i["L"], i["V"], i["sigma"]),
+             call=f"baker_hair_shading_single(mTable, mTableSampler, nTable, nTableSampler, {struct}, T, L, V, sigma)",
+             textures=[m_tex, n_tex], tolerance=(1e-4, 1e-3), why=sampled + "; acos and asin near +-1"),
+        Case("hair_shading", "baker_hair_shading_log_i0", [("x", "f32")], "f32", {"x": r.uniform(0, 300)},
+             lambda i: tw.baker_hair_shading_log_i0(i["x"]), call="baker_hair_shading_log_i0(x)",
+             tolerance=(1e-5, 1e-6), why="x - log(x) / 2 + log(series) in float32"),
+        Case("hair_shading", "baker_hair_shading_lobe", [("thetaI", "f32"), ("thetaO", "f32"), ("v", "f32")], "f32",
+             {"thetaI": theta_i, "thetaO": theta_o, "v": r.uniform(0.04, 0.6)},  # hair_shade's: v_TT + beta_f^2 up
+             lambda i: tw.baker_hair_shading_lobe(i["thetaI"], i["thetaO"], i["v"]),
+             call="baker_hair_shading_lobe(thetaI, thetaO, v)", tolerance=(1e-6, 2e-2),
+             why="WGSL's sin and cos are exact to 2^-11 absolute only, and the exponent divides them by v"),
+        Case("hair_shading", "baker_hair_shading_dual", [("theta", "f32"), ("x", "f32")], "vec4f",
+             {"theta": theta_o, "x": x}, lambda i: tw.baker_hair_shading_dual(dual.table, i["theta"], i["x"]),
+             call="baker_hair_shading_dual(dualTable, dualTableSampler, theta, x)", textures=[d_tex],
+             tolerance=(1e-6, 1e-4), why=sampled),
+        Case("hair_shading", "baker_hair_shading",
+             [("T", "vec3f"), ("L", "vec3f"), ("V", "vec3f"), ("crossed", "f32"), ("sigma", "vec3f")], "vec3f",
+             {"T": T, "L": L, "V": V, "crossed": crossed, "sigma": sigma},
+             lambda i: tw.baker_hair_shading(m_rgba, tables.azimuthal, dual.table, h, i["T"], i["L"], i["V"],
+                                             i["crossed"], i["sigma"]),
+             call=(f"baker_hair_shading(mTable, mTableSampler, nTable, nTableSampler, dualTable, dualTableSampler, "
+                   f"{struct}, T, L, V, crossed, sigma)"),
+             textures=[m_tex, n_tex, d_tex], tolerance=(1e-3, 1e-2), why=lobes),
+    ]
+
+
 def all_cases():
     return [*translucency_cases(), *edges_cases(), *fur_cases(), *hair_cases(), *hair_cards_cases(),
+            *hair_shading_cases(),
             *skin_cases(), *toon_cases(), *caustics_cases(), *normal_blur_cases(), *hatching_cases(), *text_cases()]

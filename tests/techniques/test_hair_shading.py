@@ -240,3 +240,94 @@ def test_exit_azimuths_against_a_traced_circle():
             # a chord of the projected circle is 2 cos gamma_t; the 3D path divides by cos theta_t
             cos_theta_t = math.sqrt(1 - (sin_o / 1.55) ** 2)
             assert chord / cos_theta_t == pytest.approx(path, rel=1e-9)
+
+
+# ------------------------------------------------------------------ dual scattering against a path-traced slab
+SLAB_VIEW = np.array([0.3, 0.1, 1.0]) / np.linalg.norm([0.3, 0.1, 1.0])
+SLAB_FRONT = np.array([-0.2, 0.5, 1.0]) / np.linalg.norm([-0.2, 0.5, 1.0])  # from the viewer's side
+SLAB_BACK = np.array([-0.2, 0.4, -1.0]) / np.linalg.norm([-0.2, 0.4, -1.0])  # from behind the slab
+BLOND = dict(eumelanin=0.3, beta_m=0.3, beta_n=0.3, alpha=2.0, eta=1.55)
+
+
+def blond_model():
+    return K.FibreModel(K.sigma_a_from_melanin(0.3), 0.3, 0.3, 2.0, 1.55)
+
+
+def test_tracer_samples_the_fibre_model_without_bias():
+    """The tracer's direction sampling (pbrt's HairBxDF::Sample_f) has the density its weights divide by: the mean
+    of S / pdf is the albedo the midpoint quadrature gives; and one bounce of the tracer is the model itself at the
+    fibres the light reaches unblocked (h drawn per event averages to the far field)."""
+    from baker.techniques.hair_shading.slab_tracer import Slab, sampled_albedo
+
+    model = K.FibreModel(K.sigma_a_from_melanin(0.3), 0.3, 0.3, 2.0, 1.55, offsets=24)
+    for theta in (10.0, 55.0):
+        wo = direction(theta, 30.0)
+        sampled = sampled_albedo(wo, model.sigma_a, model.eta, model.v, model.s, model.sin2k, model.cos2k, 100000, 3)
+        grid = K.albedo_grid(wo, model.sigma_a, model.eta, model.v, model.s, model.sin2k, model.cos2k,
+                             model.offsets, model.weights, 120, 180)
+        print(f"theta_o {theta}: sampled albedo {np.round(sampled, 4)}, quadrature {np.round(grid, 4)}")
+        np.testing.assert_allclose(sampled, grid, rtol=0.01)
+    slab = Slab(8, 3.0, 2.0)
+    radiance, crossed = slab.trace(model, SLAB_VIEW, SLAB_FRONT, paths=40000, max_bounces=1)
+    lit = (crossed == 0).mean()
+    expected = model(SLAB_VIEW, SLAB_FRONT)[0] * lit
+    error = radiance.std(0) / math.sqrt(len(radiance))
+    assert 0.3 < lit < 0.95
+    assert np.all(np.abs(radiance.mean(0) - expected) < 4 * error + 1e-4), (radiance.mean(0), expected)
+
+
+def test_hair_shade_without_fibres_in_front_is_the_bsdf_plus_backscatter():
+    """No fibre toward the light: the single scattering of ``hair_bsdf`` exactly, plus the neighbours' backscatter
+    (>= 0, zero when d_b = 0); behind fibres the direct term fades continuously and more fibres pass less light."""
+    lights = sphere_directions(12, 24)
+    view = direction(20.0, 10.0)
+    bsdf = baker.api.hair_bsdf([1, 0, 0], lights, view, **BLOND)
+    np.testing.assert_allclose(baker.api.hair_shade([1, 0, 0], lights, view, 0, density_back=0.0, **BLOND), bsdf,
+                               rtol=1e-12, atol=1e-15)
+    shade0 = baker.api.hair_shade([1, 0, 0], lights, view, 0, **BLOND)
+    assert np.all(shade0 >= bsdf - 1e-12) and (shade0 - bsdf).sum() > 0.01 * bsdf.sum()
+    near_one = baker.api.hair_shade([1, 0, 0], lights, view, 0.999, **BLOND)
+    one = baker.api.hair_shade([1, 0, 0], lights, view, 1.0, **BLOND)
+    np.testing.assert_allclose(near_one, one, rtol=0.01, atol=1e-4)
+    totals = [baker.api.hair_shade([1, 0, 0], lights, view, n, **BLOND).sum(0) for n in (1, 2, 4, 8)]
+    assert all(np.all(a > b) for a, b in zip(totals, totals[1:]))
+    with pytest.raises(ValueError, match="fibres_crossed"):
+        baker.api.hair_shade([1, 0, 0], lights, view, -1, **BLOND)
+
+
+def slab_figures(light, layers):
+    """(path traced, hair_shade at the path tracer's first hits with their fibre counts, at most two bounces,
+    single scattering alone (hair_bsdf where the light is not blocked)), each RGB, per unit irradiance."""
+    from baker.techniques.hair_shading.slab_tracer import Slab
+
+    model = blond_model()
+    slab = Slab(layers, 3.0, 2.0)
+    traced, crossed = slab.trace(model, SLAB_VIEW, light, paths=40000)
+    two, _ = slab.trace(model, SLAB_VIEW, light, paths=40000, max_bounces=2)
+    hit = crossed >= 0
+    shade = np.zeros_like(traced)
+    shade[hit] = baker.api.hair_shade([1, 0, 0], light, SLAB_VIEW, crossed[hit], **BLOND)
+    single = baker.api.hair_bsdf([1, 0, 0], light, SLAB_VIEW, **BLOND)[0] * (crossed == 0).mean()
+    return traced.mean(0), traced.std(0) / math.sqrt(len(traced)), shade.mean(0), two.mean(0), single
+
+
+def test_hair_shade_against_a_path_traced_slab_lit_from_the_front():
+    """Blond fibres (eumelanin 0.3, beta 0.3), eight rows, lit from the viewer's side: dual scattering within 20%
+    of all bounces (red, green; blue reported), where at most two bounces are about half of it."""
+    traced, error, shade, two, single = slab_figures(SLAB_FRONT, 8)
+    print(f"front: traced {np.round(traced, 4)} +- {np.round(error, 4)}, hair_shade / traced "
+          f"{np.round(shade / traced, 3)}, <= 2 bounces / traced {np.round(two / traced, 3)}, "
+          f"single / traced {np.round(single / traced, 3)}")
+    assert np.all(np.abs(shade / traced - 1)[:2] <= 0.2)
+    assert 0.4 < two[0] / traced[0] < 0.7 and single[0] / traced[0] < 0.6
+
+
+def test_hair_shade_against_a_path_traced_slab_lit_from_behind():
+    """The same fibres, four rows, lit from behind: every visible fibre is behind others, so single scattering
+    alone is black and two bounces a third; dual scattering within 30% (red, green; blue reported)."""
+    traced, error, shade, two, single = slab_figures(SLAB_BACK, 4)
+    print(f"back: traced {np.round(traced, 4)} +- {np.round(error, 4)}, hair_shade / traced "
+          f"{np.round(shade / traced, 3)}, <= 2 bounces / traced {np.round(two / traced, 3)}, "
+          f"single / traced {np.round(single / traced, 3)}")
+    assert np.all(np.abs(shade / traced - 1)[:2] <= 0.3)
+    assert two[0] / traced[0] < 0.4 and np.all(single == 0)

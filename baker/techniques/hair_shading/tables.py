@@ -181,6 +181,12 @@ def shade_from_tables(tangent, light, view, *, eumelanin: float = 1.3, pheomelan
     """``baker.api.hair_bsdf``: the tables (default size, half float, baked once per (beta_m, beta_n, eta), or
     ``tables``) sampled as the runtime samples them; ``sigma_a`` (RGB per fibre radius), or ``color`` (linear RGB,
     through Chiang et al. 2016's inversion), overrides the melanin."""
+    tables, sigma = resolve_parameters(eumelanin, pheomelanin, beta_m, beta_n, alpha, eta, sigma_a, color, tables)
+    return evaluate(tables, tangent, light, view, sigma, alpha)
+
+
+def resolve_parameters(eumelanin, pheomelanin, beta_m, beta_n, alpha, eta, sigma_a, color, tables):
+    """The checked parameters of ``hair_bsdf`` / ``hair_shade``: (tables, sigma_a per channel)."""
     from baker.techniques.hair_shading.kernel import sigma_a_from_color, sigma_a_from_melanin
 
     for name, value, lo, hi in (("eumelanin", eumelanin, 0.0, 50.0), ("pheomelanin", pheomelanin, 0.0, 50.0),
@@ -199,7 +205,7 @@ def shade_from_tables(tangent, light, view, *, eumelanin: float = 1.3, pheomelan
         sigma = sigma_a_from_color(color, beta_n)
     else:
         sigma = sigma_a_from_melanin(eumelanin, pheomelanin)
-    return evaluate(tables, tangent, light, view, sigma, alpha)
+    return tables, sigma
 
 
 @dataclass(frozen=True)
