@@ -18,7 +18,7 @@ import { MeshoptCompression } from '@babylonjs/core/Meshes/Compression/meshoptCo
 import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { TECHNIQUES, bakerControls, registerBakerExtensions, unregisterBakerExtensions } from '../../../runtime-shaders/babylon/src/index.js';
 import {
-	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, bakerOn, caustics,
+	BACK_LIT, BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, bakerOn, caustics, hair,
 	engineSwitch, fail, frameDirection, frameDistance, frontSwitch, keyDirection, listParam, onDroppedFile, params,
 	showToggles, status, switchTechniques,
 } from './ui.js';
@@ -98,7 +98,7 @@ export async function babylonViewer() {
 	fill.intensity = FILL_INTENSITY;
 
 	// ?disable=BAKER_fur,...: extensions left to Babylon's loader (which ignores them)
-	if (bakerOn) registerBakerExtensions({ shaders, wgsl: engine.isWebGPU ? await wgslModules() : {}, caustics, disabled: [...listParam('disable')] });
+	if (bakerOn) registerBakerExtensions({ shaders, wgsl: engine.isWebGPU ? await wgslModules() : {}, caustics, hair, disabled: [...listParam('disable')] });
 	else unregisterBakerExtensions();
 
 	const given = params.get('view') ? JSON.parse(params.get('view')) : null;
@@ -136,12 +136,14 @@ export async function babylonViewer() {
 			const root = result.meshes[0];
 			const baker = bakerControls(root);
 			const found = showToggles(baker, null, TECHNIQUES);
-			// the light from behind (translucency) only when asked for: ?on=backlight or its checkbox
-			let back = found.includes('translucency') && listParam('on').has('backlight');
+			// the light from behind (translucency; hair's forward scattering) only when asked for: ?on=backlight or
+			// its checkbox
+			const backLit = BACK_LIT.some((t) => found.includes(t));
+			let back = backLit && listParam('on').has('backlight');
 			const v = given ?? frame(root, back);
 			place(v);
 			sphere = v;
-			if (found.includes('translucency')) {
+			if (backLit) {
 				addToggle('light from behind', 'backlight', back, (on) => {
 					back = on;
 					// the front key of the framing, or the camera's direction reversed

@@ -10,7 +10,7 @@ import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { registerBakerPlugins } from '../../../runtime-shaders/three/src/index.js';
 import { shaders } from './shaders.js';
 import { runThreeViewer } from './three_viewer.js';
-import { bakerOn, caustics, fail, params } from './ui.js';
+import { bakerOn, caustics, fail, hair, params } from './ui.js';
 
 const view = document.getElementById('view');
 
@@ -22,7 +22,7 @@ function createRenderer() {
 }
 
 async function loadGLB(url) {
-	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders, caustics }) : new GLTFLoader();
+	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders, caustics, hair }) : new GLTFLoader();
 	// EXT_meshopt_compression (`baker bake --compress meshopt`, gltfpack, gltf-transform meshopt)
 	loader.setMeshoptDecoder(MeshoptDecoder);
 	return loader.loadAsync(url);

@@ -9,10 +9,10 @@ import { registerBakerNodePlugins } from '../../../runtime-shaders/three/src/nod
 import { shaders } from './shaders.js';
 import { wgsl } from './wgsl.js';
 import { runThreeViewer } from './three_viewer.js';
-import { bakerOn, caustics, fail, params } from './ui.js';
+import { bakerOn, caustics, fail, hair, params } from './ui.js';
 
 async function load(url) {
-	const loader = bakerOn ? registerBakerNodePlugins(new GLTFLoader(), { shaders, wgsl, caustics }) : new GLTFLoader();
+	const loader = bakerOn ? registerBakerNodePlugins(new GLTFLoader(), { shaders, wgsl, caustics, hair }) : new GLTFLoader();
 	return loader.loadAsync(url);
 }
 
