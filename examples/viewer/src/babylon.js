@@ -23,6 +23,7 @@ import {
 	showToggles, status, switchTechniques,
 } from './ui.js';
 import { shaders } from './shaders.js';
+import hairShadingWgsl from '../../../runtime-shaders/baker_hair_shading.wgsl';
 import { RUNTIMES } from '@baker/shared';
 
 // EXT_meshopt_compression: Babylon.js loads meshoptimizer's decoder script from its CDN into the global
@@ -35,8 +36,9 @@ MeshoptCompression.Configuration.decoder.url = 'data:text/javascript,';
 // every file the template can name, as text by the import attribute)
 const wgslStem = (file) => file.replace(/^baker_/, '').replace(/\.wgsl$/, '');
 async function wgslModules() {
-	return Object.fromEntries(await Promise.all(RUNTIMES.filter((r) => r.modules.wgsl).map(async (r) =>
+	const modules = Object.fromEntries(await Promise.all(RUNTIMES.filter((r) => r.modules.wgsl).map(async (r) =>
 		[r.modules.key, (await import(`../../../runtime-shaders/baker_${wgslStem(r.modules.wgsl)}.wgsl`, { with: { type: 'text' } })).default])));
+	return { ...modules, hairShading: hairShadingWgsl }; // BAKER_hair_shading's module (no descriptor of its own)
 }
 
 /**

@@ -1,11 +1,11 @@
 // BAKER_hair: view-facing ribbons extruded in the vertex shader, shaded as hair fibres where the material has
-// BAKER_hair_shading (runtime-shaders/baker_hair_shading.glsl, stages hair_ribbon.vert + hair_fibre.frag; on the
-// WebGL2 Engine), else (or with options.hair.shading = 'kajiyaKay', and on WebGPUEngine for now) Kajiya-Kay
-// (RTR4 14.7); the stages are runtime-shaders/hosts/web/*.glsl.
+// BAKER_hair_shading (runtime-shaders/baker_hair_shading.glsl, stages hair_ribbon.vert + hair_fibre.frag; on
+// WebGPUEngine baker_hair_shading.wgsl and the WGSL stages hair_fibre.vert/.frag), else (or with
+// options.hair.shading = 'kajiyaKay') Kajiya-Kay (RTR4 14.7); the stages are runtime-shaders/hosts/web/*.glsl.
 import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
 import { hairShadingChoice, hairShadingGlsl, hairShadingOf, hairTableTexels, runtime } from '@baker/shared';
-import { BAKER_HAIR, controls, loadedPrimitives, readAccessor, engineModule, requireShader, stageMaterial } from './common.js';
+import { BAKER_HAIR, controls, loadedPrimitives, readAccessor, engineModule, requireShader, requireWgsl, stageMaterial } from './common.js';
 
 /** The three tables of a resolved BAKER_hair_shading as half-float RGBA RawTextures (bilinear, clamped, no mips). */
 export async function hairShadingTextures(loader, shading) {
@@ -105,7 +105,8 @@ export class BakerHairExtension {
 			const ribbon = ribbonArrays({ position, tangent, param }, widths && widths.data, ext.verticesPerStrand);
 			// under the shared stage's attribute names
 			const { bakerTangent, bakerParam, bakerSide, bakerWidthScale } = ribbon.attributes;
-			const fibre = this.shading === 'fibre' && !scene.getEngine().isWebGPU ? hairShadingOf(loader.gltf, primitive.material) : null;
+			const webgpu = scene.getEngine().isWebGPU;
+			const fibre = this.shading === 'fibre' ? hairShadingOf(loader.gltf, primitive.material) : null;
 			const attributes = { baker_tangent: bakerTangent, baker_param: bakerParam, baker_side: bakerSide, baker_widthScale: bakerWidthScale,
 				...(fibre ? await fibreAttributes(loader, primitive, fibre, position.count) : {}) };
 			const ribbons = bakerMesh('baker hair ribbons', scene, mesh.parent, ribbon.positions, indices.data, attributes);
@@ -115,8 +116,10 @@ export class BakerHairExtension {
 			const json = primitive.material !== undefined ? loader.gltf.materials?.[primitive.material] : null;
 			const base = json?.pbrMetallicRoughness?.baseColorFactor ?? [0.18, 0.11, 0.06, 1];
 			const material = stageMaterial('baker hair ribbons', scene, {
-				glsl: fibre ? `#define BAKER_HAIR_SHADING\n${glsl}${hairShadingGlsl(requireShader(this.shaders, 'hairShading'))}` : glsl,
-				vertex: 'hair_ribbon.vert', fragment: fibre ? 'hair_fibre.frag' : 'hair_ribbon.frag', lit: true,
+				glsl: !fibre ? glsl : webgpu ? glsl + requireWgsl(this.options.wgsl, 'hairShading')
+					: `#define BAKER_HAIR_SHADING\n${glsl}${hairShadingGlsl(requireShader(this.shaders, 'hairShading'))}`,
+				// WebGPU: the WGSL twins of the stages (stages_wgsl.js), the ribbon's fibre part as a stage of its own
+				vertex: fibre && webgpu ? 'hair_fibre.vert' : 'hair_ribbon.vert', fragment: fibre ? 'hair_fibre.frag' : 'hair_ribbon.frag', lit: true,
 				attributes: ['position', ...Object.keys(attributes)],
 				uniforms: ['u_rootWidth', 'u_tipWidth', 'u_lodWidthScale', 'u_color', 'u_specular', 'u_exponent', ...(fibre ? FIBRE_UNIFORMS : [])],
 				samplers: fibre ? FIBRE_SAMPLERS : [], alpha: true,
