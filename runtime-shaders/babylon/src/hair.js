@@ -42,8 +42,11 @@ async function fibreAttributes(loader, primitive, shading, count) {
 		}
 		return { data: out, size };
 	};
-	return { baker_melanin: double(melanin, 2, 0), baker_occlusion: double(occlusion, 1, 1),
-		baker_fibresPos: double(positive, 3, 0), baker_fibresNeg: double(negative, 3, 0) };
+	const m = double(melanin, 2, 0).data;
+	const o = double(occlusion, 1, 1).data;
+	const packed = new Float32Array(o.length * 3); // eumelanin, pheomelanin, occlusion: WebGPU has 8 vertex buffers
+	for (let r = 0; r < o.length; r++) packed.set([m[2 * r], m[2 * r + 1], o[r]], 3 * r);
+	return { baker_fibre: { data: packed, size: 3 }, baker_fibresPos: double(positive, 3, 0), baker_fibresNeg: double(negative, 3, 0) };
 }
 import { bakerMesh } from './geometry.js';
 

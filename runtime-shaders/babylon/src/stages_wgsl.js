@@ -214,8 +214,7 @@ attribute baker_tangent: vec3f;
 attribute baker_param: f32;
 attribute baker_side: f32;
 attribute baker_widthScale: f32;
-attribute baker_melanin: vec2f;
-attribute baker_occlusion: f32;
+attribute baker_fibre: vec3f;
 attribute baker_fibresPos: vec3f;
 attribute baker_fibresNeg: vec3f;
 uniform u_rootWidth: f32;
@@ -245,9 +244,9 @@ fn main(input: VertexInputs) -> FragmentInputs {
 	vertexOutputs.vTangent = normalize(baker_light_vector(vertexInputs.baker_tangent));
 	vertexOutputs.vView = baker_to_eye(p);
 	vertexOutputs.position = baker_clip(p);
-	vertexOutputs.vSigmaA = select(uniforms.u_hairSigmaA, baker_hair_shading_melanin(vertexInputs.baker_melanin.x,
-		vertexInputs.baker_melanin.y), uniforms.u_hairMelaninPerVertex > 0.5);
-	vertexOutputs.vOcclusion = vertexInputs.baker_occlusion;
+	vertexOutputs.vSigmaA = select(uniforms.u_hairSigmaA, baker_hair_shading_melanin(vertexInputs.baker_fibre.x,
+		vertexInputs.baker_fibre.y), uniforms.u_hairMelaninPerVertex > 0.5);
+	vertexOutputs.vOcclusion = vertexInputs.baker_fibre.z;
 	vertexOutputs.vFibresPos = vertexInputs.baker_fibresPos;
 	vertexOutputs.vFibresNeg = vertexInputs.baker_fibresNeg;
 	vertexOutputs.vAxisX = normalize(baker_light_vector(vec3f(1.0, 0.0, 0.0)));

@@ -13,8 +13,9 @@ varying float vOpacity;
 varying vec3 vTangent;
 varying vec3 vView;
 #ifdef BAKER_HAIR_SHADING
-attribute vec2 baker_melanin;      // per-strand eumelanin, pheomelanin (melaninAttribute), else unused
-attribute float baker_occlusion;   // rest-pose ambient visibility (occlusion.attribute), 1 without one
+// per-strand eumelanin, pheomelanin (melaninAttribute; else unused) and the rest-pose ambient visibility
+// (occlusion.attribute; 1 without one), one attribute: WebGPU allows 8 vertex buffers
+attribute vec3 baker_fibre;
 attribute vec3 baker_fibresPos;    // ambient-cube fibre counts c(+x), c(+y), c(+z) (fibreCount), 0 without one
 attribute vec3 baker_fibresNeg;    // c(-x), c(-y), c(-z)
 uniform vec3 u_hairSigmaA;         // the material's sigmaA
@@ -38,8 +39,8 @@ void main() {
 	vView = baker_to_eye(p);
 	gl_Position = baker_clip(p);
 #ifdef BAKER_HAIR_SHADING
-	vSigmaA = u_hairMelaninPerVertex > 0.5 ? baker_hair_shading_melanin(baker_melanin.x, baker_melanin.y) : u_hairSigmaA;
-	vOcclusion = baker_occlusion;
+	vSigmaA = u_hairMelaninPerVertex > 0.5 ? baker_hair_shading_melanin(baker_fibre.x, baker_fibre.y) : u_hairSigmaA;
+	vOcclusion = baker_fibre.z;
 	vFibresPos = baker_fibresPos;
 	vFibresNeg = baker_fibresNeg;
 	vAxisX = normalize(baker_light_vector(vec3(1.0, 0.0, 0.0)));

@@ -67,8 +67,11 @@ export function ribbonGeometry(line, ribbonIndices, widthScale, verticesPerStran
 	geometry.setIndex(new THREE.BufferAttribute(ribbonIndices, 1));
 	if (fibre) { // BAKER_hair_shading's strand attributes (x of a wider one); absent: open, no fibres, the material's melanin
 		const of = (name) => (name ? line.getAttribute(name.toLowerCase()) : undefined);
-		geometry.setAttribute('baker_melanin', double(of(fibre.melaninAttribute), 2));
-		geometry.setAttribute('baker_occlusion', double(of(fibre.occlusionAttribute), 1, 1));
+		const melanin = double(of(fibre.melaninAttribute), 2).array;
+		const occlusion = double(of(fibre.occlusionAttribute), 1, 1).array;
+		const packed = new Float32Array(occlusion.length * 3); // eumelanin, pheomelanin, occlusion
+		for (let r = 0; r < occlusion.length; r++) packed.set([melanin[2 * r], melanin[2 * r + 1], occlusion[r]], 3 * r);
+		geometry.setAttribute('baker_fibre', new THREE.BufferAttribute(packed, 3));
 		geometry.setAttribute('baker_fibresPos', double(of(fibre.fibresPositive), 3));
 		geometry.setAttribute('baker_fibresNeg', double(of(fibre.fibresNegative), 3));
 	}
