@@ -1,6 +1,7 @@
 """BAKER_hair_shading drawn by the hosts: the strands of a small `baker hair` groom on a ball, blond (eumelanin 0.3)
 and black (eumelanin 8), shaded by runtime-shaders/baker_hair_shading.glsl in @baker/three (WebGLRenderer) and
-@baker/babylon (WebGL2 Engine) in headless Chromium through the viewer, and in the preview's hair panel (moderngl).
+@baker/babylon (WebGL2 Engine), by baker_hair_shading.wgsl in @baker/babylon on WebGPUEngine, in headless Chromium
+through the viewer, and in the preview's hair panel (moderngl).
 
 Lit from behind (the viewer's ?on=backlight: the key light behind the ball facing the camera; the preview's "back"
 light), blond hair glows: the fibre model's forward scattering (TT and Zinke's global multiple scattering) lets the
@@ -93,18 +94,20 @@ def site(grooms):
     server.shutdown()
 
 
-@pytest.mark.parametrize("engine", ["three", "babylon"])
+@pytest.mark.parametrize("engine", ["three", "babylon", "babylon-webgpu"])
 def test_web_hosts_glow_blond_not_black(site, engine, tmp_path):
     started = time.perf_counter()
     jobs = []
     for groom, light, shading in FRAMES:
         query = f"src={groom}.glb" + ("&on=backlight" if light == "back" else "")
-        query += ("&hairShading=kajiyaKay" if shading == "kajiyaKay" else "") + ("&engine=babylon" if engine == "babylon" else "")
+        query += ("&hairShading=kajiyaKay" if shading == "kajiyaKay" else "") + ("" if engine == "three" else f"&engine={engine}")
         jobs.append({"url": f"{site}/index.html?{query}", "out": str(tmp_path / f"{groom}-{light}-{shading}.png"), **PAGE})
-    infos = shoot(jobs, tmp_path / "jobs.json")
+    infos = shoot(jobs, tmp_path / "jobs.json", webgpu=engine.endswith("webgpu"))
     measured = {}
     for frame, job, info in zip(FRAMES, jobs, infos):
         assert not info["errors"] and not info["warnings"], info
         assert info["techniques"] == ["hair"], info
+        if engine.endswith("webgpu"):
+            assert info["backend"] == "webgpu", info
         measured[frame] = excess(np.asarray(Image.open(job["out"]).convert("RGB")) / 255.0)
     assert_glows(measured, f"{engine} ({time.perf_counter() - started:.1f} s)")
