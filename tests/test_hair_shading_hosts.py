@@ -1,7 +1,7 @@
 """BAKER_hair_shading drawn by the hosts: the strands of a small `baker hair` groom on a ball, blond (eumelanin 0.3)
 and black (eumelanin 8), shaded by runtime-shaders/baker_hair_shading.glsl in @baker/three (WebGLRenderer) and
-@baker/babylon (WebGL2 Engine), by baker_hair_shading.wgsl in @baker/babylon on WebGPUEngine, in headless Chromium
-through the viewer, and in the preview's hair panel (moderngl).
+@baker/babylon (WebGL2 Engine), by baker_hair_shading.wgsl in @baker/three on WebGPURenderer (TSL) and @baker/babylon
+on WebGPUEngine, in headless Chromium through the viewer, and in the preview's hair panel (moderngl).
 
 Lit from behind (the viewer's ?on=backlight: the key light behind the ball facing the camera; the preview's "back"
 light), blond hair glows: the fibre model's forward scattering (TT and Zinke's global multiple scattering) lets the
@@ -86,7 +86,7 @@ def site(grooms):
     require_tools("hair shading")
     root = grooms / "site"
     root.mkdir()
-    build_viewer(root, ("viewer.js", "babylon.js"))
+    build_viewer(root, ("viewer.js", "babylon.js", "three_webgpu.js"))
     for groom in MELANIN:
         shutil.copy(grooms / f"{groom}.glb", root / f"{groom}.glb")
     server, url = serve(root)
@@ -94,7 +94,7 @@ def site(grooms):
     server.shutdown()
 
 
-@pytest.mark.parametrize("engine", ["three", "babylon", "babylon-webgpu"])
+@pytest.mark.parametrize("engine", ["three", "three-webgpu", "babylon", "babylon-webgpu"])
 def test_web_hosts_glow_blond_not_black(site, engine, tmp_path):
     started = time.perf_counter()
     jobs = []
