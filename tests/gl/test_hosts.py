@@ -19,6 +19,7 @@ HOSTS = {
     "text.frag.glsl": (["baker_text.glsl"], {}),
     "hair_ribbon.vert.glsl": (["baker_hair.glsl"], {}),
     "hair_kajiya_kay.frag.glsl": (["baker_hair.glsl"], {}),
+    "hair_fibre.frag.glsl": (["baker_hair.glsl", "baker_hair_shading.glsl"], {}),
     "preview_lines.vert.glsl": ([], {}),
     "preview_lines.frag.glsl": ([], {}),
 }
