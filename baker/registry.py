@@ -148,4 +148,11 @@ def panels() -> list:
 
 
 # the USD reader (a shared layer) reaches these through baker.technique, not by importing the registry
-USD_READ_HOOKS.update(primitive_accessors=usd_primitive_accessors, material_readers=usd_material_readers)
+def usd_curve_readers() -> dict:
+    """Extension name -> ``from_usd_curves(doc, prim, world matrix)``: the primitive a ``BasisCurves`` prim baker
+    wrote reads back as (``BAKER_hair``'s strands), for :mod:`baker.readers.usd_baked`."""
+    return {name: ext.from_usd_curves for name, ext in extensions().items() if hasattr(ext, "from_usd_curves")}
+
+
+USD_READ_HOOKS.update(primitive_accessors=usd_primitive_accessors, material_readers=usd_material_readers,
+                      curve_readers=usd_curve_readers)

@@ -166,7 +166,7 @@ vec3 baker_hair_shading(sampler2D mTable, sampler2D nTable, sampler2D dualTable,
         float width1 = sqrt(2.0 * h.betaF * h.betaF + d.w * d.w);
         float width3 = sqrt(2.0 * h.betaF * h.betaF + 3.0 * d.w * d.w);
         float sigmaB = (1.0 + h.densityBack * aF2) * (a1 * width1 + a3 * width3) / max(aBack, 1e-12);
-        float varB = sigmaB * sigmaB;
+        float varB = max(sigmaB * sigmaB, 1e-4);  // no zero-width lobe where a fibre backscatters nothing
         float thetaBack = clamp(thetaO + shiftB, -0.5 * PI, 0.5 * PI);
         float sBack = aBack * baker_hair_shading_lobe(thetaI, thetaBack, varB) * backDirect;
         float sBackG = aBack * baker_hair_shading_lobe(thetaG, thetaBack, varB + spread) * backSpread;

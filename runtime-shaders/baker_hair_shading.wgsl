@@ -167,7 +167,7 @@ fn baker_hair_shading(mTable: texture_2d<f32>, mTableSampler: sampler, nTable: t
         let width1 = sqrt(2.0 * h.betaF * h.betaF + d.w * d.w);
         let width3 = sqrt(2.0 * h.betaF * h.betaF + 3.0 * d.w * d.w);
         let sigmaB = (1.0 + h.densityBack * aF2) * (a1 * width1 + a3 * width3) / max(aBack, 1e-12);
-        let varB = sigmaB * sigmaB;
+        let varB = max(sigmaB * sigmaB, 1e-4);  // no zero-width lobe where a fibre backscatters nothing
         let thetaBack = clamp(thetaO + shiftB, -0.5 * PI, 0.5 * PI);
         let sBack = aBack * baker_hair_shading_lobe(thetaI, thetaBack, varB) * backDirect;
         let sBackG = aBack * baker_hair_shading_lobe(thetaG, thetaBack, varB + spread) * backSpread;

@@ -65,6 +65,8 @@ REFS = {
                           "fonts/*/kerning/advance": "accessor"},
     "BAKER_text": {"glyphs/glyph": "accessor", "glyphs/position": "accessor"},
     "BAKER_thickness": {"thicknessTexture": "texture"},
+    "BAKER_hair_shading": {"tables/*/longitudinal/accessor": "accessor", "tables/*/azimuthal/accessor": "accessor",
+                           "tables/*/dualScattering/accessor": "accessor"},
 }
 SAMPLER_DEFAULTS = {"wrapS": 10497, "wrapT": 10497}
 

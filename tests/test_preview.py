@@ -232,11 +232,50 @@ def test_text_and_hair_panels(tmp_path):
     assert main(["hair", str(ball), "-o", str(hair), "--guides", "20", "--children", "10", "--segments", "6",
                  "--length", "0.4", "-q"]) == 0
     result = preview(hair, size=128)
-    assert [n for n, _, _ in result.panels] == ["lambert", "hair"]
+    assert [n for n, _, _ in result.panels] == ["lambert", "hair", "hair-kajiya-kay"]
     emitter = ndimage.binary_dilation(_covered(_panel(result, "lambert")), iterations=2)
     strands = _covered(_panel(result, "hair")) & ~emitter
     print("hair pixels outside the emitter", int(strands.sum()))
     assert strands.sum() > 100
+
+
+def test_hair_panel_glows_backlit_when_blond(tmp_path):
+    """The "hair" panel shades strands with their BAKER_hair_shading (fibre tables + dual scattering, the melanin
+    and fibre counts ``baker hair`` writes): lit from behind, blond strands glow around the ball (TT through the
+    fibres) and black ones hardly; Kajiya-Kay ("hair-kajiya-kay") has no such glow."""
+    import dataclasses
+
+    import trimesh
+
+    from baker import readers
+    from baker.preview.core import all_panels, create_context, frame_camera, gather_scene, render_panel
+
+    ball = tmp_path / "ball.glb"
+    trimesh.creation.icosphere(subdivisions=2, radius=0.5).export(str(ball))
+    glow = {}
+    for eumelanin in (0.3, 8.0):
+        hair = tmp_path / f"hair{eumelanin}.glb"
+        assert main(["hair", str(ball), "-o", str(hair), "--guides", "20", "--children", "10", "--segments", "6",
+                     "--length", "0.4", "--hair-eumelanin", str(eumelanin), "-q"]) == 0
+        known = {p.name: p for p in all_panels()}
+        scene = gather_scene(readers.read(hair, require_triangles=False), list(known.values()))
+        camera = frame_camera(scene, 30.0, 15.0)
+        ctx = create_context()
+        try:
+            reference = render_panel(ctx, known["lambert"], scene, camera, 128)
+            images = {name: render_panel(ctx, dataclasses.replace(known[name], light="back"), scene, camera, 128)
+                      for name in ("hair", "hair-kajiya-kay")}
+        finally:
+            scene.release()
+            ctx.release()
+        background = reference[0, 0]
+        emitter = ndimage.binary_dilation(np.abs(reference - background).max(axis=2) > 0.02, iterations=2)
+        for name, image in images.items():
+            # the light the strands add around the ball, summed (thin strands are coverage-blended)
+            glow[name, eumelanin] = float(np.clip(_lum(image - background)[~emitter], 0, None).sum())
+    print("backlit glow", {k: round(v, 2) for k, v in glow.items()})
+    assert glow["hair", 0.3] > 3 * glow["hair", 8.0]
+    assert glow["hair", 0.3] > 3 * glow["hair-kajiya-kay", 0.3]
 
 
 def test_unknown_panel_is_an_error(baked_spot):
@@ -257,7 +296,7 @@ def test_hair_cards_panel_is_alpha_tested_and_shaded_along_the_flow(tmp_path):
     cards = tmp_path / "cards.glb"
     assert main(["cards", str(groom), "-o", str(cards), "--cards", "24", "--atlas-size", "512", "-q"]) == 0
     result = preview(cards, size=192, azimuth=20, elevation=10)
-    assert [n for n, _, _ in result.panels] == ["lambert", "cards"]
+    assert [n for n, _, _ in result.panels] == ["lambert", "cards", "cards-kajiya-kay"]
     doc = GltfDocument.load(cards)
     (material,) = doc.json["materials"]
     assert material["alphaMode"] == "MASK"
@@ -274,6 +313,12 @@ def test_hair_cards_panel_is_alpha_tested_and_shaded_along_the_flow(tmp_path):
     print("reference against cards panel: IoU", iou)
     assert reference.sum() < 0.9 * solid.sum() and abs(int(reference.sum()) - int(cut.sum())) < 0.15 * cut.sum()
     assert iou > 0.5  # not the same texels: the cards panel samples the coverage mips, the reference level 0
+    # "cards" shades with the material's BAKER_hair_shading, "cards-kajiya-kay" as before: same cut, other colours
+    kajiya_kay = _panel(result, "cards-kajiya-kay")
+    assert (_covered(kajiya_kay) == cut).mean() > 0.99
+    change = np.abs(_panel(result, "cards") - kajiya_kay)[cut].mean()
+    print("cards: fibre tables against Kajiya-Kay, mean change", change)
+    assert change > 0.02
 
 
 def test_hair_cards_panel_keeps_coverage_when_small(tmp_path):

@@ -23,6 +23,9 @@ points as :mod:`baker.readers.usd` does) one glTF mesh and node:
 - each ``coverageMips`` chain from its ``baker:<name>:coverageMips:_<i>:*`` attributes (the KTX2 file back into an
   accessor, its level 0's coverage measured again).
 
+- ``BasisCurves`` an extension reads back (``from_usd_curves``, lent as ``curve_readers``: ``BAKER_hair``'s strands
+  with their ``primvars:baker:*`` and bound material), one glTF mesh per parent prim.
+
 - the primitive extensions written on the Mesh prim (``baker:edges:*``, ``baker:EXT_mesh_primitive_edge_visibility:*``:
   accessors from their flat arrays, ``:componentType`` and ``:type``) and the fin primitives (guide meshes with
   ``baker:finsOf``), appended to their surface's glTF mesh and named by its extension's ``fins``.
@@ -54,6 +57,8 @@ def is_baked_stage(stage) -> bool:
     from pxr import Usd, UsdGeom, UsdShade
 
     for prim in stage.Traverse(Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)):
+        if prim.IsA(UsdGeom.BasisCurves) and UsdGeom.PrimvarsAPI(prim).HasPrimvar("baker:strandParam"):
+            return True  # baker's hair strands
         if not prim.IsA(UsdGeom.Mesh):
             continue
         if any(p.GetPrimvarName().startswith("baker:") for p in UsdGeom.PrimvarsAPI(prim).GetPrimvars()):
@@ -72,13 +77,15 @@ def read_baked_stage(path: Path, stage, meshes) -> GltfDocument:
     reader = _StageReader(path, stage)
     for mesh, matrix in meshes:
         reader.mesh(mesh, matrix)
-    if not reader.doc.json["meshes"]:
-        raise BakerError(path, "no triangle faces")
-    # fin primitives: guide meshes that name the mesh they belong to (baker.gltf.usd writes them so)
+    # fin primitives: guide meshes that name the mesh they belong to (baker.gltf.usd writes them so); hair strands
     cache = UsdGeom.XformCache(Usd.TimeCode.EarliestTime())
     for prim in stage.Traverse(Usd.TraverseInstanceProxies(Usd.PrimDefaultPredicate)):
         if prim.IsA(UsdGeom.Mesh) and prim.HasRelationship("baker:finsOf"):
             reader.fins(UsdGeom.Mesh(prim), np.array(cache.GetLocalToWorldTransform(prim), dtype=np.float64))
+        elif prim.IsA(UsdGeom.BasisCurves):
+            reader.curves(prim, np.array(cache.GetLocalToWorldTransform(prim), dtype=np.float64))
+    if not reader.doc.json["meshes"]:
+        raise BakerError(path, "no triangle faces")
     return reader.doc
 
 
@@ -92,6 +99,7 @@ class _StageReader:
         self.materials: dict[str, int] = {}  # material prim path -> glTF material
         self.meshes: dict[str, int] = {}  # mesh prim path -> glTF mesh (its primitive 0)
         self.images: dict[str, int] = {}  # resolved asset path -> glTF image
+        self.curve_meshes: dict[str, int] = {}  # parent prim path of read-back curves -> glTF mesh
 
     # ------------------------------------------------------------------ geometry
     def mesh(self, mesh, matrix: np.ndarray) -> None:
@@ -111,6 +119,31 @@ class _StageReader:
         self.primitive_extensions(mesh.GetPrim(), index, 0)
         doc.json["nodes"].append({"name": name, "mesh": index})
         doc.json["scenes"][0]["nodes"].append(len(doc.json["nodes"]) - 1)
+
+    def curves(self, prim, matrix: np.ndarray) -> None:
+        """A ``BasisCurves`` prim an extension reads back (``curve_readers``: BAKER_hair's strands), appended to
+        the glTF mesh of its parent prim (``/Root/Hair``: guides, then children), its bound material read."""
+        from pxr import UsdShade
+
+        for reader in usd_read_hook("curve_readers").values():
+            try:
+                primitive = reader(self.doc, prim, matrix)
+            except BakerError as exc:
+                raise BakerError(self.path, str(exc).split(": ", 1)[-1]) from None
+            if primitive is None:
+                continue
+            material = UsdShade.MaterialBindingAPI(prim).ComputeBoundMaterial()[0]
+            if material:
+                primitive["material"] = self.material(material)
+            parent = str(prim.GetParent().GetPath())
+            if parent not in self.curve_meshes:
+                doc = self.doc
+                doc.json["meshes"].append({"name": prim.GetParent().GetName(), "primitives": []})
+                self.curve_meshes[parent] = len(doc.json["meshes"]) - 1
+                doc.json["nodes"].append({"name": prim.GetParent().GetName(), "mesh": self.curve_meshes[parent]})
+                doc.json["scenes"][0]["nodes"].append(len(doc.json["nodes"]) - 1)
+            self.doc.json["meshes"][self.curve_meshes[parent]]["primitives"].append(primitive)
+            return
 
     def fins(self, mesh, matrix: np.ndarray) -> None:
         """A fin primitive (``finsOf``) of the mesh its ``baker:finsOf`` names, and the reference to it: its

@@ -1,7 +1,5 @@
 // BAKER_hair: each line vertex twice (a_side 0 / 1), opened into a view-facing ribbon at least a pixel wide, with
-// the pixel coverage as opacity. World-space strands; baker_hair.glsl at "@baker:modules". With BAKER_HAIR_SHADING
-// defined (hair_fibre.frag.glsl, baker_hair_shading.glsl among the modules) it also passes the strand's absorption,
-// rest-pose occlusion and fibre counts.
+// the pixel coverage as opacity. World-space strands; baker_hair.glsl at "@baker:modules".
 // @baker:modules
 uniform mat4 u_viewProjection;
 uniform vec3 u_eye;
@@ -17,18 +15,6 @@ in float a_side;
 out vec3 v_position;
 out vec3 v_tangent;
 out float v_alpha;
-#ifdef BAKER_HAIR_SHADING
-uniform vec3 u_sigmaA;
-uniform float u_melaninPerVertex;
-in vec2 a_melanin;
-in float a_occlusion;
-in vec3 a_fibresPos;
-in vec3 a_fibresNeg;
-out vec3 v_sigmaA;
-out float v_occlusion;
-out vec3 v_fibresPos;
-out vec3 v_fibresNeg;
-#endif
 void main() {
     float width = baker_hair_width(u_rootWidth, u_tipWidth, a_param, a_widthScale);
     vec2 coverage = baker_hair_coverage(width, baker_hair_pixel_size(length(u_eye - POSITION), u_tanHalfFovY,
@@ -37,10 +23,4 @@ void main() {
     v_tangent = a_tangent;
     v_alpha = coverage.y;
     gl_Position = u_viewProjection * vec4(v_position, 1.0);
-#ifdef BAKER_HAIR_SHADING
-    v_sigmaA = u_melaninPerVertex > 0.5 ? baker_hair_shading_melanin(a_melanin.x, a_melanin.y) : u_sigmaA;
-    v_occlusion = a_occlusion;
-    v_fibresPos = a_fibresPos;
-    v_fibresNeg = a_fibresNeg;
-#endif
 }

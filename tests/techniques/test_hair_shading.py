@@ -291,6 +291,12 @@ def test_hair_shade_without_fibres_in_front_is_the_bsdf_plus_backscatter():
     np.testing.assert_allclose(near_one, one, rtol=0.01, atol=1e-4)
     totals = [baker.api.hair_shade([1, 0, 0], lights, view, n, **BLOND).sum(0) for n in (1, 2, 4, 8)]
     assert all(np.all(a > b) for a, b in zip(totals, totals[1:]))
+    # never NaN: opaque and clear fibres, grazing light and view, light along the fibre, huge counts
+    grazing = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.999999, 0.001, 0.0], [-1.0, 0.0, 0.0]])
+    for eumelanin in (0.0, 50.0):
+        for n in (0, 0.5, 1, 1000):
+            extreme = baker.api.hair_shade([1, 0, 0], grazing, grazing[::-1], n, **{**BLOND, "eumelanin": eumelanin})
+            assert np.isfinite(extreme).all() and (extreme >= 0).all(), (eumelanin, n, extreme)
     with pytest.raises(ValueError, match="fibres_crossed"):
         baker.api.hair_shade([1, 0, 0], lights, view, -1, **BLOND)
 
@@ -331,3 +337,39 @@ def test_hair_shade_against_a_path_traced_slab_lit_from_behind():
           f"single / traced {np.round(single / traced, 3)}")
     assert np.all(np.abs(shade / traced - 1)[:2] <= 0.3)
     assert two[0] / traced[0] < 0.4 and np.all(single == 0)
+
+
+def test_embedded_tables_are_what_the_runtime_module_samples(tmp_path):
+    """``BAKER_hair_shading``'s tables, written into a GLB and read back by an independent reader (each table's
+    UNSIGNED_SHORT VEC4 accessor as the bits of little-endian float16 RGBA), are texel for texel the half-float tables
+    ``hair_shade`` and the GLSL/WGSL tests upload (M padded with a zero alpha), so a host uploads them as they are."""
+    from baker.gltf.document import GltfDocument
+    from baker.techniques.hair_shading.dual import dual_table_for
+    from baker.techniques.hair_shading.extension import NAME, add_tables, baked_tables
+
+    doc = GltfDocument()
+    tables, dual = baked_tables(0.3, 0.3, 1.55, 2.0)
+    index = add_tables(doc, tables, dual, 2.0)
+    path = tmp_path / "tables.glb"
+    doc.save(path)
+    raw = path.read_bytes()
+    length = int.from_bytes(raw[12:16], "little")
+    gltf = json.loads(raw[20:20 + length])
+    binary = raw[20 + length + 8:]
+    entry = gltf["extensions"][NAME]["tables"][index]
+
+    def texels(key):
+        accessor = gltf["accessors"][entry[key]["accessor"]]
+        assert accessor["componentType"] == 5123 and accessor["type"] == "VEC4"  # UNSIGNED_SHORT
+        view = gltf["bufferViews"][accessor["bufferView"]]
+        start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+        data = binary[start: start + accessor["count"] * 8]
+        return np.frombuffer(data, "<f2").astype(np.float32).reshape(entry[key]["height"], entry[key]["width"], 4)
+
+    half = as_half(tables)
+    m = texels("longitudinal")
+    np.testing.assert_array_equal(m[..., :3], half.longitudinal)
+    assert not m[..., 3].any()
+    np.testing.assert_array_equal(texels("azimuthal"), half.azimuthal)
+    np.testing.assert_array_equal(texels("dualScattering"), dual_table_for(0.3, 0.3, 1.55, 2.0).table)
+    assert entry["azimuthal"]["slices"] == half.slices and entry["dualScattering"]["betaF"] == dual.beta_f

@@ -4,6 +4,7 @@ from __future__ import annotations
 from baker.options import add_arguments
 from baker.technique import lazy
 from baker.techniques.cards.options import CardsOptions
+from baker.techniques.hair_shading.options import HairMaterialOptions
 
 CARDS_OUTPUT_SUFFIXES = (".glb", ".gltf", ".usda", ".usdc", ".usd")
 
@@ -17,4 +18,6 @@ def add_parser(subparsers) -> None:
     p.add_argument("--format", choices=("text", "json"), default="text", help="summary format (stdout for json)")
     p.add_argument("-q", "--quiet", action="store_true", help="no summary")
     add_arguments(p, CardsOptions, "cards", prefixed_flags=False)
+    # --hair-*: the cards' hair material (BAKER_hair_shading); the per-strand data is the strands' only
+    add_arguments(p, HairMaterialOptions, "hair", skip=("melanin_variation", "occlusion_rays"))
     p.set_defaults(func=lazy("baker.techniques.cards.step:run_cards"))

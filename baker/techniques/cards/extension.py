@@ -37,9 +37,14 @@ def alpha_tested_image(result) -> tuple[np.ndarray, float]:
     return result.base_color, result.alpha_cutoff
 
 
-def write_cards(doc: GltfDocument, result, *, groom: dict, options) -> tuple[int, int]:
+def write_cards(doc: GltfDocument, result, *, groom: dict, options, shading=None) -> tuple[int, int]:
     """Add the cards mesh, its node, material and textures to ``doc`` (with ``options.coverage_mips``, the base
-    colour's coverage-preserving mip chain too); returns (mesh, material)."""
+    colour's coverage-preserving mip chain too; ``BAKER_hair_shading`` from ``shading``, a
+    :class:`~baker.techniques.hair_shading.options.HairMaterialOptions`, default when None); returns (mesh,
+    material)."""
+    from baker.techniques.hair_shading.extension import NAME as SHADING, material_extension
+    from baker.techniques.hair_shading.options import HairMaterialOptions
+
     images = [doc.add_image(encode_image(np.ascontiguousarray(pixels), ".png"), "image/png", name)
               for pixels, name in ((result.base_color, "hair_cards_color"), (result.data, "hair_cards_data"),
                                    (result.flow, "hair_cards_flow"))]
@@ -57,6 +62,9 @@ def write_cards(doc: GltfDocument, result, *, groom: dict, options) -> tuple[int
             "depthRange": float(result.depth_range), "atlasSize": int(result.base_color.shape[0]),
             "padding": int(options.padding), "texelDensity": float(result.texel_density)}}})
     material = len(materials) - 1
+    # the fibre model on the cards too (its parameters and tables; no per-vertex strand data on a card)
+    materials[material]["extensions"][SHADING] = material_extension(doc, shading or HairMaterialOptions())
+    doc.use_extension(SHADING)
     if options.coverage_mips:
         rgba, cutoff = alpha_tested_image(result)
         # the base colour is sRGB (glTF): the chain filters its colour in linear light

@@ -1,5 +1,7 @@
-"""Preview panel of BAKER_hair_cards: the cards alpha-tested at the material's cutoff and shaded Kajiya-Kay along
-the flow texture (``runtime-shaders/baker_hair_cards.glsl``). The preview has no TANGENT attribute: the card's
+"""Preview panels of BAKER_hair_cards: the cards alpha-tested at the material's cutoff and shaded along the flow
+texture (``runtime-shaders/baker_hair_cards.glsl``): "cards" with the material's ``BAKER_hair_shading`` (Chiang et
+al. 2016's fibre tables, ``runtime-shaders/baker_hair_shading.glsl``; no fibre counts on cards: the light arrives
+direct, with the neighbours' backscatter), "cards-kajiya-kay" with Kajiya-Kay. The preview has no TANGENT attribute: the card's
 tangent frame comes from the screen-space derivatives of position and texture coordinates (the cotangent frame),
 which for a card is its TANGENT up to length. The base colour (and the alpha the test cuts) is sampled from the
 atlas's coverage-preserving mip chain (``coverageMips``, Castaño 2010) when the file has one, as the web runtimes do,
@@ -32,9 +34,83 @@ class HairCardsPanel(Panel):
                 "u_flow": scene.texture(ctx, cards.flow_texture)}
 
 
+class HairCardsShadingPanel(HairCardsPanel):
+    """Cards whose material also has BAKER_hair_shading: the fibre tables as half-float textures, sigma_a from the
+    material."""
+
+    def read_item(self, doc, item: DrawItem) -> None:
+        super().read_item(doc, item)
+        from baker.techniques.hair_shading.extension import NAME, read_tables
+
+        ext = (item.material.get("extensions") or {}).get(NAME) if item.material_index is not None else None
+        if ext is not None:
+            item.data["hair_shading"] = (int(ext["tables"]), *read_tables(doc, int(ext["tables"])), ext)
+
+    def applies(self, item):
+        return super().applies(item) and item.data.get("hair_shading") is not None
+
+    def uniforms(self, item):
+        import math
+
+        from baker.techniques.hair_shading.kernel import longitudinal_variances
+
+        _, tables, dual, ext = item.data["hair_shading"]
+        return {**super().uniforms(item), "u_sigma": tuple(float(x) for x in ext["sigmaA"]),
+                "u_variances": tuple(float(v) for v in longitudinal_variances(tables.beta_m)),
+                "u_params": (math.radians(float(ext["alpha"])), float(tables.slices), float(dual.alpha_f),
+                             float(dual.beta_f))}
+
+    def textures(self, scene, ctx, item):
+        import moderngl
+        import numpy as np
+
+        index, tables, dual, _ = item.data["hair_shading"]
+        key = ("hair_shading", id(ctx), index)
+        if key not in scene.cache:
+            m_rgba = np.concatenate([tables.longitudinal, np.zeros(tables.longitudinal.shape[:2] + (1,), np.float32)],
+                                    2)
+            group = []
+            for image in (m_rgba, tables.azimuthal, dual.table):
+                tex = ctx.texture((image.shape[1], image.shape[0]), 4,
+                                  np.ascontiguousarray(image, np.float16).tobytes(), dtype="f2")
+                tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
+                tex.repeat_x = tex.repeat_y = False
+                group.append(tex)
+            scene.cache[key] = TextureGroup(group)
+        m, n, d = scene.cache[key].textures
+        return {**super().textures(scene, ctx, item), "u_m": m, "u_n": n, "u_dual": d}
+
+
+class TextureGroup:
+    """The three tables of one set, released together with the scene's cache."""
+
+    def __init__(self, textures):
+        self.textures = textures
+
+    def release(self) -> None:
+        for t in self.textures:
+            t.release()
+
+
 PANELS = [
+    HairCardsShadingPanel(
+        "cards", "hair cards (alpha test, fibre tables)", ("baker_hair_cards.glsl", "baker_hair_shading.glsl"),
+        "uniform sampler2D u_baseColor;\nuniform sampler2D u_data;\nuniform sampler2D u_flow;\n"
+        "uniform float u_cutoff;\nuniform sampler2D u_m;\nuniform sampler2D u_n;\nuniform sampler2D u_dual;\n"
+        "uniform vec3 u_sigma;\nuniform vec4 u_variances;\nuniform vec4 u_params;",
+        "vec4 base = texture(u_baseColor, v_uv);\n"
+        "    if (baker_hair_cards_cut(base.a, u_cutoff)) discard;\n"
+        "    vec3 data = texture(u_data, v_uv).rgb;\n"
+        "    vec4 frame = baker_hair_cards_frame(N, dFdx(P), dFdy(P), dFdx(v_uv), dFdy(v_uv));\n"
+        "    vec3 T = baker_hair_cards_flow(texture(u_flow, v_uv).rgb, N, frame);\n"
+        "    BakerHairShading h = BakerHairShading(u_variances, u_params.x, u_params.y, u_params.z, u_params.w, 1.0,"
+        " 1.0);\n"
+        "    // the cards' root darkening (baker_hair_cards_shade's 0.4) on the fibre model, light of irradiance pi\n"
+        "    color = 0.15 * base.rgb + mix(0.4, 1.0, clamp(data.g, 0.0, 1.0)) * 3.14159265"
+        " * baker_hair_shading(u_m, u_n, u_dual, h, T, u_light, V, 0.0, u_sigma);",
+        inputs="in vec2 v_uv;", order=105),
     HairCardsPanel(
-        "cards", "hair cards (alpha test, Kajiya-Kay)", ("baker_hair_cards.glsl",),
+        "cards-kajiya-kay", "hair cards (alpha test, Kajiya-Kay)", ("baker_hair_cards.glsl",),
         "uniform sampler2D u_baseColor;\nuniform sampler2D u_data;\nuniform sampler2D u_flow;\n"
         "uniform float u_cutoff;",
         "vec4 base = texture(u_baseColor, v_uv);\n"
@@ -44,5 +120,5 @@ PANELS = [
         "    vec3 T = baker_hair_cards_flow(texture(u_flow, v_uv).rgb, N, frame);\n"
         "    color = 0.25 * base.rgb + baker_hair_cards_shade(base.rgb, T, N, u_light, V, vec3(1.0), data.g, data.b,"
         " 40.0, 0.1, 0.4);",
-        inputs="in vec2 v_uv;", order=105),
+        inputs="in vec2 v_uv;", order=105.5),
 ]

@@ -14,12 +14,12 @@ from pathlib import Path
 
 from baker.errors import BakerError
 from baker.techniques.cards.command import CARDS_OUTPUT_SUFFIXES
+from baker.options import from_args
 from baker.techniques.cards.options import CardsOptions
+from baker.techniques.hair_shading.options import HairMaterialOptions
 
 
 def checked_options(args) -> CardsOptions:
-    from baker.options import from_args
-
     if Path(args.output).suffix.lower() not in CARDS_OUTPUT_SUFFIXES:
         raise BakerError(args.output, f"unsupported output type (use one of {', '.join(CARDS_OUTPUT_SUFFIXES)})")
     try:
@@ -69,13 +69,14 @@ def scalp_document(groom_path, options: CardsOptions, max_memory: int | None = N
     return doc, (str(source) if doc is not None else None)
 
 
-def build_document(result, counts: dict, options: CardsOptions, scalp=None):
-    """The cards' document: the scalp's (when there is one: the cards are added beside its mesh) or a new one."""
+def build_document(result, counts: dict, options: CardsOptions, scalp=None, shading=None):
+    """The cards' document: the scalp's (when there is one: the cards are added beside its mesh) or a new one;
+    ``shading``: the hair material's options (``--hair-*``, default when None)."""
     from baker.gltf.document import GltfDocument
     from baker.techniques.cards.extension import write_cards
 
     doc = scalp if scalp is not None else GltfDocument()
-    write_cards(doc, result, groom=counts, options=options)
+    write_cards(doc, result, groom=counts, options=options, shading=shading)
     return doc
 
 
@@ -83,20 +84,44 @@ def write_output(doc, output) -> None:
     suffix = Path(output).suffix.lower()
     if suffix in (".glb", ".gltf"):
         doc.save(output)
-    else:
+    elif suffix == ".usdz":
         from baker.gltf.usd import write_usd
         from baker.registry import usd_primitive_hooks, usd_texture_color_spaces, vertex_attribute_widths
 
         write_usd(doc, output, usd_primitive_hooks(), vertex_attribute_widths(), usd_texture_color_spaces())
+    else:
+        write_usd_with_tables(doc, Path(output))
+
+
+def write_usd_with_tables(doc, output: Path) -> None:
+    """The document as USD (:mod:`baker.gltf.usd`), each hair material's ``BAKER_hair_shading`` tables added as
+    ``baker:hair_shading:tableData:*`` (a stage has no bufferViews; :mod:`baker.readers.usd_baked` rebuilds them)."""
+    from baker.gltf.usd import build_stage, write_stage_and_textures
+    from baker.registry import (usd_primitive_accessors, usd_primitive_hooks, usd_texture_color_spaces,
+                                vertex_attribute_widths)
+    from baker.techniques.hair_shading.extension import usd_table_data, write_usd_table_data
+
+    folder = f"{output.stem}_textures"
+    stage, images = build_stage(doc, folder, usd_primitive_hooks(), vertex_attribute_widths(),
+                                usd_texture_color_spaces(), usd_primitive_accessors())
+    for prim in stage.Traverse():
+        tables = prim.GetAttribute("baker:hair_shading:tables")
+        if tables and tables.HasAuthoredValue():
+            write_usd_table_data(prim, usd_table_data(doc, int(tables.Get())))
+    write_stage_and_textures(stage, output, [(output.parent / folder / name, data) for name, data in images])
 
 
 def run_cards(args) -> int:
     """``baker cards GROOM -o OUT``: the cards of a groom file, written as glTF or USD, and a summary."""
     options = checked_options(args)
+    try:
+        shading = from_args(HairMaterialOptions, "hair", args)
+    except ValueError as exc:
+        raise BakerError(None, str(exc)) from None
     scalp, scalp_source = scalp_document(args.input, options)  # before the bake: a bad --scalp fails at once
     result, counts, seconds = make_cards_from_file(args.input, options)
     start = time.perf_counter()
-    write_output(build_document(result, counts, options, scalp), args.output)
+    write_output(build_document(result, counts, options, scalp, shading), args.output)
     seconds["write"] = time.perf_counter() - start
     s = result.stats
     info = {"input": str(args.input), "output": str(args.output), "strands": counts["strandCount"],

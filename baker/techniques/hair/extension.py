@@ -372,3 +372,75 @@ def summary(doc: GltfDocument, mesh: int, primitive: int) -> dict | None:
     if hair.root_binding is not None:
         out["rootBindingMesh"] = hair.root_binding["mesh"]
     return out
+
+
+def from_usd_curves(doc: GltfDocument, prim, matrix: np.ndarray) -> dict | None:
+    """A ``BasisCurves`` prim :mod:`baker.techniques.hair.usd` wrote, as the ``BAKER_hair`` LINES primitive it was
+    written from (world transform baked into the points; ``primvars:baker:<name>`` of vertex interpolation as
+    ``_<NAME>`` attributes); None for other curves. Children name primitive 0 (the guides, written first) as their
+    guides. What :mod:`baker.readers.usd_baked` asks through the registry's ``curve_readers``."""
+    from pxr import UsdGeom
+
+    from baker.errors import BakerError
+    from baker.techniques.hair.kernel import ribbon_indices, strand_tangents
+
+    curves = UsdGeom.BasisCurves(prim)
+    api = UsdGeom.PrimvarsAPI(prim)
+    if not api.HasPrimvar("baker:strandParam"):
+        return None
+    counts = np.asarray(curves.GetCurveVertexCountsAttr().Get() or [], np.int64)
+    points = np.asarray(curves.GetPointsAttr().Get() or [], np.float64).reshape(-1, 3)
+    if not len(counts) or (counts != counts[0]).any() or counts[0] < 2 or counts.sum() != len(points):
+        raise BakerError(None, f"{prim.GetPath()}: hair curves must all have the same vertex count >= 2")
+    s, v = len(counts), int(counts[0])
+    points = points @ matrix[:3, :3] + matrix[3, :3]  # USD's row vectors
+    if not np.isfinite(points).all():
+        raise BakerError(None, f"{prim.GetPath()}.points: NaN or infinite values")
+    hair = prim.GetParent()
+
+    def hair_attribute(name, default):
+        attr = hair.GetAttribute(f"baker:hair:{name}")
+        return attr.Get() if attr and attr.HasAuthoredValue() else default
+
+    positions = points.astype(np.float32)
+    attributes = {"POSITION": doc.add_accessor(positions, min_max=True)}
+    tangents = strand_tangents(points.reshape(s, v, 3)).reshape(-1, 3).astype(np.float32)
+    attributes[TANGENT] = doc.add_accessor(tangents)
+    for primvar in api.GetPrimvars():
+        name = primvar.GetPrimvarName()
+        if not name.startswith("baker:") or primvar.GetInterpolation() != UsdGeom.Tokens.vertex:
+            continue
+        values = np.asarray(primvar.Get(), np.float32)
+        if len(values) != s * v or not np.isfinite(values).all():
+            raise BakerError(None, f"{prim.GetPath()}.primvars:{name}: {len(values)} values (expected {s * v}), "
+                             "finite")
+        attribute = PARAM if name == "baker:strandParam" else "_" + name[len("baker:"):].upper()
+        attributes[attribute] = doc.add_accessor(values)
+    lines = (np.arange(s)[:, None] * v + np.arange(v - 1)[None, :]).reshape(-1)
+    width_scale = api.GetPrimvar("baker:widthScale")
+    scale = np.asarray(width_scale.Get(), np.float32) if width_scale else np.ones(s, np.float32)
+    ext = {"strandSet": prim.GetName(), "strandCount": s, "verticesPerStrand": v,
+           "length": float(hair_attribute("length", 0.0)), "rootWidth": float(hair_attribute("rootWidth", 0.0)),
+           "tipWidth": float(hair_attribute("tipWidth", 0.0)),
+           "widthScale": doc.add_accessor(scale, target=None),
+           "ribbonIndices": doc.add_accessor(ribbon_indices(s, v).astype(np.uint32), target=None),
+           "order": "nearestFirst", "tangentAttribute": TANGENT, "paramAttribute": PARAM}
+    ids, weights = api.GetPrimvar("baker:guideIds"), api.GetPrimvar("baker:guideWeights")
+    if ids and weights:
+        ext["guides"] = {"primitive": 0, "ids": doc.add_accessor(np.asarray(ids.Get(), np.uint32), target=None),
+                         "weights": doc.add_accessor(np.asarray(weights.Get(), np.float32), target=None)}
+        interpolation = hair_attribute("interpolation", None)
+        if interpolation:
+            ext["guides"]["interpolation"] = str(interpolation)
+            ext["order"] = "lodPrefix"
+        lods = hair_attribute("lod:strandCounts", None)
+        scales = hair_attribute("lod:widthScales", None)
+        if lods is not None and scales is not None:
+            ext["lods"] = [{"strandCount": int(n), "widthScale": float(w)} for n, w in zip(lods, scales)]
+    elif hair_attribute("interpolation", None):
+        ext["order"] = "none"
+    doc.use_extension(NAME)
+    return {"attributes": attributes, "mode": MODE_LINES,
+            "indices": doc.add_accessor(np.stack([lines, lines + 1], 1).reshape(-1).astype(np.uint32),
+                                        target=TARGET_ELEMENT_ARRAY_BUFFER),
+            "extensions": {NAME: ext}}

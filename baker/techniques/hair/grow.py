@@ -109,6 +109,22 @@ def make_hair(input_path, options: HairOptions, seed: int = 0, max_memory: int |
     return asset, result
 
 
+def usd_hair_material(doc, result: HairResult, emitter_mesh: int, shading=None, seed: int = 0):
+    """The ``hair_hook`` of :func:`~baker.techniques.hair.usd.write_hair_usd` that binds the hair material and
+    writes the strands' precomputes (as :func:`~baker.techniques.hair.extension.write_hair` does for glTF)."""
+    from baker.techniques.hair.extension import mesh_triangles
+    from baker.techniques.hair_shading.options import HairMaterialOptions
+    from baker.techniques.hair_shading.strands import strand_attributes
+    from baker.techniques.hair_shading.usd import write_strand_material
+
+    shading = shading or HairMaterialOptions()
+    sets = [result.guides] + ([result.children] if result.children.count else [])
+    attributes, kwargs = strand_attributes(shading, sets, result.root_width, result.tip_width,
+                                           scalp=mesh_triangles(doc, emitter_mesh), seed=seed)
+    paths = ["/Root/Hair/guides", "/Root/Hair/children"][:len(sets)]
+    return lambda stage: write_strand_material(stage, paths, shading, attributes, kwargs)
+
+
 def write_output(asset: Asset, result: HairResult, options: HairOptions, output, shading=None, seed: int = 0) -> None:
     """Write the hair as ``output``'s suffix says; ``shading``: the hair material's options
     (:class:`~baker.techniques.hair_shading.options.HairMaterialOptions`, default when None)."""
@@ -123,7 +139,8 @@ def write_output(asset: Asset, result: HairResult, options: HairOptions, output,
         from baker.registry import usd_primitive_hooks
         from baker.techniques.hair.usd import write_hair_usd
 
-        write_hair_usd(asset.doc, result, options.mesh, output, options.curve_type, usd_primitive_hooks())
+        write_hair_usd(asset.doc, result, options.mesh, output, options.curve_type, usd_primitive_hooks(),
+                       hair_hook=usd_hair_material(asset.doc, result, options.mesh, shading, seed))
     elif suffix == ".tfx":
         from baker.techniques.hair.tfx import write_tfx
 

@@ -178,19 +178,41 @@ def _binding_json(doc, binding: RootBinding) -> dict:
             "barycentrics": doc.add_accessor(binding.barycentrics.astype(np.float32), target=None)}
 
 
-def write_gltf(bake: GuidesBake, output) -> None:
+def groom_attributes(doc, result, shading, has_scalp: bool):
+    """(guide attributes, child attributes, material keywords): the children are every strand of the groom, so the
+    precomputes are theirs and each guide, one of them, takes its own strand's values (tracing both sets would
+    let a guide occlude its own copy)."""
+    from baker.techniques.hair.extension import mesh_triangles
+    from baker.techniques.hair_shading.strands import strand_attributes
+
+    (child_extra,), kwargs = strand_attributes(shading, [result.children], result.root_width, result.tip_width,
+                                               scalp=mesh_triangles(doc, 0) if has_scalp else None)
+    s, v = result.children.positions.shape[:2]
+    rows = {result.children.positions[i].tobytes(): i for i in range(s)}
+    pick = np.array([rows[g.tobytes()] for g in result.guides.positions], np.int64)
+    guide_extra = {}
+    for name, values in child_extra.items():
+        per_strand = values.reshape(s, v, *values.shape[1:])
+        guide_extra[name] = per_strand[pick].reshape(len(pick) * v, *values.shape[1:])
+    return guide_extra, child_extra, kwargs
+
+
+def write_gltf(bake: GuidesBake, output, shading=None) -> None:
     from baker.gltf.document import GltfDocument
     from baker.techniques.hair.extension import NAME, add_hair_node, write_strand_primitive
+    from baker.techniques.hair_shading.extension import add_hair_material
+    from baker.techniques.hair_shading.options import HairMaterialOptions
 
     doc = bake.asset.doc if bake.asset is not None else GltfDocument()
     result = bake.result
-    materials = doc.json.setdefault("materials", [])
-    materials.append({"name": "baker_hair", "pbrMetallicRoughness": {
-        "baseColorFactor": [0.18, 0.11, 0.06, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
-    material = len(materials) - 1
-    guides = write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material)
+    shading = shading or HairMaterialOptions()
+    guide_extra, child_extra, kwargs = groom_attributes(doc, result, shading, bake.asset is not None)
+    fibre_count = kwargs.pop("fibreCount", None)
+    material = add_hair_material(doc, shading, fibre_count=fibre_count, **kwargs)
+    guides = write_strand_primitive(doc, result.guides, strand_set="guides", result=result, material=material,
+                                    extra_attributes=guide_extra)
     children = write_strand_primitive(doc, result.children, strand_set="children", result=result,
-                                      material=material, guide_primitive=0)
+                                      material=material, guide_primitive=0, extra_attributes=child_extra)
     gext, cext = guides["extensions"][NAME], children["extensions"][NAME]
     gext["order"] = "none"
     cext["order"] = "lodPrefix"
@@ -206,7 +228,7 @@ def write_gltf(bake: GuidesBake, output) -> None:
     doc.save(output)
 
 
-def write_usd(bake: GuidesBake, output, curve_type: str) -> None:
+def write_usd(bake: GuidesBake, output, curve_type: str, shading=None) -> None:
     from baker.gltf.document import GltfDocument
     from baker.registry import usd_primitive_hooks
     from baker.techniques.hair.usd import write_hair_usd
@@ -232,7 +254,25 @@ def write_usd(bake: GuidesBake, output, curve_type: str) -> None:
                 Vt.Vec3fArray.FromNumpy(binding.barycentrics.astype(np.float32)))
 
     doc = bake.asset.doc if bake.asset is not None else GltfDocument()
-    write_hair_usd(doc, bake.result, 0, output, curve_type, usd_primitive_hooks(), hair_hook=annotate)
+    material = usd_groom_material(bake, doc, shading)
+
+    def hook(stage):
+        annotate(stage)
+        material(stage)
+
+    write_hair_usd(doc, bake.result, 0, output, curve_type, usd_primitive_hooks(), hair_hook=hook)
+
+
+def usd_groom_material(bake: GuidesBake, doc, shading):
+    """The hook binding the hair material to the guides and children curves, with their precomputes (the
+    children's, each guide its own strand's, as :func:`groom_attributes`)."""
+    from baker.techniques.hair_shading.options import HairMaterialOptions
+    from baker.techniques.hair_shading.usd import write_strand_material
+
+    shading = shading or HairMaterialOptions()
+    guide_extra, child_extra, kwargs = groom_attributes(doc, bake.result, shading, bake.asset is not None)
+    return lambda stage: write_strand_material(stage, ["/Root/Hair/guides", "/Root/Hair/children"], shading,
+                                               [guide_extra, child_extra], kwargs)
 
 
 def sidecar_paths(output) -> tuple[Path, Path]:
@@ -260,12 +300,14 @@ def write_tfx_files(bake: GuidesBake, output) -> None:
         (Path(output), encode_tfx(g.positions, thickness=g.width_scale))])
 
 
-def write_output(bake: GuidesBake, output, options: GuidesOptions) -> None:
+def write_output(bake: GuidesBake, output, options: GuidesOptions, shading=None) -> None:
+    """Write the guides as ``output``'s suffix says; ``shading``: the hair material's options
+    (:class:`~baker.techniques.hair_shading.options.HairMaterialOptions`, default when None)."""
     suffix = Path(output).suffix.lower()
     if suffix in (".glb", ".gltf"):
-        write_gltf(bake, output)
+        write_gltf(bake, output, shading)
     elif suffix in (".usda", ".usdc", ".usd"):
-        write_usd(bake, output, options.curve_type)
+        write_usd(bake, output, options.curve_type, shading)
     else:
         write_tfx_files(bake, output)
 

@@ -144,7 +144,7 @@ def shade(tables: HairTables, dual: DualScatteringTable, tangent, light, view, f
         width_1 = np.sqrt(2.0 * dual.beta_f ** 2 + beta_b ** 2)
         width_3 = np.sqrt(2.0 * dual.beta_f ** 2 + 3.0 * beta_b ** 2)
         sigma_b = (1.0 + density_back * a_f2) * (a1 * width_1 + a3 * width_3) / np.maximum(a_back, 1e-12)
-        var_b = sigma_b * sigma_b
+        var_b = np.maximum(sigma_b * sigma_b, 1e-4)  # no zero-width lobe where a fibre backscatters nothing
         theta_back = clamp_angle(theta_o + shift_b)
         s_back = a_back * longitudinal_lobe(theta_i, theta_back, var_b) * back_direct
         s_back_g = a_back * longitudinal_lobe(theta_g, theta_back, var_b + spread) * back_spread

@@ -138,17 +138,18 @@ TABLE_AXES = {
 }
 
 
-def table_texels(table: np.ndarray) -> bytes:
-    """An (H, W, C <= 4) float table as the extension stores it: RGBA little-endian float16, row 0 first."""
+def table_texels(table: np.ndarray) -> np.ndarray:
+    """An (H, W, C <= 4) float table as the extension stores it: (H W, 4) uint16, the bits of RGBA half floats,
+    row 0 first (written little-endian as a VEC4 UNSIGNED_SHORT accessor)."""
     table = np.asarray(table, np.float32)
-    out = np.zeros(table.shape[:2] + (TABLE_CHANNELS,), "<f2")
+    out = np.zeros(table.shape[:2] + (TABLE_CHANNELS,), np.float16)
     out[..., :table.shape[2]] = table
-    return out.tobytes()
+    return out.reshape(-1, TABLE_CHANNELS).view(np.uint16)
 
 
 def add_tables(doc, tables, dual, alpha: float) -> int:
     """The index in the root ``BAKER_hair_shading.tables`` of the table set for (beta_m, beta_n, eta, alpha),
-    appended (three bufferViews) unless the document already holds it: each set once per file."""
+    appended (three accessors) unless the document already holds it: each set once per file."""
     root = doc.json.setdefault("extensions", {}).setdefault(NAME, {"tables": []})
     sets = root["tables"]
     key = {"betaM": float(tables.beta_m), "betaN": float(tables.beta_n), "eta": float(tables.eta),
@@ -156,18 +157,27 @@ def add_tables(doc, tables, dual, alpha: float) -> int:
     for i, entry in enumerate(sets):
         if all(entry.get(k) == v for k, v in key.items()):
             return i
-    m, n, d = tables.longitudinal, tables.azimuthal, dual.table
-    entry = dict(key)
-    entry["longitudinal"] = {"bufferView": doc.add_buffer_view(table_texels(m)), "width": int(m.shape[1]),
-                             "height": int(m.shape[0])}
-    entry["azimuthal"] = {"bufferView": doc.add_buffer_view(table_texels(n)), "width": int(n.shape[1]),
-                          "height": int(n.shape[0]), "slices": int(tables.slices), "thetaSize": int(tables.n_theta)}
-    entry["dualScattering"] = {"bufferView": doc.add_buffer_view(table_texels(d.reshape(d.shape[0], d.shape[1], 4))),
-                               "width": int(d.shape[1]), "height": int(d.shape[0]),
-                               "alphaF": float(dual.alpha_f), "betaF": float(dual.beta_f)}
+    entry = table_entry(doc, key, tables.longitudinal, tables.azimuthal, dual.table, tables.slices, tables.n_theta,
+                        dual.alpha_f, dual.beta_f)
     sets.append(entry)
     doc.use_extension(NAME)
     return len(sets) - 1
+
+
+def table_entry(doc, key: dict, m, n, d, slices: int, theta_size: int, alpha_f: float, beta_f: float) -> dict:
+    """A root table set: ``key`` (betaM, betaN, eta, alpha) and the three tables as accessors of ``doc``."""
+    d = np.asarray(d).reshape(np.shape(d)[0], np.shape(d)[1], -1)
+    entry = dict(key)
+
+    def texels(table) -> int:
+        return doc.add_accessor(table_texels(table), target=None)
+
+    entry["longitudinal"] = {"accessor": texels(m), "width": int(m.shape[1]), "height": int(m.shape[0])}
+    entry["azimuthal"] = {"accessor": texels(n), "width": int(n.shape[1]), "height": int(n.shape[0]),
+                          "slices": int(slices), "thetaSize": int(theta_size)}
+    entry["dualScattering"] = {"accessor": texels(d), "width": int(d.shape[1]), "height": int(d.shape[0]),
+                               "alphaF": float(alpha_f), "betaF": float(beta_f)}
+    return entry
 
 
 _TABLE_CACHE: dict = {}  # (beta_m, beta_n, eta, alpha) -> (HairTables, DualScatteringTable): one bake per setting
@@ -232,11 +242,10 @@ def fibre_color(sigma_a, beta_n: float) -> np.ndarray:
 
 
 def read_table(doc, entry: dict, key: str) -> np.ndarray:
-    """One table of a root table set as float32 (H, W, 4)."""
+    """One table of a root table set as float32 (H, W, 4): its accessor's uint16 values as half floats."""
     spec = entry[key]
-    view = doc.json["bufferViews"][spec["bufferView"]]
-    data = bytes(doc.bin[view.get("byteOffset", 0): view.get("byteOffset", 0) + view["byteLength"]])
-    return np.frombuffer(data, "<f2").astype(np.float32).reshape(spec["height"], spec["width"], TABLE_CHANNELS)
+    bits = np.ascontiguousarray(doc.accessor(spec["accessor"]), np.uint16)
+    return bits.view(np.float16).astype(np.float32).reshape(spec["height"], spec["width"], TABLE_CHANNELS)
 
 
 def read_tables(doc, index: int):
@@ -258,8 +267,8 @@ PARAMETER_RANGES = {"eumelanin": (0.0, 50.0), "pheomelanin": (0.0, 50.0), "betaM
 
 
 def check(doc, places: list, issues) -> None:
-    """Semantic rules of BAKER_hair_shading (``baker validate``): on the root, every table's bufferView holds
-    exactly width x height x 4 half floats, the azimuthal table is slices x thetaSize rows and the dual-scattering
+    """Semantic rules of BAKER_hair_shading (``baker validate``): on the root, every table's accessor holds
+    exactly width x height UNSIGNED_SHORT VEC4 (half-float bits), the azimuthal table is slices x thetaSize rows and the dual-scattering
     table one row per slice, every texel finite, the lobes and fractions >= 0; on a material, the table set exists,
     the parameters are in range, colour or melanin (not both), and the attributes it names are on the primitives
     drawn with it, finite, occlusion in [0, 1], melanin and fibre counts >= 0."""
@@ -312,28 +321,30 @@ def check(doc, places: list, issues) -> None:
 def check_table_set(doc, entry: dict, ptr: str, issues) -> None:
     from baker.checks import is_count, is_index
 
-    views = doc.json.get("bufferViews") or []
+    accessors = doc.json.get("accessors") or []
     sizes = {}
     for key in TABLE_KEYS:
         spec = entry.get(key)
         if not isinstance(spec, dict):
             continue  # the schema pass reports it
-        w, h, v = spec.get("width"), spec.get("height"), spec.get("bufferView")
+        w, h, a = spec.get("width"), spec.get("height"), spec.get("accessor")
         if not (is_count(w, 2) and is_count(h, 2)):
             continue
         sizes[key] = (w, h)
-        if not is_index(v, views):
-            issues.error("UNRESOLVED_REFERENCE", f"bufferView {v!r} does not exist", f"{ptr}/{key}/bufferView")
+        if not is_index(a, accessors):
+            issues.error("UNRESOLVED_REFERENCE", f"accessor {a!r} does not exist", f"{ptr}/{key}/accessor")
             continue
-        expected = w * h * TABLE_CHANNELS * 2
-        if views[v].get("byteLength") != expected:
-            issues.error("BAKER_HAIR_SHADING_TABLE_SIZE", f"bufferView {v} holds {views[v].get('byteLength')} bytes, "
-                         f"the {key} table of {w} x {h} RGBA float16 texels needs {expected}", f"{ptr}/{key}")
+        acc = accessors[a]
+        if acc.get("componentType") != 5123 or acc.get("type") != "VEC4" or acc.get("normalized") \
+                or acc.get("count") != w * h:
+            issues.error("BAKER_HAIR_SHADING_TABLE_SIZE", f"accessor {a} is {acc.get('count')} "
+                         f"{acc.get('componentType')} {acc.get('type')}, the {key} table of {w} x {h} texels needs "
+                         f"{w * h} UNSIGNED_SHORT (5123) VEC4 (half-float bits)", f"{ptr}/{key}")
             continue
         try:
             texels = read_table(doc, entry, key)
         except (ValueError, IndexError, TypeError):
-            issues.error("BAKER_HAIR_SHADING_TABLE_SIZE", f"the {key} table cannot be read from bufferView {v}",
+            issues.error("BAKER_HAIR_SHADING_TABLE_SIZE", f"the {key} table cannot be read from accessor {a}",
                          f"{ptr}/{key}")
             continue
         if not np.isfinite(texels).all():
@@ -376,3 +387,58 @@ def check_material_attributes(doc, material: int, attributes: dict, issues) -> N
                     issues.error("BAKER_HAIR_SHADING_RANGE", f"'{name}' must be in [{lo}, {hi if hi is not None else 'inf'}"
                                  f"{']' if hi is not None else ')'}", pointer("meshes", m, "primitives", p,
                                                                               "attributes", name))
+
+
+# --------------------------------------------------------------------------------------------------------------- USD
+def usd_table_data(doc, index: int) -> dict:
+    """What a stage carries of root table set ``index`` (``baker:hair_shading:tableData:*``): the set's numbers and
+    each table's texels (RGBA, row 0 first) with its size."""
+    entry = doc.json["extensions"][NAME]["tables"][index]
+    out = {k: entry[k] for k in ("betaM", "betaN", "eta", "alpha")}
+    for key in TABLE_KEYS:
+        spec = {k: v for k, v in entry[key].items() if k != "accessor"}
+        spec["texels"] = read_table(doc, entry, key)
+        out[key] = spec
+    return out
+
+
+def write_usd_table_data(prim, data: dict) -> None:
+    """``data`` (:func:`usd_table_data`) as custom attributes of a material prim: ``half[]`` texels, the rest
+    typed as every other extension field."""
+    from pxr import Sdf, Vt
+
+    from baker.gltf.usd import custom_attributes
+
+    ns = "baker:hair_shading:tableData"
+    custom_attributes(prim, ns, {k: v for k, v in data.items() if k not in TABLE_KEYS})
+    for key in TABLE_KEYS:
+        spec = dict(data[key])
+        texels = np.asarray(spec.pop("texels"), np.float16).reshape(-1)
+        prim.CreateAttribute(f"{ns}:{key}:texels", Sdf.ValueTypeNames.HalfArray, custom=True).Set(
+            Vt.HalfArray.FromNumpy(texels))
+        custom_attributes(prim, f"{ns}:{key}", spec)
+
+
+def from_usd(doc, material: int, params: dict) -> None:
+    """A stage read back (:mod:`baker.readers.usd_baked`): the material's ``tableData`` becomes a root table set
+    (accessors, once per file) and ``tables`` its index."""
+    data = params.pop("tableData", None)
+    if not isinstance(data, dict):
+        return
+    key = {k: float(data[k]) for k in ("betaM", "betaN", "eta", "alpha")}
+    root = doc.json.setdefault("extensions", {}).setdefault(NAME, {"tables": []})
+    for i, entry in enumerate(root["tables"]):
+        if all(entry.get(k) == v for k, v in key.items()):
+            params["tables"] = i
+            return
+    arrays = {}
+    for name in TABLE_KEYS:
+        spec = data[name]
+        arrays[name] = np.asarray(spec["texels"], np.float32).reshape(int(spec["height"]), int(spec["width"]),
+                                                                      TABLE_CHANNELS)
+    azimuthal, dual = data["azimuthal"], data["dualScattering"]
+    root["tables"].append(table_entry(doc, key, arrays["longitudinal"], arrays["azimuthal"],
+                                      arrays["dualScattering"], int(azimuthal["slices"]),
+                                      int(azimuthal["thetaSize"]), float(dual["alphaF"]), float(dual["betaF"])))
+    doc.use_extension(NAME)
+    params["tables"] = len(root["tables"]) - 1

@@ -45,7 +45,7 @@ class HairMaterialOptions:
     melanin_variation: float = opt(0.2, "strands only: per-strand melanin varies by this factor (eumelanin and "
                                         "pheomelanin x exp(variation x normal), the _HAIR_MELANIN attribute); 0: "
                                         "none", min=0.0, max=2.0)
-    occlusion_rays: int = opt(32, "strands only: rays per strand vertex for _HAIR_OCCLUSION and the fibre counts "
+    occlusion_rays: int = opt(16, "strands only: rays per strand vertex for _HAIR_OCCLUSION and the fibre counts "
                                   "(0: neither)", min=0, max=1024)
 
     def __post_init__(self):

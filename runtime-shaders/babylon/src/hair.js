@@ -11,8 +11,8 @@ import { BAKER_HAIR, controls, loadedPrimitives, readAccessor, engineModule, req
 export async function hairShadingTextures(loader, shading) {
 	const scene = loader.babylonScene;
 	const upload = async (table) => {
-		const bytes = await loader.loadBufferViewAsync(`/bufferViews/${table.bufferView}`, loader.gltf.bufferViews[table.bufferView]);
-		const texture = new RawTexture(hairTableTexels(table, bytes), table.width, table.height, Constants.TEXTUREFORMAT_RGBA, scene,
+		const { data } = await readAccessor(loader, table.accessor, { integer: true }); // the halves' bits as numbers
+		const texture = new RawTexture(hairTableTexels(table, data), table.width, table.height, Constants.TEXTUREFORMAT_RGBA, scene,
 			false, false, Constants.TEXTURE_BILINEAR_SAMPLINGMODE, Constants.TEXTURETYPE_HALF_FLOAT);
 		texture.wrapU = texture.wrapV = Constants.TEXTURE_CLAMP_ADDRESSMODE;
 		return texture;

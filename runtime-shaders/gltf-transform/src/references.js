@@ -76,6 +76,14 @@ export const REFERENCES = {
 			["cardFirstIndex", "accessor"],
 		],
 	},
+	"BAKER_hair_shading": {
+		"glTF": [
+			["tables/*/longitudinal/accessor", "accessor"],
+			["tables/*/azimuthal/accessor", "accessor"],
+			["tables/*/dualScattering/accessor", "accessor"],
+		],
+		"material": [],
+	},
 	"BAKER_normal_blur": {
 		"material": [
 			["diffuseNormalTextures/*", "texture"],

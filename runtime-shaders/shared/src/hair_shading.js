@@ -1,7 +1,8 @@
 // BAKER_hair_shading for the web runtimes (schemas/BAKER_hair_shading): what a host needs to draw a hair material
 // with runtime-shaders/baker_hair_shading.glsl / .wgsl: the fibre parameters of the material (the module's
 // BakerHairShading struct, field for field) and the three tables of the root extension it names, as half-float
-// RGBA texel arrays (the bufferViews as stored). No engine import: each runtime uploads the tables itself.
+// RGBA texel arrays (the accessors' UNSIGNED_SHORT elements are the halves' bits). No engine import: each runtime
+// reads the accessors and uploads the tables itself.
 export const BAKER_HAIR_SHADING = 'BAKER_hair_shading';
 
 // Chiang et al. 2016's map from longitudinal roughness to d'Eon's variance v per lobe (R, TT, TRT, residual), as
@@ -14,7 +15,7 @@ export function longitudinalVariances(betaM) {
 /**
  * The BAKER_hair_shading of glTF material `materialIndex` of document `json`, resolved for a shader, or null when it
  * has none (or its table set is missing): { ext, tables: { longitudinal, azimuthal, dualScattering } (each
- * { bufferView, width, height }), variances [4], params [tilt radians, slices, alphaF, betaF], sigmaA [3],
+ * { accessor, width, height }), variances [4], params [tilt radians, slices, alphaF, betaF], sigmaA [3],
  * melaninAttribute, occlusionAttribute, fibresPositive, fibresNegative (attribute names or undefined) }.
  */
 export function hairShadingOf(json, materialIndex) {
@@ -34,13 +35,14 @@ export function hairShadingOf(json, materialIndex) {
 	};
 }
 
-/** The texels of table `table` ({ bufferView, width, height }) from its bufferView's bytes: a Uint16Array of halves. */
-export function hairTableTexels(table, bytes) {
+/**
+ * The texels of table `table` ({ accessor, width, height }) from its accessor's elements (any array of the
+ * UNSIGNED_SHORT values, VEC4 flattened): a Uint16Array of half-float bits, width x height x 4.
+ */
+export function hairTableTexels(table, values) {
 	const count = table.width * table.height * 4;
-	if (bytes.byteLength < count * 2) throw new Error(`BAKER_hair_shading: bufferView ${table.bufferView} holds ${bytes.byteLength} bytes, not ${count * 2}`);
-	const copy = new Uint16Array(count); // aligned copy (a bufferView may start at an odd offset)
-	new Uint8Array(copy.buffer).set(new Uint8Array(bytes.buffer ?? bytes, bytes.byteOffset ?? 0, count * 2));
-	return copy;
+	if (values.length !== count) throw new Error(`BAKER_hair_shading: accessor ${table.accessor} holds ${values.length} values, not ${table.width} x ${table.height} x 4`);
+	return values instanceof Uint16Array ? values : Uint16Array.from(values);
 }
 
 // Fibre shading of strands, ribbons and cards: 'fibre' (BAKER_hair_shading, the default where the material has it)

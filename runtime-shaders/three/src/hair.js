@@ -6,11 +6,14 @@ import * as THREE from 'three';
 import { hairShadingChoice, hairShadingGlsl, hairShadingOf, hairTableTexels, runtime } from '@baker/shared';
 import { BAKER_HAIR, controls, primitiveOf, requireShader, stageMaterial, trackViewport } from './common.js';
 
-/** The three tables of a resolved BAKER_hair_shading as half-float RGBA DataTextures (linear, clamped, no mips). */
+/**
+ * The three tables of a resolved BAKER_hair_shading as half-float RGBA DataTextures (linear, clamped, no mips), the
+ * accessors' UNSIGNED_SHORT elements uploaded as they are (the halves' bits).
+ */
 export async function hairShadingTextures(parser, shading) {
 	const upload = async (table) => {
-		const bytes = await parser.getDependency('bufferView', table.bufferView);
-		const texture = new THREE.DataTexture(hairTableTexels(table, bytes), table.width, table.height, THREE.RGBAFormat, THREE.HalfFloatType);
+		const accessor = await parser.getDependency('accessor', table.accessor); // UNSIGNED_SHORT: Uint16Array of halves
+		const texture = new THREE.DataTexture(hairTableTexels(table, accessor.array), table.width, table.height, THREE.RGBAFormat, THREE.HalfFloatType);
 		texture.colorSpace = THREE.NoColorSpace;
 		texture.wrapS = texture.wrapT = THREE.ClampToEdgeWrapping;
 		texture.magFilter = texture.minFilter = THREE.LinearFilter;
