@@ -32,6 +32,8 @@ MELANIN = {"blond": "0.3", "black": "8"}
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 # the viewer's page: the panel takes 240 px of the width, the canvas the remaining 160 x 160
 PAGE = {"width": 400, "height": 160}
+ENGINE_QUERY = {"three": "", "three-webgpu": "&engine=three-webgpu", "three-webgpu-webgl2": "&engine=three-webgpu&backend=webgl2",
+                "babylon": "&engine=babylon", "babylon-webgpu": "&engine=babylon-webgpu"}
 # (groom, light, shading) of the frames each host draws
 FRAMES = [("blond", "back", "fibre"), ("blond", "back", "kajiyaKay"), ("black", "back", "fibre"),
           ("blond", "front", "fibre")]
@@ -93,20 +95,20 @@ def site(grooms):
     server.shutdown()
 
 
-@pytest.mark.parametrize("engine", ["three", "three-webgpu", "babylon", "babylon-webgpu"])
+# three-webgpu-webgl2: WebGPURenderer's WebGL2 backend (the TSL wrapper's GLSL, the tables passed as sampler2D)
+@pytest.mark.parametrize("engine", ["three", "three-webgpu", "three-webgpu-webgl2", "babylon", "babylon-webgpu"])
 def test_web_hosts_glow_blond_not_black(site, engine, tmp_path):
     started = time.perf_counter()
     jobs = []
     for groom, light, shading in FRAMES:
         query = f"src={groom}.glb" + ("&on=backlight" if light == "back" else "")
-        query += ("&hairShading=kajiyaKay" if shading == "kajiyaKay" else "") + ("" if engine == "three" else f"&engine={engine}")
+        query += ("&hairShading=kajiyaKay" if shading == "kajiyaKay" else "") + ENGINE_QUERY[engine]
         jobs.append({"url": f"{site}/index.html?{query}", "out": str(tmp_path / f"{groom}-{light}-{shading}.png"), **PAGE})
-    infos = shoot(jobs, tmp_path / "jobs.json", webgpu=engine.endswith("webgpu"))
+    infos = shoot(jobs, tmp_path / "jobs.json", webgpu="webgpu" in engine)
     measured = {}
     for frame, job, info in zip(FRAMES, jobs, infos):
         assert not info["errors"] and not info["warnings"], info
         assert info["techniques"] == ["hair"], info
-        if engine.endswith("webgpu"):
-            assert info["backend"] == "webgpu", info
+        assert info["backend"] == ("webgpu" if engine.endswith("webgpu") else "webgl2"), info
         measured[frame] = excess(np.asarray(Image.open(job["out"]).convert("RGB")) / 255.0)
     assert_glows(measured, f"{engine} ({time.perf_counter() - started:.1f} s)")
