@@ -8,7 +8,9 @@ light), blond hair glows: the fibre model's forward scattering (TT and Zinke's g
 light through, so the frame's mean luminance above the background is clearly above the Kajiya-Kay frame's (which has
 no transmission) and above the black groom's, and above the blond groom's own front-lit frame. Black hair absorbs
 what it transmits: it stays far below the blond glow. The ball, background and camera are the same in the frames
-compared, so whole-frame means compare the hair alone.
+compared, so whole-frame means compare the hair alone. (WebGPURenderer blends the partly covered ribbons in linear
+colour, WebGLRenderer in the written values: its glow is about twice as bright; both backends of WebGPURenderer
+agree.)
 """
 from __future__ import annotations
 
