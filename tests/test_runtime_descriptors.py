@@ -123,6 +123,7 @@ def test_viewer_passes_every_module(runtimes, tmp_path):
     assert result.returncode == 0, result.stderr
     passed = json.loads(result.stdout)
     wanted = {r["modules"]["key"]: r["modules"]["glsl"] for r in runtimes["RUNTIMES"] if r["modules"].get("glsl")}
+    wanted["hairShading"] = "baker_hair_shading.glsl"  # BAKER_hair_shading's module: hair includes it, no descriptor
     assert set(passed) == set(wanted)
     for key, module in wanted.items():
         assert passed[key] == (SHADERS / module).read_text(), f"options.shaders.{key} is not {module}"

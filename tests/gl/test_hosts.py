@@ -19,6 +19,8 @@ HOSTS = {
     "text.frag.glsl": (["baker_text.glsl"], {}),
     "hair_ribbon.vert.glsl": (["baker_hair.glsl"], {}),
     "hair_kajiya_kay.frag.glsl": (["baker_hair.glsl"], {}),
+    "hair_ribbon_shading.vert.glsl": (["baker_hair.glsl", "baker_hair_shading.glsl"], {}),
+    "hair_shading.frag.glsl": (["baker_hair_shading.glsl"], {}),
     "preview_lines.vert.glsl": ([], {}),
     "preview_lines.frag.glsl": ([], {}),
 }

@@ -19,11 +19,12 @@ import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { DracoDecoder } from '@babylonjs/core/Meshes/Compression/dracoDecoder.js';
 import { TECHNIQUES, bakerControls, registerBakerExtensions, unregisterBakerExtensions } from '../../../runtime-shaders/babylon/src/index.js';
 import {
-	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, bakerOn, caustics,
+	BACK_LIT, BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, bakerOn, caustics, hair,
 	engineSwitch, fail, frameDirection, frameDistance, frontSwitch, keyDirection, listParam, onDroppedFile, params,
 	showToggles, status, switchTechniques,
 } from './ui.js';
 import { shaders } from './shaders.js';
+import hairShadingWgsl from '../../../runtime-shaders/baker_hair_shading.wgsl';
 import { RUNTIMES } from '@baker/shared';
 
 // EXT_meshopt_compression: Babylon.js loads meshoptimizer's decoder script from its CDN into the global
@@ -42,8 +43,9 @@ DracoDecoder.DefaultConfiguration = {
 // every file the template can name, as text by the import attribute)
 const wgslStem = (file) => file.replace(/^baker_/, '').replace(/\.wgsl$/, '');
 async function wgslModules() {
-	return Object.fromEntries(await Promise.all(RUNTIMES.filter((r) => r.modules.wgsl).map(async (r) =>
+	const modules = Object.fromEntries(await Promise.all(RUNTIMES.filter((r) => r.modules.wgsl).map(async (r) =>
 		[r.modules.key, (await import(`../../../runtime-shaders/baker_${wgslStem(r.modules.wgsl)}.wgsl`, { with: { type: 'text' } })).default])));
+	return { ...modules, hairShading: hairShadingWgsl }; // BAKER_hair_shading's module (no descriptor of its own)
 }
 
 /**
@@ -105,7 +107,7 @@ export async function babylonViewer() {
 	fill.intensity = FILL_INTENSITY;
 
 	// ?disable=BAKER_fur,...: extensions left to Babylon's loader (which ignores them)
-	if (bakerOn) registerBakerExtensions({ shaders, wgsl: engine.isWebGPU ? await wgslModules() : {}, caustics, disabled: [...listParam('disable')] });
+	if (bakerOn) registerBakerExtensions({ shaders, wgsl: engine.isWebGPU ? await wgslModules() : {}, caustics, hair, disabled: [...listParam('disable')] });
 	else unregisterBakerExtensions();
 
 	const given = params.get('view') ? JSON.parse(params.get('view')) : null;
@@ -143,12 +145,14 @@ export async function babylonViewer() {
 			const root = result.meshes[0];
 			const baker = bakerControls(root);
 			const found = showToggles(baker, null, TECHNIQUES);
-			// the light from behind (translucency) only when asked for: ?on=backlight or its checkbox
-			let back = found.includes('translucency') && listParam('on').has('backlight');
+			// the light from behind (translucency; hair's forward scattering) only when asked for: ?on=backlight or
+			// its checkbox
+			const backLit = BACK_LIT.some((t) => found.includes(t));
+			let back = backLit && listParam('on').has('backlight');
 			const v = given ?? frame(root, back);
 			place(v);
 			sphere = v;
-			if (found.includes('translucency')) {
+			if (backLit) {
 				addToggle('light from behind', 'backlight', back, (on) => {
 					back = on;
 					// the front key of the framing, or the camera's direction reversed

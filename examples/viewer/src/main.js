@@ -11,7 +11,7 @@ import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
 import { registerBakerPlugins } from '../../../runtime-shaders/three/src/index.js';
 import { shaders } from './shaders.js';
 import { runThreeViewer } from './three_viewer.js';
-import { bakerOn, caustics, fail, params } from './ui.js';
+import { bakerOn, caustics, fail, hair, params } from './ui.js';
 
 const view = document.getElementById('view');
 
@@ -23,7 +23,7 @@ function createRenderer() {
 }
 
 async function loadGLB(url) {
-	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders, caustics }) : new GLTFLoader();
+	const loader = bakerOn ? registerBakerPlugins(new GLTFLoader(), { shaders, caustics, hair }) : new GLTFLoader();
 	// EXT_meshopt_compression (`baker bake --compress meshopt`, gltfpack, gltf-transform meshopt)
 	loader.setMeshoptDecoder(MeshoptDecoder);
 	// KHR_draco_mesh_compression (`gltf-transform draco`): Google's decoder, copied next to the bundles by the build

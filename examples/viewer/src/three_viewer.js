@@ -5,7 +5,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { TECHNIQUES } from '@baker/shared';
 import {
-	BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, engineSwitch, fail,
+	BACK_LIT, BACKGROUND, FILL_CAMERA_POSITION, FILL_INTENSITY, FOV_DEGREES, HEMI, KEY_INTENSITY, addToggle, engineSwitch, fail,
 	frameDirection, frameDistance, frontSwitch, keyDirection, listParam, onDroppedFile, params, showToggles, status,
 	switchTechniques,
 } from './ui.js';
@@ -85,10 +85,12 @@ export function runThreeViewer({ renderer, load, engine, backend }) {
 			const baker = gltf.userData.baker;
 			const found = baker ? baker.techniques : [];
 			showToggles(baker, found, TECHNIQUES);
-			// the light from behind (translucency) only when asked for: ?on=backlight or its checkbox
-			let back = found.includes('translucency') && on.has('backlight');
+			// the light from behind (translucency; hair's forward scattering) only when asked for: ?on=backlight or
+			// its checkbox
+			const backLit = BACK_LIT.some((t) => found.includes(t));
+			let back = backLit && on.has('backlight');
 			setBackLight(back, sphere);
-			if (found.includes('translucency')) addToggle('light from behind', 'backlight', back, (v) => { back = v; setBackLight(v, sphere); publishView(); });
+			if (backLit) addToggle('light from behind', 'backlight', back, (v) => { back = v; setBackLight(v, sphere); publishView(); });
 			reframe = () => { sphere = frame(root); setBackLight(back, sphere); publishView(); };
 			publishView();
 			const missing = baker?.unsupported?.length ? ` (not drawn by this renderer: ${baker.unsupported.join(', ')})` : '';

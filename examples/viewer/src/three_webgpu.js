@@ -11,10 +11,10 @@ import { registerBakerNodePlugins } from '../../../runtime-shaders/three/src/nod
 import { shaders } from './shaders.js';
 import { wgsl } from './wgsl.js';
 import { runThreeViewer } from './three_viewer.js';
-import { bakerOn, caustics, fail, params } from './ui.js';
+import { bakerOn, caustics, fail, hair, params } from './ui.js';
 
 async function load(url) {
-	const loader = bakerOn ? registerBakerNodePlugins(new GLTFLoader(), { shaders, wgsl, caustics }) : new GLTFLoader();
+	const loader = bakerOn ? registerBakerNodePlugins(new GLTFLoader(), { shaders, wgsl, caustics, hair }) : new GLTFLoader();
 	// the compressed forms the WebGL2 page decodes (main.js): meshopt, and Draco from dist/draco/
 	loader.setMeshoptDecoder(MeshoptDecoder);
 	loader.setDRACOLoader(new DRACOLoader().setDecoderPath(new URL('dist/draco/', document.baseURI).href));

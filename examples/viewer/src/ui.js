@@ -17,6 +17,9 @@ export const FILL_CAMERA_POSITION = [-1, 1.5, 2];
 // The key light comes from the front, above and to the right of the camera (camera space: x right, y up, z towards
 // the viewer), fixed in the world when the asset is framed; the back light (translucency) is off until asked for.
 export const KEY_CAMERA_DIRECTION = [0.6, 0.8, 1];
+// the techniques whose assets get the "light from behind" switch: translucency, and hair (strands and cards) that
+// glows lit from behind (forward scattering, BAKER_hair_shading)
+export const BACK_LIT = ['translucency', 'hair', 'cards'];
 
 /**
  * The key light's world direction (towards the light) for a camera looking at the target from the unit vector
@@ -153,6 +156,8 @@ export function frontSwitch(onChange) {
 
 /** ?time=SECONDS: the caustic animation held at that time of its loop (a still a test can compare); else it runs. */
 export const caustics = params.has('time') ? { time: Number(params.get('time')) } : {};
+/** ?hairShading=kajiyaKay: strands and cards shaded Kajiya-Kay instead of the fibre model (options.hair.shading). */
+export const hair = params.has('hairShading') ? { shading: params.get('hairShading') } : {};
 
 /** ?baker=0: no baker plugins/extensions, the asset as glTF's standard PBR. */
 export const bakerOn = params.get('baker') !== '0';

@@ -208,6 +208,92 @@ fn main(input: FragmentInputs) -> FragmentOutputs {
 	fragmentOutputs.color = vec4f(color, fragmentInputs.vOpacity);
 }
 `,
+	// hair_ribbon.vert with BAKER_HAIR_SHADING defined (the GLSL stage's #ifdef part), and hair_fibre.frag
+	'hair_fibre.vert': `
+attribute baker_tangent: vec3f;
+attribute baker_param: f32;
+attribute baker_side: f32;
+attribute baker_widthScale: f32;
+attribute baker_fibre: vec3f;
+attribute baker_fibresPos: vec3f;
+attribute baker_fibresNeg: vec3f;
+uniform u_rootWidth: f32;
+uniform u_tipWidth: f32;
+uniform u_lodWidthScale: f32;
+uniform u_hairSigmaA: vec3f;
+uniform u_hairMelaninPerVertex: f32;
+varying vOpacity: f32;
+varying vTangent: vec3f;
+varying vView: vec3f;
+varying vSigmaA: vec3f;
+varying vOcclusion: f32;
+varying vFibresPos: vec3f;
+varying vFibresNeg: vec3f;
+varying vAxisX: vec3f;
+varying vAxisY: vec3f;
+varying vAxisZ: vec3f;
+@vertex
+fn main(input: VertexInputs) -> FragmentInputs {
+	let eye = baker_object_eye();
+	let w = baker_hair_lod_width(baker_hair_width(uniforms.u_rootWidth, uniforms.u_tipWidth, vertexInputs.baker_param,
+		vertexInputs.baker_widthScale), uniforms.u_lodWidthScale);
+	let tanHalfFovY = 1.0 / baker_projection_y();
+	let cov = baker_hair_coverage(w, baker_hair_pixel_size(distance(eye, vertexInputs.position), tanHalfFovY, uniforms.u_viewport.y));
+	let p = baker_hair_ribbon_position(vertexInputs.position, vertexInputs.baker_tangent, eye, cov.x, vertexInputs.baker_side);
+	vertexOutputs.vOpacity = cov.y;
+	vertexOutputs.vTangent = normalize(baker_light_vector(vertexInputs.baker_tangent));
+	vertexOutputs.vView = baker_to_eye(p);
+	vertexOutputs.position = baker_clip(p);
+	vertexOutputs.vSigmaA = select(uniforms.u_hairSigmaA, baker_hair_shading_melanin(vertexInputs.baker_fibre.x,
+		vertexInputs.baker_fibre.y), uniforms.u_hairMelaninPerVertex > 0.5);
+	vertexOutputs.vOcclusion = vertexInputs.baker_fibre.z;
+	vertexOutputs.vFibresPos = vertexInputs.baker_fibresPos;
+	vertexOutputs.vFibresNeg = vertexInputs.baker_fibresNeg;
+	vertexOutputs.vAxisX = normalize(baker_light_vector(vec3f(1.0, 0.0, 0.0)));
+	vertexOutputs.vAxisY = normalize(baker_light_vector(vec3f(0.0, 1.0, 0.0)));
+	vertexOutputs.vAxisZ = normalize(baker_light_vector(vec3f(0.0, 0.0, 1.0)));
+}
+`,
+	'hair_fibre.frag': `
+uniform u_color: vec3f;
+uniform u_hairVariances: vec4f;
+uniform u_hairParams: vec4f;
+var u_hairLongitudinalSampler: sampler;
+var u_hairLongitudinal: texture_2d<f32>;
+var u_hairAzimuthalSampler: sampler;
+var u_hairAzimuthal: texture_2d<f32>;
+var u_hairDualSampler: sampler;
+var u_hairDual: texture_2d<f32>;
+varying vOpacity: f32;
+varying vTangent: vec3f;
+varying vView: vec3f;
+varying vSigmaA: vec3f;
+varying vOcclusion: f32;
+varying vFibresPos: vec3f;
+varying vFibresNeg: vec3f;
+varying vAxisX: vec3f;
+varying vAxisY: vec3f;
+varying vAxisZ: vec3f;
+@fragment
+fn main(input: FragmentInputs) -> FragmentOutputs {
+	let T = normalize(fragmentInputs.vTangent);
+	let V = normalize(fragmentInputs.vView);
+	let h = BakerHairShading(uniforms.u_hairVariances, uniforms.u_hairParams.x, uniforms.u_hairParams.y,
+		uniforms.u_hairParams.z, uniforms.u_hairParams.w, 1.0, 1.0);
+	var color = baker_ambient_light() * uniforms.u_color * fragmentInputs.vOcclusion;
+	for (var i = 0; i < BAKER_MAX_LIGHTS; i++) {
+		if (i >= baker_light_count()) {
+			break;
+		}
+		let L = baker_light_direction(i);
+		let l = normalize(vec3f(dot(L, fragmentInputs.vAxisX), dot(L, fragmentInputs.vAxisY), dot(L, fragmentInputs.vAxisZ)));
+		let fibres = dot(l * l, mix(fragmentInputs.vFibresNeg, fragmentInputs.vFibresPos, step(vec3f(0.0), l)));
+		color += baker_light_color(i) * baker_hair_shading(u_hairLongitudinal, u_hairLongitudinalSampler, u_hairAzimuthal,
+			u_hairAzimuthalSampler, u_hairDual, u_hairDualSampler, h, T, L, V, fibres, fragmentInputs.vSigmaA);
+	}
+	fragmentOutputs.color = vec4f(color, fragmentInputs.vOpacity);
+}
+`,
 	'text.vert': `
 varying vUvText: vec2f;
 @vertex

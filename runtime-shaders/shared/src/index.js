@@ -9,6 +9,7 @@ import { STAGES, STAGES_WGSL } from './stages.js';
 export { RUNTIMES, runtime, runtimeOfSwitch } from './techniques.js';
 export { structExpression, uniformValue, uniformValues } from './values.js';
 export { STAGES, STAGES_WGSL } from './stages.js';
+export { BAKER_HAIR_SHADING, HAIR_SHADINGS, hairShadingChoice, hairShadingGlsl, hairShadingOf, hairTableTexels, longitudinalVariances } from './hair_shading.js';
 
 const extensionOf = (name) => RUNTIMES.find((r) => r.name === name).extension;
 export const BAKER_THICKNESS = extensionOf('thickness');
@@ -34,6 +35,7 @@ export const TECHNIQUES = Object.fromEntries(RUNTIMES.flatMap((r) => r.switches.
 
 // options.shaders key -> runtime-shaders/ file, for the message naming a missing module
 const GLSL_NAMES = Object.fromEntries(RUNTIMES.filter((r) => r.modules.key).map((r) => [r.modules.key, r.modules.glsl]));
+GLSL_NAMES.hairShading = 'baker_hair_shading.glsl'; // BAKER_hair_shading's module (hair and cards include it)
 
 /** The runtime-shaders module `key` of options.shaders, as given; throws a message naming the file when missing. */
 export function shaderText(shaders, key, packageName) {

@@ -235,16 +235,17 @@ export const RUNTIMES = [
 		],
 		textures: [],
 		uniforms: [],
-		// Kajiya-Kay's specular colour (linear RGB) and exponent; lod: the level of `lods` drawn at load
+		// Kajiya-Kay's specular colour (linear RGB) and exponent (options.hair.shading: 'fibre', the default, draws
+		// BAKER_hair_shading where the material has it); lod: the level of `lods` drawn at load
 		options: { specular: [0.3, 0.28, 0.25], exponent: 60, lod: 0 },
 		// the rows of the READMEs' runtime tables (tools/readme_tables.mjs writes them; see the header)
 		readme: {
 			shaders: ["hair ribbons (view-facing expansion, thin tip, pixel-coverage opacity), Kajiya-Kay, Scheuermann two-lobe, Marschner-style R/TT/TRT (RTR4 14.7); children from 3 guides (`baker_hair_offset_child`, `interpolation: \"offset\"`) and LODs drawn as prefixes (`baker_hair_lod_index_count`, `baker_hair_lod_width`)", "[`BAKER_hair`](../schemas/BAKER_hair/README.md)", "`tests/gl/twins_hair.py`, `tests/gl/test_hair.py`"],
 			three: [
-				["`BAKER_hair`", "`BakerHairPlugin`", "view-facing ribbons from `ribbonIndices` (ribbon vertex r = line vertex r/2, side r%2), extruded in the vertex shader (`baker_hair_ribbon_position`, TressFX pixel coverage), Kajiya-Kay shading; off shows glTF's plain lines. `lods` (from `baker guides`): `setHairLod(ribbons, k)` draws level k as a prefix of the ribbon indices with widths x `widthScale` (option `hairLod`: the level drawn at load)"],
+				["`BAKER_hair`", "`BakerHairPlugin`", "view-facing ribbons from `ribbonIndices` (ribbon vertex r = line vertex r/2, side r%2), extruded in the vertex shader (`baker_hair_ribbon_position`, TressFX pixel coverage); where the material has `BAKER_hair_shading`, shaded as fibres (`baker_hair_shading`: Chiang et al. 2016 from the file's tables, uploaded as half-float `DataTexture`s from their accessors, plus Zinke's dual scattering with the fibres toward each light from the strand's baked ambient cube, per-strand melanin, the rest-pose occlusion on the ambient term), else or with `options.hair.shading = 'kajiyaKay'` Kajiya-Kay; off shows glTF's plain lines. `lods` (from `baker guides`): `setHairLod(ribbons, k)` draws level k as a prefix of the ribbon indices with widths x `widthScale` (option `hairLod`: the level drawn at load)"],
 			],
 			babylon: [
-				["`BAKER_hair`", "hair ribbons (`hair`), view-facing, pixel coverage, Kajiya-Kay", "a ribbon mesh (`ribbonIndices`) replacing the glTF lines, `ShaderMaterial`"],
+				["`BAKER_hair`", "hair ribbons (`hair`), view-facing, pixel coverage; shaded as fibres where the material has `BAKER_hair_shading` (`baker_hair_shading.glsl` / `.wgsl`, the tables as half-float `RawTexture`s, dual scattering with the baked fibre counts, per-strand melanin, occlusion), else or with `options.hair.shading = 'kajiyaKay'` Kajiya-Kay", "a ribbon mesh (`ribbonIndices`) replacing the glTF lines, `ShaderMaterial` (WebGL2 and WebGPUEngine)"],
 			],
 			gltfTransform: [
 				["`BAKER_hair`", "`BakerHair`", "`Hair` (primitive)", "accessors `widthScale`, `ribbonIndices`, `guides.ids`, `guides.weights`; `guides.primitive` (Primitive)"],

@@ -8,13 +8,14 @@
 // The stages write gl_FragColor as it is (no colour-space conversion: a ShaderMaterial's output is not encoded);
 // WebGPURenderer encodes every material's output to the canvas' sRGB, so the fragment here is decoded first
 // (sRGBTransferEOTF) and the canvas receives the same values.
-import { Color, MeshBasicNodeMaterial, Vector2, Vector3, Vector4 } from 'three/webgpu';
+import { Color, FunctionCallNode, FunctionNode, MeshBasicNodeMaterial, Vector2, Vector3, Vector4 } from 'three/webgpu';
 import {
 	Discard, Fn, If, attribute, cameraPosition, cameraProjectionMatrix, distance, float, fwidth, max, mix, modelNormalMatrix,
 	modelViewMatrix, modelWorldMatrixInverse, normalGeometry, normalize, positionGeometry, positionView, reference,
-	sRGBTransferEOTF, texture, uniform, uv, varying, vec2, vec3, vec4,
+	nodeObject, sRGBTransferEOTF, step, texture, uniform, uv, varying, vec2, vec3, vec4,
 } from 'three/tsl';
 import { STAGES } from '@baker/shared';
+import { isWgslBuilder } from './modules.js';
 
 const MAX_LIGHTS = 4;
 
@@ -73,6 +74,63 @@ const objectEye = () => modelWorldMatrixInverse.mul(vec4(cameraPosition, 1)).xyz
 const clip = (p) => cameraProjectionMatrix.mul(modelViewMatrix).mul(vec4(p, 1));
 const projectionY = () => cameraProjectionMatrix.element(1).y;
 const raw = (rgb, a) => vec4(sRGBTransferEOTF(rgb), a);
+
+// baker_hair_shading with its three tables, in WGSL or GLSL. A TSL wrapper passes a texture node as a WGSL
+// texture_2d<f32> (and its sampler), but three.js builds a GLSL sampler2D argument as '<name>_sampler', which WebGL2
+// lacks: the GLSL wrapper's sampler2D inputs are read as 'texture', which builds to the sampler2D uniform itself.
+const FIBRE_WGSL = `fn baker_hair_fibre_node(mTable: texture_2d<f32>, mTableSampler: sampler, nTable: texture_2d<f32>,
+	nTableSampler: sampler, dualTable: texture_2d<f32>, dualTableSampler: sampler, variances: vec4f, params: vec4f,
+	T: vec3f, L: vec3f, V: vec3f, fibres: f32, sigmaA: vec3f) -> vec3f {
+	let h = BakerHairShading(variances, params.x, params.y, params.z, params.w, 1.0, 1.0);
+	return baker_hair_shading(mTable, mTableSampler, nTable, nTableSampler, dualTable, dualTableSampler, h, T, L, V,
+		fibres, sigmaA);
+}`;
+const FIBRE_GLSL = `vec3 baker_hair_fibre_node(sampler2D mTable, sampler2D nTable, sampler2D dualTable, vec4 variances,
+	vec4 params, vec3 T, vec3 L, vec3 V, float fibres, vec3 sigmaA) {
+	BakerHairShading h = BakerHairShading(variances, params.x, params.y, params.z, params.w, 1.0, 1.0);
+	return baker_hair_shading(mTable, nTable, dualTable, h, T, L, V, fibres, sigmaA);
+}`;
+function fibreFunction(m) {
+	const module = m.module('hairShading');
+	const wgsl = new FunctionNode(FIBRE_WGSL, [module.wgsl], 'wgsl');
+	const glsl = new FunctionNode(FIBRE_GLSL, [module.glsl], 'glsl');
+	const parse = glsl.getNodeFunction.bind(glsl);
+	glsl.getNodeFunction = (builder) => {
+		const fn = parse(builder);
+		for (const input of fn.inputs) if (input.type === 'sampler2D') input.type = 'texture';
+		return fn;
+	};
+	return (tables, rest) => Fn((builder) => (isWgslBuilder(builder)
+		? nodeObject(new FunctionCallNode(wgsl, [tables[0], tables[0], tables[1], tables[1], tables[2], tables[2], ...rest]))
+		: nodeObject(new FunctionCallNode(glsl, [...tables, ...rest]))))();
+}
+
+/** hair_ribbon.vert (BAKER_HAIR_SHADING) + hair_fibre.frag: the ribbon of the Kajiya-Kay stage, shaded as fibres. */
+function fibreRibbon(u, m, lights, { tangent, eye, cov, opacity, T }) {
+	const fibre = attribute('baker_fibre', 'vec3');
+	const melanin = m.fn('hairShading', 'baker_hair_shading_melanin')(fibre.x, fibre.y);
+	const sigmaA = varying(mix(u('u_hairSigmaA'), melanin, u('u_hairMelaninPerVertex')));
+	const occlusion = varying(fibre.z);
+	const positive = varying(attribute('baker_fibresPos', 'vec3'));
+	const negative = varying(attribute('baker_fibresNeg', 'vec3'));
+	const axis = (x, y, z) => varying(normalize(modelViewMatrix.mul(vec4(x, y, z, 0)).xyz));
+	const axes = [axis(1, 0, 0), axis(0, 1, 0), axis(0, 0, 1)];
+	const shade = fibreFunction(m);
+	const tables = ['u_hairLongitudinal', 'u_hairAzimuthal', 'u_hairDual'].map((name) => texture(u(name).value));
+	return {
+		positionNode: m.fn('hair', 'baker_hair_ribbon_position')(positionGeometry, tangent, eye, cov.x, attribute('baker_side', 'float')),
+		fragmentNode: Fn(() => {
+			const Tn = normalize(T);
+			const V = normalize(positionView.negate());
+			const color = lights.directions.reduce((sum, L, i) => {
+				const l = normalize(vec3(L.dot(axes[0]), L.dot(axes[1]), L.dot(axes[2])));
+				const fibres = l.mul(l).dot(mix(negative, positive, step(vec3(0), l)));
+				return sum.add(lights.colors[i].mul(shade(tables, [u('u_hairVariances'), u('u_hairParams'), Tn, L, V, fibres, sigmaA])));
+			}, lights.ambient.mul(u('u_color')).mul(occlusion));
+			return raw(color, opacity);
+		})(),
+	};
+}
 
 // the shared stages, by the name of their vertex stage: (u: uniform reader, m: BakerModules) -> node properties
 const STAGE_NODES = {
@@ -173,7 +231,7 @@ const STAGE_NODES = {
 			})(),
 		};
 	},
-	'hair_ribbon.vert': (u, m, lights) => {
+	'hair_ribbon.vert': (u, m, lights, holders) => {
 		const eye = objectEye();
 		const param = attribute('baker_param', 'float');
 		const tangent = attribute('baker_tangent', 'vec3');
@@ -185,6 +243,7 @@ const STAGE_NODES = {
 		const opacity = varying(cov.y);
 		const T = varying(normalize(modelViewMatrix.mul(vec4(tangent, 0)).xyz));
 		const kajiyaKay = m.fn('hair', 'baker_hair_kajiya_kay');
+		if (holders.u_hairLongitudinal) return fibreRibbon(u, m, lights, { tangent, eye, cov, opacity, T });
 		return {
 			positionNode: m.fn('hair', 'baker_hair_ribbon_position')(positionGeometry, tangent, eye, cov.x, attribute('baker_side', 'float')),
 			fragmentNode: Fn(() => {
@@ -251,7 +310,7 @@ export function geometryNodeMaterial(material, modules) {
 	};
 	const node = new MeshBasicNodeMaterial();
 	for (const key of COPIED) node[key] = material[key];
-	Object.assign(node, STAGE_NODES[stage](u, modules, sceneLights()));
+	Object.assign(node, STAGE_NODES[stage](u, modules, sceneLights(), holders));
 	// fins and the shell outline: hosts/web/solid.frag.glsl, one flat colour
 	if (!node.fragmentNode && material.fragmentShader?.endsWith(STAGES['solid.frag'])) node.fragmentNode = raw(u('u_color'), 1);
 	node.uniforms = holders;  // setHairLod and the caustics-like callers write ribbons.material.uniforms.*.value
