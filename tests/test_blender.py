@@ -228,6 +228,10 @@ def canonical_extensions(path) -> dict:
             for key, value in list((font.get(part) or {}).items()):
                 if key != "count":
                     font[part][key] = doc.accessor(value).tolist()
+    for table_set in (found["root"].get("BAKER_hair_shading") or {}).get("tables", []):
+        for table in table_set.values():
+            if isinstance(table, dict) and "accessor" in table:  # the fibre tables: compared by their texels
+                table["accessor"] = doc.accessor(table["accessor"]).tobytes().hex()
     found["nodes"] = sorted(json.dumps(n["extensions"], sort_keys=True) for n in gltf.get("nodes", [])
                             if "extensions" in n)
     prims = []
@@ -255,6 +259,9 @@ def canonical_extensions(path) -> dict:
                 if isinstance(ext.get("guides"), dict) and "primitive" in ext["guides"]:
                     ext["guides"] = dict(ext["guides"], primitive=primitive_digest(
                         doc, mesh["primitives"][ext["guides"]["primitive"]]))
+                    for key in ("ids", "weights"):  # guide ids and weights: compared by their values
+                        if isinstance(ext["guides"].get(key), int):
+                            ext["guides"][key] = doc.accessor(ext["guides"][key]).tolist()
                 for key in ACCESSOR_KEYS.get(name, ()):
                     if key not in ext:
                         continue

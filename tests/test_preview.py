@@ -338,7 +338,8 @@ def test_hair_cards_panel_keeps_coverage_when_small(tmp_path):
     doc = GltfDocument.load(cards)
     (entry,) = doc.json["materials"][0]["extensions"]["BAKER_hair_cards"]["coverageMips"]
     box = alpha_mip_chain(read_coverage_mips(doc, entry)[0], entry["alphaCutoff"], preserve_coverage=False)
-    entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(box.levels), np.uint8), target=None)
+    levels = box.levels[entry.get("firstLevel", 0):]  # the file's chain starts where its level 0 is the PNG
+    entry["accessor"] = doc.add_accessor(np.frombuffer(encode_ktx2(levels), np.uint8), target=None)
     doc.save(tmp_path / "box.glb")
     (material,) = doc.json["materials"]
     material["alphaMode"] = "OPAQUE"  # the card quads, drawn whole by the reference panel

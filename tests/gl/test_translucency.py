@@ -398,7 +398,8 @@ def baked_texture(tmp_path_factory):
     source = folder / "sphere.glb"
     trimesh.creation.icosphere(subdivisions=3, radius=1.0).export(str(source))
     asset = baker.bake(str(source), bakes=["thickness"],
-                       options={"thickness": {"rays": 32, "per_vertex": False, "texture_size": 32}})
+                       options={"thickness": {"rays": 32, "per_vertex": False, "texture_size": 32,
+                                                  "texture_bits": 16}})  # the 16-bit PNG path (8 is the default)
     out = folder / "sphere_baked.glb"
     save(asset, out)
 

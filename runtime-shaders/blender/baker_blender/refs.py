@@ -17,6 +17,9 @@ ACCESSORS = {
     "BAKER_text": ("glyphs.glyph", "glyphs.position"),
     "BAKER_hair_cards": ("regions", "cardFirstIndex", "coverageMips[].accessor"),
     "BAKER_fur": ("coverageMips[].accessor",),  # the KTX2 bytes of each coverage-preserving mip chain
+    # the fibre tables (half-float texels), once per file at the root
+    "BAKER_hair_shading": ("tables[].longitudinal.accessor", "tables[].azimuthal.accessor",
+                           "tables[].dualScattering.accessor"),
 }
 # accessors holding vertex indices of their primitive (remapped by position when Blender renumbers vertices)
 VERTEX_INDEX_ACCESSORS = {("BAKER_edges", "edges"), ("BAKER_edges", "oppositeVertices"),
