@@ -120,17 +120,7 @@ def _run(asset: Asset, options: ThicknessOptions, seed: int, progress: Progress,
                 values = corrected_by_neighbours(texels, values, prior, first_means, stopped, region_edge,
                                                  options.texel_window,
                                                  np.array([limits[m][0] for m in meshes])[scene_of])
-        for texel_set, image, mask in texels.images(values):
-            if not options.per_vertex:
-                sums[texel_set.material][0] += float(image[mask].sum())
-                sums[texel_set.material][1] += int(mask.sum())
-            png, factor = ext.encode_thickness_texture(image, options.texture_bits)
-            textured[texel_set.material] = ext.write_thickness_texture(doc, texel_set.material, png, factor,
-                                                                       texel_set.texcoord)
-        double_sided = [asset.material_label(m) for m in textured if not ext.volume_allowed(doc, m)]
-        if double_sided:
-            asset.note("KHR_materials_volume is not valid on double-sided materials: their thickness texture is in "
-                       f"BAKER_thickness only: {', '.join(double_sided)}")
+        textured = write_texel_images(asset, texels, values, options, sums)
 
     for material, members in groups.items():
         mesh_limits = [limits[m] for m, _ in members if m in limits]
@@ -252,6 +242,25 @@ def corrected_by_neighbours(texels, values: np.ndarray, prior: np.ndarray, first
     return np.where(stopped, corrected, values)
 
 
+def write_texel_images(asset: Asset, texels, values: np.ndarray, options: ThicknessOptions, sums: dict) -> dict:
+    """Each texture set's thickness PNG into the document ({material: texture info}); without per-vertex data the
+    texels' sum and count go to ``sums`` for the material's mean. Shared by the own-mesh and the --from paths."""
+    doc = asset.doc
+    textured = {}
+    for texel_set, image, mask in texels.images(values):
+        if not options.per_vertex:
+            sums[texel_set.material][0] += float(image[mask].sum())
+            sums[texel_set.material][1] += int(mask.sum())
+        png, factor = ext.encode_thickness_texture(image, options.texture_bits)
+        textured[texel_set.material] = ext.write_thickness_texture(doc, texel_set.material, png, factor,
+                                                                   texel_set.texcoord)
+    double_sided = [asset.material_label(m) for m in textured if not ext.volume_allowed(doc, m)]
+    if double_sided:
+        asset.note("KHR_materials_volume is not valid on double-sided materials: their thickness texture is in "
+                   f"BAKER_thickness only: {', '.join(double_sided)}")
+    return textured
+
+
 def source_thickness(source, options: ThicknessOptions, seed: int, progress: Progress) -> tuple:
     """The high mesh's own per-vertex thickness (as ``baker bake HIGH --bakes thickness`` writes it), computed once per
     high mesh and options (:meth:`baker.texels.transfer.SourceMesh.per_vertex`)."""
@@ -309,17 +318,7 @@ def run_from_source(asset: Asset, options: ThicknessOptions, seed: int, progress
                                auto_range=AUTO_TEXTURE_SIZE_RANGE)
         record(request, "thickness", "texels", texels.source.hit)
         per_texel = texels.source.interpolate(values)
-        for texel_set, image, mask in texels.images(per_texel):
-            if not options.per_vertex:
-                sums[texel_set.material][0] += float(image[mask].sum())
-                sums[texel_set.material][1] += int(mask.sum())
-            png, factor = ext.encode_thickness_texture(image, options.texture_bits)
-            textured[texel_set.material] = ext.write_thickness_texture(doc, texel_set.material, png, factor,
-                                                                       texel_set.texcoord)
-        double_sided = [asset.material_label(m) for m in textured if not ext.volume_allowed(doc, m)]
-        if double_sided:
-            asset.note("KHR_materials_volume is not valid on double-sided materials: their thickness texture is in "
-                       f"BAKER_thickness only: {', '.join(double_sided)}")
+        textured = write_texel_images(asset, texels, per_texel, options, sums)
     for material, members in groups.items():
         total, count = sums[material]
         ext.write_material_parameters(doc, material, options=options, max_distance=max_distance, bias=bias,
