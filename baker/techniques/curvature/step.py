@@ -60,11 +60,23 @@ def run(asset: Asset, options: CurvatureOptions, seed: int = 0, progress: Progre
         with progress.task(f"curvature texels ({texels.describe()})", len(texels)) as advance:
             values = texels.interpolate_welded(welded_results)
             advance(len(texels))
-        for texel_set, image, _ in texels.images(values):
-            png, texture_range = ext.encode_curvature_texture(image, options.texture_bits)
-            textures[texel_set.material] = (ext.add_curvature_texture(doc, texel_set.material, png),
-                                            texel_set.texcoord, texture_range)
+        textures = write_texel_images(doc, texels, values, options)
 
+    write_materials(doc, stats, textures, options)
+
+
+def write_texel_images(doc, texels, values: np.ndarray, options: CurvatureOptions) -> dict:
+    """Each texture set's mean-curvature PNG: {material: (texture, texcoord, value range)}."""
+    textures = {}
+    for texel_set, image, _ in texels.images(values):
+        png, texture_range = ext.encode_curvature_texture(image, options.texture_bits)
+        textures[texel_set.material] = (ext.add_curvature_texture(doc, texel_set.material, png),
+                                        texel_set.texcoord, texture_range)
+    return textures
+
+
+def write_materials(doc, stats: dict, textures: dict, options: CurvatureOptions) -> None:
+    """BAKER_curvature on every material that got values: range, mean, and its texture when one was baked."""
     for material, (lo, hi, total, count) in stats.items():
         if not count:
             continue
@@ -147,15 +159,5 @@ def run_from_source(asset: Asset, options: CurvatureOptions, seed: int, progress
 
         texels = gather_texels(asset, options.texture_size, options.texel_density, seed)
         record(request, "curvature", "texels", texels.source.hit)
-        for texel_set, image, _ in texels.images(texels.source.interpolate(values[:, 0])):
-            png, texture_range = ext.encode_curvature_texture(image, options.texture_bits)
-            textures[texel_set.material] = (ext.add_curvature_texture(doc, texel_set.material, png),
-                                            texel_set.texcoord, texture_range)
-    for material, (lo, hi, total, count) in stats.items():
-        if not count:
-            continue
-        texture, texcoord, texture_range = textures.get(material, (None, 0, None))
-        ext.write_material_parameters(doc, material, options=options, value_range=[lo, hi],
-                                      mean_curvature=total / count, per_vertex=options.per_vertex,
-                                      directions=options.directions, texture=texture, texcoord=texcoord,
-                                      texture_range=texture_range)
+        textures = write_texel_images(doc, texels, texels.source.interpolate(values[:, 0]), options)
+    write_materials(doc, stats, textures, options)
