@@ -61,22 +61,12 @@ class HairCardsShadingPanel(HairCardsPanel):
                              float(dual.beta_f))}
 
     def textures(self, scene, ctx, item):
-        import moderngl
-        import numpy as np
+        from baker.techniques.hair.panel import fibre_table_textures
 
         index, tables, dual, _ = item.data["hair_shading"]
         key = ("hair_shading", id(ctx), index)
         if key not in scene.cache:
-            m_rgba = np.concatenate([tables.longitudinal, np.zeros(tables.longitudinal.shape[:2] + (1,), np.float32)],
-                                    2)
-            group = []
-            for image in (m_rgba, tables.azimuthal, dual.table):
-                tex = ctx.texture((image.shape[1], image.shape[0]), 4,
-                                  np.ascontiguousarray(image, np.float16).tobytes(), dtype="f2")
-                tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
-                tex.repeat_x = tex.repeat_y = False
-                group.append(tex)
-            scene.cache[key] = TextureGroup(group)
+            scene.cache[key] = TextureGroup(fibre_table_textures(ctx, tables, dual))
         m, n, d = scene.cache[key].textures
         return {**super().textures(scene, ctx, item), "u_m": m, "u_n": n, "u_dual": d}
 

@@ -18,6 +18,22 @@ from baker.techniques.hair.extension import HairStrands, read
 DEFAULT_COLOR = (0.3, 0.2, 0.1, 1)
 
 
+def fibre_table_textures(ctx, tables, dual) -> list:
+    """The fibre tables as the runtime modules sample them: RGBA half-float textures (M with a zero fourth channel,
+    N, dual scattering), linear, clamped; the hair and the cards panels both bind these."""
+    import moderngl
+
+    m_rgba = np.concatenate([tables.longitudinal, np.zeros(tables.longitudinal.shape[:2] + (1,), np.float32)], 2)
+    group = []
+    for image in (m_rgba, tables.azimuthal, dual.table):
+        tex = ctx.texture((image.shape[1], image.shape[0]), 4, np.ascontiguousarray(image, np.float16).tobytes(),
+                          dtype="f2")
+        tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
+        tex.repeat_x = tex.repeat_y = False
+        group.append(tex)
+    return group
+
+
 @dataclass
 class Strands:
     """A hair primitive in world space."""
@@ -153,23 +169,12 @@ class HairPanel(Panel):
     def bind_tables(ctx, program, scene, strands, textures: dict) -> dict:
         """The strands' fibre tables as half-float textures (LINEAR, CLAMP_TO_EDGE; uploaded once per table set)
         bound to units 0-2, and the BakerHairShading uniforms."""
-        import moderngl
-
         from baker.techniques.hair_shading.kernel import longitudinal_variances
 
         tables, dual, tilt = strands.tables
         key = id(tables)
         if key not in textures:
-            group = []
-            m_rgba = np.concatenate([tables.longitudinal, np.zeros(tables.longitudinal.shape[:2] + (1,), np.float32)],
-                                    2)
-            for image in (m_rgba, tables.azimuthal, dual.table):
-                tex = ctx.texture((image.shape[1], image.shape[0]), 4,
-                                  np.ascontiguousarray(image, np.float16).tobytes(), dtype="f2")
-                tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
-                tex.repeat_x = tex.repeat_y = False
-                group.append(tex)
-            textures[key] = group
+            textures[key] = fibre_table_textures(ctx, tables, dual)
         for unit, tex in enumerate(textures[key]):
             tex.use(unit)
         return {"u_m": 0, "u_n": 1, "u_dual": 2,
